@@ -1,0 +1,132 @@
+#pragma once
+// The scene model every part of punctual reads: the GPU passes, light setup and the Embree
+// reference. It holds only what a glTF scene (or a built-in one) really has; nothing is padded
+// to the per-frame caps here.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace punctual {
+
+struct Bounds {
+    glm::vec3 min{std::numeric_limits<float>::max()};
+    glm::vec3 max{-std::numeric_limits<float>::max()};
+
+    bool empty() const { return min.x > max.x; }
+    void extend(const glm::vec3& p) { min = glm::min(min, p); max = glm::max(max, p); }
+    void extend(const Bounds& b) { if (!b.empty()) { extend(b.min); extend(b.max); } }
+    glm::vec3 center() const { return (min + max) * 0.5f; }
+    glm::vec3 size() const { return max - min; }
+    float radius() const { return glm::length(max - min) * 0.5f; }  // of the bounding sphere about center()
+    Bounds transformed(const glm::mat4& m) const;  // AABB of the 8 transformed corners
+};
+
+// Interleaved vertex, 32 bytes; the layout the vertex shaders read.
+struct Vertex {
+    glm::vec3 position;
+    glm::vec3 normal;
+    glm::vec2 uv;
+};
+static_assert(sizeof(Vertex) == 32);
+
+// Decoded texture: RGBA8, sRGB-encoded (glTF base-colour textures are sRGB).
+struct Texture {
+    std::string name;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint8_t> rgba;
+};
+
+// glTF metallic-roughness material.
+struct Material {
+    std::string name;
+    glm::vec4 baseColorFactor{1.0f};  // linear
+    float metallic = 1.0f;            // glTF defaults
+    float roughness = 1.0f;
+    int baseColorTexture = -1;        // index into Scene::textures, -1 for none
+    bool doubleSided = false;
+};
+
+// A triangle list inside Scene::indices/vertices. Indices are relative to `vertexOffset`.
+struct Mesh {
+    std::string name;
+    uint32_t firstIndex = 0;
+    uint32_t indexCount = 0;
+    uint32_t vertexOffset = 0;
+    uint32_t vertexCount = 0;
+    uint32_t material = 0;
+    Bounds localBounds;
+};
+
+// One drawn instance of a mesh: one glTF primitive under one node.
+struct Object {
+    std::string name;
+    uint32_t mesh = 0;
+    glm::mat4 model{1.0f};
+    Bounds worldBounds;
+};
+
+enum class LightType { Point, Spot, Directional };
+
+struct Light {
+    std::string name;
+    LightType type = LightType::Point;
+    glm::vec3 position{0.0f};           // world space (unused for directional)
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit, the direction the light shines (node -Z)
+    glm::vec3 color{1.0f};              // linear RGB
+    float intensity = 1.0f;             // candela (point, spot) or lux (directional)
+    float range = 0.0f;                 // metres; always finite and > 0 for point and spot
+    bool rangeDerived = false;          // true when glTF gave no range and we derived one
+    float innerConeAngle = 0.0f;        // radians from the axis (spot)
+    float outerConeAngle = 0.785398163f;  // radians from the axis (spot), glTF default pi/4
+    bool castsShadow = true;
+};
+
+struct Camera {
+    std::string name;
+    glm::mat4 view{1.0f};   // world -> view (camera looks down its -Z)
+    float yfov = 0.8f;      // radians
+    float znear = 0.05f;
+    float zfar = 100.0f;    // always finite: derived from the scene bounds when glTF gives none
+
+    glm::vec3 position() const;
+    glm::mat4 projection(float aspect) const;  // Vulkan clip space: depth 0..1, y down
+};
+
+struct Scene {
+    std::string source;  // file path, or "built-in default scene"
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;  // never empty after loading: a default material is added
+    std::vector<Texture> textures;
+    std::vector<Object> objects;
+    std::vector<Light> lights;
+    Camera camera;
+    bool cameraFromFile = false;
+    Bounds bounds;  // world bounds of all objects
+
+    size_t triangleCount() const { return indices.size() / 3; }
+    void computeBounds();  // fills every Object::worldBounds and Scene::bounds
+};
+
+// The radius at which an infinite-range light is cut off. KHR_lights_punctual says an absent
+// range means infinite; culling needs a finite one. We cut where the illuminance falls to
+// kInfiniteRangeCutoffLux: I / d^2 = E_min  =>  d = sqrt(I / E_min). With the default exposure a
+// pixel of white albedo lit by E_min shows about E_min / pi = 0.1% of full scale, below one 8-bit
+// step, so the cut-off is invisible.
+constexpr float kInfiniteRangeCutoffLux = 0.005f;
+float derivedRange(float intensityCandela, const glm::vec3& color);
+
+// A camera looking at the scene's bounds from the front-upper-right, with the bounding sphere
+// inside the vertical field of view.
+Camera fitCameraToBounds(const Bounds& bounds, float yfov = 0.8f);
+
+// Throws punctual::Error(source, ...) when a light has out-of-range parameters (negative or NaN
+// intensity, range <= 0, cone angles outside 0 <= inner < outer <= pi/2, non-finite position).
+void validateLights(const std::vector<Light>& lights, const std::string& source);
+
+}  // namespace punctual
