@@ -1,0 +1,36 @@
+// Compile-time checks that the C++ view of the shared GPU structs (shaders/shared/gpu_types.h)
+// has exactly the std430/std140 layout GLSL gives them.
+#include <cstddef>
+
+#include "gpu_types.h"
+
+namespace punctual::gpu {
+
+static_assert(sizeof(GpuPunctualLight) == 64);
+static_assert(offsetof(GpuPunctualLight, radiantColor) == 16);
+static_assert(offsetof(GpuPunctualLight, directionAngleScale) == 32);
+static_assert(offsetof(GpuPunctualLight, angleOffsetShadow) == 48);
+
+static_assert(sizeof(GpuDirectionalLight) == 32);
+static_assert(offsetof(GpuDirectionalLight, illuminance) == 16);
+
+static_assert(offsetof(GpuFrame, projection) == 64);
+static_assert(offsetof(GpuFrame, viewProjection) == 128);
+static_assert(offsetof(GpuFrame, inverseViewProjection) == 192);
+static_assert(offsetof(GpuFrame, cameraPosition) == 256);
+static_assert(offsetof(GpuFrame, viewport) == 272);
+static_assert(offsetof(GpuFrame, lightCounts) == 288);
+static_assert(offsetof(GpuFrame, exposure) == 304);
+static_assert(offsetof(GpuFrame, sun) == 320);
+static_assert(sizeof(GpuFrame) == 352);
+
+static_assert(sizeof(GpuObject) == 144);
+static_assert(offsetof(GpuObject, normalMatrix) == 64);
+static_assert(offsetof(GpuObject, material) == 128);
+
+static_assert(sizeof(GpuMaterial) == 32);
+static_assert(offsetof(GpuMaterial, metallicRoughness) == 16);
+static_assert(offsetof(GpuMaterial, baseColorTexture) == 24);
+static_assert(offsetof(GpuMaterial, flags) == 28);
+
+}  // namespace punctual::gpu
