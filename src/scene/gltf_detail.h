@@ -1,0 +1,71 @@
+#pragma once
+// Internals of the glTF loader, shared by gltf_loader.cpp (scene graph, materials, cameras,
+// lights), gltf_source.cpp (file reading, checks tinygltf does not make, image decoding) and
+// gltf_primitives.cpp (validated accessor reads, triangle meshes).
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+#include "scene/scene.h"
+
+namespace punctual::gltf_detail {
+
+// --- gltf_source.cpp -------------------------------------------------------------------------
+
+struct SourceFile {
+    std::vector<unsigned char> bytes;  // the whole file
+    bool binary = false;               // GLB container
+    std::string baseDir;               // where relative URIs are resolved
+    nlohmann::json json;               // the glTF JSON (of the GLB's JSON chunk), parsed by us
+};
+
+// Reads the file and parses its JSON. Throws Error for a missing or unreadable file, a
+// truncated GLB and JSON syntax errors, so those get a clearer message than tinygltf gives.
+SourceFile readSource(const std::string& path);
+
+// Checks tinygltf 2.7 does not make before it acts on the data: an image stored in a buffer
+// view is read from that view without a bounds check, and light properties of the wrong JSON
+// type are silently replaced by their defaults. Throws Error.
+void preflight(const nlohmann::json& gltf, const std::string& path);
+
+// Image indices referenced (through a texture) as some material's baseColorTexture: the only
+// images we decode.
+std::set<int> baseColorImages(const nlohmann::json& gltf);
+
+// User data of decodeImage: which images to decode, and why decoding failed for the others.
+struct ImageDecoding {
+    std::set<int> wanted;
+    std::map<int, std::string> failures;  // image index -> stb's failure reason
+};
+
+// tinygltf::LoadImageDataFunction. Decodes wanted images to RGBA8 with stb. Never fails the
+// load: an undecodable image is recorded in ImageDecoding::failures and left empty, so its
+// materials fall back to their baseColorFactor.
+bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::string* warn,
+                 int requestedWidth, int requestedHeight, const unsigned char* bytes, int size,
+                 void* userData);
+
+// tinygltf's multi-line error text as one short line; known messages are reworded to name the
+// buffer they are about.
+std::string describeLoadError(const std::string& tinygltfError, const nlohmann::json& gltf);
+
+// tinygltf's warning text split into distinct lines, minus the lines about images that could
+// not be read: loadGltf issues its own single warning for each of those it actually uses.
+std::vector<std::string> relevantWarnings(const std::string& tinygltfWarnings);
+
+// --- gltf_primitives.cpp ---------------------------------------------------------------------
+
+// Appends one TRIANGLES primitive to `vertices`/`indices` (indices relative to the returned
+// Mesh::vertexOffset) and returns its Mesh with `material` left for the caller, or nullopt when
+// the primitive has no triangles. `label` names the primitive in errors, e.g.
+// "mesh 'box' primitive 0". Validates every accessor before reading it; throws Error(path, ...).
+std::optional<Mesh> appendPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                                    const std::string& label, const std::string& path,
+                                    std::vector<Vertex>& vertices, std::vector<uint32_t>& indices);
+
+}  // namespace punctual::gltf_detail

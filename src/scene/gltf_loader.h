@@ -1,0 +1,19 @@
+#pragma once
+// Loads a glTF 2.0 scene (.gltf with external or data: URI buffers, or .glb) into a Scene.
+#include <string>
+
+#include "scene/scene.h"
+
+namespace punctual {
+
+// Reads `path` (format chosen by the "glTF" magic, or else the .glb extension) and returns the
+// scene of its default scene: triangle meshes, metallic-roughness materials with decoded
+// base-colour textures, the first perspective camera and the KHR_lights_punctual lights.
+//
+// Every problem with the file (missing, unparsable, out-of-bounds accessors, non-finite
+// vertices, invalid lights, nothing to draw) throws punctual::Error(path, one-line problem).
+// Problems we can render around (an undecodable texture, non-triangle primitives, an
+// orthographic camera) log one warning each instead.
+Scene loadGltf(const std::string& path);
+
+}  // namespace punctual

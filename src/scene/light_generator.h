@@ -1,0 +1,67 @@
+#pragma once
+// Procedural lights for any scene: `--lights S,P[,SEED]` replaces a scene's lights with S spot and
+// P point lights spread through its bounds, so light-count scaling can be benchmarked on any
+// glTF scene. Everything here is deterministic bit for bit across compilers and standard
+// libraries: the random source is std::mt19937 (its output sequence is fixed by the C++
+// standard) and the conversion of its 32-bit outputs to floats is our own, because
+// std::uniform_real_distribution is implementation-defined and differs between libstdc++, libc++
+// and MSVC.
+#include <cstdint>
+#include <random>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace punctual {
+
+// Deterministic, portable random floats.
+class PortableRandom {
+public:
+    // The 64-bit seed is split into two 32-bit words fed through std::seed_seq, whose mixing
+    // algorithm is also specified by the standard.
+    explicit PortableRandom(uint64_t seed);
+
+    // Uniform in [0, 1): the top 24 bits of one engine output times 2^-24. Every result is exactly
+    // representable in a float, so no rounding mode or library can change it.
+    float uniform();
+    // lo + (hi - lo) * uniform(): in [lo, hi) up to the rounding of that one multiply-add
+    // (IEEE-exact, and never contracted to an FMA under -std=c++20 on GCC/Clang).
+    float uniform(float lo, float hi);
+
+private:
+    std::mt19937 engine_;
+};
+
+// A light colour: a random tint between white and a random saturated colour, scaled so its
+// largest channel is exactly 1 (then intensity alone sets the peak brightness).
+glm::vec3 randomLightColor(PortableRandom& random);
+
+// Replaces ALL of the scene's lights, directional ones included (a generated set is meant to be
+// the scene's whole lighting, so results depend only on S, P and the seed), with `spotCount`
+// spots followed by `pointCount` points:
+//  - positions uniform in x and z over the scene bounds; y uniform in
+//    [min.y + 10% of the height, min.y + 90% of the height], i.e. above the lowest surfaces and
+//    below a ceiling. A flat scene (height < 10% of its larger horizontal side h) gets y in
+//    [min.y + 0.05 h, min.y + 0.2 h] instead, which is above the bounds.
+//  - spots shine down, tilted randomly up to ~35 degrees from vertical; outer cone 25-50 degrees,
+//    inner cone 0.5-0.9 x outer.
+//  - ranges 0.25-0.45 x the bounds diagonal, so lights overlap whatever the scene's size.
+//  - intensities proportional to range^2: the illuminance at a given fraction of the range is then
+//    independent of the scene's scale (scaling a scene by s scales ranges by s, intensities by s^2).
+// Throws Error("--lights", ...) when the counts exceed the per-frame caps (64 spot, 32 point) or
+// the scene has no geometry to take bounds from. Call Scene::computeBounds() first.
+void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed);
+
+struct LightCounts {
+    uint32_t spot = 0;
+    uint32_t point = 0;
+    uint64_t seed = 1;
+};
+
+// Parses the `--lights` argument "S,P" or "S,P,SEED" (decimal, non-negative, no spaces; SEED
+// defaults to 1). Throws Error("--lights", ...) for anything else, including counts over the caps.
+LightCounts parseLightCounts(const std::string& text);
+
+}  // namespace punctual

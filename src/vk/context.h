@@ -1,0 +1,97 @@
+#pragma once
+// The headless Vulkan device: no window, no surface. Picks the best device present (discrete GPU,
+// then integrated, virtual, CPU: lavapipe reports itself as a CPU device and is accepted), or
+// the one `--device N` names. With validation on, every validation message is printed and
+// counted; tests fail on any.
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace punctual::vk {
+
+struct ContextOptions {
+    bool validation = false;
+    int deviceIndex = -1;  // -1: pick the best
+    bool printValidationMessages = true;
+};
+
+struct DeviceInfo {
+    uint32_t index = 0;
+    std::string name;
+    std::string type;  // "discrete", "integrated", "virtual", "cpu", "other"
+    uint32_t apiVersion = 0;
+    bool usable = false;
+    std::string whyNotUsable;
+};
+
+class Context {
+public:
+    explicit Context(const ContextOptions& options = {});
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkInstance instance() const { return instance_; }
+    VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
+    VkDevice device() const { return device_; }
+    VkQueue queue() const { return queue_; }
+    uint32_t queueFamily() const { return queueFamily_; }
+    VkCommandPool commandPool() const { return commandPool_; }
+    const VkPhysicalDeviceProperties& properties() const { return properties_; }
+    const VkPhysicalDeviceFeatures& enabledFeatures() const { return enabledFeatures_; }
+    std::string deviceName() const { return properties_.deviceName; }
+    // Nanoseconds per timestamp tick, and the mask of valid timestamp bits on our queue.
+    double timestampPeriodNs() const { return properties_.limits.timestampPeriod; }
+    uint64_t timestampMask() const { return timestampMask_; }
+
+    uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required) const;
+
+    // Allocates a primary command buffer, lets `record` fill it, submits and waits.
+    template <typename Record>
+    void submitAndWait(Record&& record) {
+        VkCommandBuffer cmd = beginOneShot();
+        try {
+            record(cmd);
+        } catch (...) {
+            vkFreeCommandBuffers(device_, commandPool_, 1, &cmd);
+            throw;
+        }
+        endOneShot(cmd);
+    }
+
+    // Validation messages seen so far (warnings and errors).
+    size_t validationMessageCount() const;
+    std::vector<std::string> validationMessages() const;
+    bool validationEnabled() const { return validation_; }
+
+    static std::vector<DeviceInfo> listDevices();
+
+private:
+    void release();
+    VkCommandBuffer beginOneShot();
+    void endOneShot(VkCommandBuffer cmd);
+    static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
+        VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+        const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+
+    bool validation_ = false;
+    bool printValidation_ = true;
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    uint32_t queueFamily_ = 0;
+    VkCommandPool commandPool_ = VK_NULL_HANDLE;
+    VkPhysicalDeviceProperties properties_{};
+    VkPhysicalDeviceFeatures enabledFeatures_{};
+    uint64_t timestampMask_ = ~0ull;
+
+    mutable std::mutex messagesMutex_;
+    std::vector<std::string> messages_;
+};
+
+}  // namespace punctual::vk
