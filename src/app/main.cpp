@@ -1,1 +1,52 @@
-int main() { return 0; }
+// punctual: a headless Vulkan renderer for many spot and point lights, built to measure how fast
+// and how correct light-culling and shadow methods are.
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "app/options.h"
+#include "app/render_command.h"
+#include "core/error.h"
+#include "vk/context.h"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: punctual <command> [options]
+
+commands:
+  render [SCENE] [options]   render a frame on the GPU and print per-pass GPU times
+  devices                    list the Vulkan devices (index, name, type)
+  help                       this text; `punctual render --help` for the render options
+)";
+
+int listDevices() {
+    for (const auto& device : punctual::vk::Context::listDevices()) {
+        std::printf("%u: %s (%s)%s%s\n", device.index, device.name.c_str(), device.type.c_str(),
+                    device.usable ? "" : " not usable: ", device.whyNotUsable.c_str());
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::vector<std::string> args(argv + 1, argv + argc);
+    try {
+        if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
+            std::fputs(kUsage, args.empty() ? stderr : stdout);
+            return args.empty() ? 2 : 0;
+        }
+        const std::vector<std::string> rest(args.begin() + 1, args.end());
+        if (args[0] == "render") return punctual::app::runRenderCommand(rest);
+        if (args[0] == "devices") return listDevices();
+        std::fprintf(stderr, "punctual: error: unknown command '%s' (try punctual help)\n", args[0].c_str());
+        return 2;
+    } catch (const punctual::Error& error) {
+        std::fprintf(stderr, "punctual: error: %s\n", error.what());
+        return 1;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "punctual: internal error: %s\n", error.what());
+        return 3;
+    }
+}

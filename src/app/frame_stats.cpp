@@ -1,0 +1,45 @@
+#include "app/frame_stats.h"
+
+#include <cstdio>
+
+namespace punctual::app {
+
+nlohmann::json frameStatsJson(const render::FrameResult& result, const render::Renderer& renderer,
+                              const Scene& scene, const std::string& deviceName, uint32_t frames) {
+    const render::PassTimings& ms = result.medianMs;
+    const FrameLights& lights = renderer.lights();
+    nlohmann::json stats;
+    stats["scene"] = scene.source;
+    stats["device"] = deviceName;
+    stats["size"] = {{"width", renderer.settings().width}, {"height", renderer.settings().height}};
+    stats["frames"] = frames;
+    stats["gpu_ms"] = {{"depth", ms.depth},     {"culling", ms.culling}, {"shadows", ms.shadows},
+                       {"forward", ms.forward}, {"tonemap", ms.tonemap}, {"total", ms.total}};
+    stats["lights"] = {{"spot", lights.spotCount},
+                       {"point", lights.pointCount},
+                       {"directional", lights.directionalCount},
+                       {"culled_by_frustum", lights.culledByFrustum},
+                       {"dropped_by_cap", lights.droppedByCap},
+                       {"in_scene", scene.lights.size()}};
+    stats["triangles"] = scene.triangleCount();
+    stats["objects"] = scene.objects.size();
+    return stats;
+}
+
+std::string timingTable(const render::PassTimings& ms) {
+    std::string table = "pass        GPU ms\n";
+    auto row = [&](const char* name, double value) {
+        char line[64];
+        std::snprintf(line, sizeof(line), "%-10s %8.3f\n", name, value);
+        table += line;
+    };
+    row("depth", ms.depth);
+    row("culling", ms.culling);
+    row("shadows", ms.shadows);
+    row("forward", ms.forward);
+    row("tonemap", ms.tonemap);
+    row("total", ms.total);
+    return table;
+}
+
+}  // namespace punctual::app

@@ -1,0 +1,100 @@
+#include "app/options.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace punctual::app {
+namespace {
+
+template <typename T>
+bool parseNumber(const std::string& text, T& value) {
+    const char* first = text.data();
+    const char* last = text.data() + text.size();
+    const auto [end, ec] = std::from_chars(first, last, value);
+    return ec == std::errc() && end == last && !text.empty();
+}
+
+uint32_t parseCount(const std::string& option, const std::string& text, uint32_t min, uint32_t max) {
+    uint32_t value = 0;
+    if (!parseNumber(text, value) || value < min || value > max) {
+        throw Error(option, "expected a whole number from " + std::to_string(min) + " to " + std::to_string(max) +
+                                ", got '" + text + "'");
+    }
+    return value;
+}
+
+}  // namespace
+
+void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
+    const auto x = text.find('x');
+    if (x == std::string::npos) throw Error("--size", "expected WxH (e.g. 1280x720), got '" + text + "'");
+    constexpr uint32_t kMax = 8192;
+    try {
+        width = parseCount("--size", text.substr(0, x), 1, kMax);
+        height = parseCount("--size", text.substr(x + 1), 1, kMax);
+    } catch (const Error&) {
+        throw Error("--size", "expected WxH with each side from 1 to " + std::to_string(kMax) + ", got '" + text + "'");
+    }
+}
+
+RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
+    RenderOptions options;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& arg = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size()) throw Error(arg, "needs a value");
+            return args[++i];
+        };
+        if (arg == "--lights") {
+            options.lights = parseLightCounts(value());
+        } else if (arg == "--size") {
+            parseSize(value(), options.width, options.height);
+        } else if (arg == "--out") {
+            options.outPath = value();
+        } else if (arg == "--stats") {
+            options.statsPath = value();
+        } else if (arg == "--device") {
+            options.deviceIndex = int(parseCount(arg, value(), 0, 64));
+        } else if (arg == "--validate") {
+            options.validate = true;
+        } else if (arg == "--frames") {
+            options.frames = parseCount(arg, value(), 1, 1000);
+        } else if (arg == "--exposure") {
+            const std::string& text = value();
+            float exposure = 0.0f;
+            if (!parseNumber(text, exposure) || !std::isfinite(exposure) || exposure <= 0.0f) {
+                throw Error(arg, "expected a number > 0, got '" + text + "'");
+            }
+            options.exposure = exposure;
+        } else if (!arg.empty() && arg[0] == '-') {
+            throw Error(arg, "unknown option (see punctual render --help)");
+        } else if (!options.scenePath) {
+            options.scenePath = arg;
+        } else {
+            throw Error(arg, "unexpected argument: only one scene file can be given");
+        }
+    }
+    return options;
+}
+
+std::string renderUsage() {
+    return R"(usage: punctual render [SCENE.gltf|SCENE.glb] [options]
+
+Renders SCENE (or the built-in default scene) on the GPU and prints per-pass GPU times.
+
+options:
+  --lights S,P[,SEED]  replace the scene's lights with S spot (<= 64) and P point (<= 32)
+                       lights generated inside its bounds (same seed, same lights; seed 1)
+  --size WxH           output size in pixels (default 1280x720)
+  --out FILE.png       write the tone-mapped image
+  --stats FILE.json    write per-pass GPU times and light counts
+  --exposure X         linear exposure before tone mapping (default 1)
+  --frames N           render N frames and report the median GPU times (default 1)
+  --device N           use Vulkan device N (see `punctual devices`); default: the best one
+  --validate           enable the Vulkan validation layers; any message fails the run
+)";
+}
+
+}  // namespace punctual::app

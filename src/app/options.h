@@ -1,0 +1,33 @@
+#pragma once
+// Command-line options shared by the commands (render now; reference, validate and bench later).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/light_generator.h"
+
+namespace punctual::app {
+
+struct RenderOptions {
+    std::optional<std::string> scenePath;  // none: the built-in default scene
+    std::optional<LightCounts> lights;     // --lights S,P[,SEED]
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    std::optional<std::string> outPath;    // --out FILE.png
+    std::optional<std::string> statsPath;  // --stats FILE.json
+    int deviceIndex = -1;                  // --device N
+    bool validate = false;                 // --validate
+    float exposure = 1.0f;                 // --exposure X
+    uint32_t frames = 1;                   // --frames N (timed; the median is reported)
+};
+
+// Parses the arguments after the command name. Throws punctual::Error naming the option.
+RenderOptions parseRenderOptions(const std::vector<std::string>& args);
+
+// "1280x720" -> (1280, 720). Throws Error("--size", ...).
+void parseSize(const std::string& text, uint32_t& width, uint32_t& height);
+
+std::string renderUsage();
+
+}  // namespace punctual::app

@@ -1,0 +1,12 @@
+#pragma once
+// Output files are checked before any work starts (so a typo in a folder name fails in a
+// second, not after a long render) and written atomically at the end.
+#include <optional>
+#include <string>
+
+namespace punctual::app {
+
+// Throws punctual::Error(path, ...) when the file's folder does not exist or the path is a folder.
+void checkOutputPath(const std::optional<std::string>& path);
+
+}  // namespace punctual::app

@@ -1,0 +1,11 @@
+#pragma once
+// Where a command's scene comes from: a glTF file or the built-in default scene, with the
+// lights optionally replaced by generated ones (--lights).
+#include "app/options.h"
+#include "scene/scene.h"
+
+namespace punctual::app {
+
+Scene loadSceneForOptions(const RenderOptions& options);
+
+}  // namespace punctual::app

@@ -1,0 +1,68 @@
+#include "render/forward_pass.h"
+
+#include <array>
+
+#include "gpu_types.h"
+#include "render/depth_prepass.h"
+#include "render/frame_bindings.h"
+#include "render/scene_gpu.h"
+#include "shaders/raster_forward_frag_spv.h"
+#include "shaders/raster_mesh_vert_spv.h"
+#include "vk/context.h"
+#include "vk/image.h"
+#include "vk/pipeline.h"
+
+namespace punctual::render {
+
+ForwardPass::ForwardPass(const vk::Context& context, const FrameBindings& bindings, const vk::Image& radiance,
+                         const vk::Image& depth)
+    : width_(radiance.desc().width), height_(radiance.desc().height) {
+    const VkDevice device = context.device();
+    vk::RenderPassDesc passDesc;
+    passDesc.colorFormat = kRadianceFormat;
+    passDesc.colorFinalLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    passDesc.depthFormat = DepthPrepass::kDepthFormat;
+    passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_LOAD;
+    passDesc.depthStore = VK_ATTACHMENT_STORE_OP_STORE;
+    passDesc.depthInitialLayout = DepthPrepass::kFinalLayout;
+    passDesc.depthFinalLayout = DepthPrepass::kFinalLayout;
+    renderPass_ = vk::createRenderPass(device, passDesc);
+    const std::array<VkImageView, 2> views = {radiance.view(), depth.view()};
+    framebuffer_ = vk::createFramebuffer(device, renderPass_, views, width_, height_);
+
+    const int32_t textureCount = int32_t(bindings.textureCount());
+    const VkSpecializationMapEntry entry{PUNCTUAL_SPEC_TEXTURE_COUNT, 0, sizeof(int32_t)};
+    VkSpecializationInfo specialization{1, &entry, sizeof(int32_t), &textureCount};
+
+    vk::GraphicsPipelineDesc pipelineDesc;
+    pipelineDesc.layout = bindings.pipelineLayout();
+    pipelineDesc.renderPass = renderPass_;
+    pipelineDesc.vertexSpirv = raster_mesh_vert_spv;
+    pipelineDesc.fragmentSpirv = raster_forward_frag_spv;
+    pipelineDesc.fragmentSpecialization = &specialization;
+    pipelineDesc.vertexStride = SceneGpu::vertexStride();
+    pipelineDesc.vertexAttributes = SceneGpu::vertexAttributes();
+    pipelineDesc.hasColorAttachment = true;
+    pipelineDesc.depthWrite = false;
+    pipelineDesc.depthCompare = VK_COMPARE_OP_EQUAL;
+    pipeline_ = vk::createGraphicsPipeline(device, pipelineDesc);
+}
+
+void ForwardPass::record(VkCommandBuffer cmd, const SceneGpu& scene, const FrameBindings& bindings) const {
+    std::array<VkClearValue, 2> clears{};
+    clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
+    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    begin.renderPass = renderPass_;
+    begin.framebuffer = framebuffer_;
+    begin.renderArea = {{0, 0}, {width_, height_}};
+    begin.clearValueCount = uint32_t(clears.size());
+    begin.pClearValues = clears.data();
+    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
+    setViewportAndScissor(cmd, width_, height_);
+    scene.drawObjects(cmd, bindings.pipelineLayout());
+    vkCmdEndRenderPass(cmd);
+}
+
+}  // namespace punctual::render

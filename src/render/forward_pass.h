@@ -1,0 +1,36 @@
+#pragma once
+// Forward pass: shades each visible pixel once (depth EQUAL against the prepass, no writes) into
+// an RGBA16F radiance target.
+#include <vulkan/vulkan.h>
+
+#include "vk/handle.h"
+
+namespace punctual::vk {
+class Context;
+class Image;
+}  // namespace punctual::vk
+
+namespace punctual::render {
+
+class FrameBindings;
+class SceneGpu;
+
+class ForwardPass {
+public:
+    // `radiance` ends in SHADER_READ_ONLY_OPTIMAL for the tone-mapping pass; `depth` must be in
+    // DEPTH_STENCIL_READ_ONLY_OPTIMAL (the prepass leaves it so) and stays there.
+    ForwardPass(const vk::Context& context, const FrameBindings& bindings, const vk::Image& radiance,
+                const vk::Image& depth);
+    void record(VkCommandBuffer cmd, const SceneGpu& scene, const FrameBindings& bindings) const;
+
+    static constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+private:
+    vk::Handle<VkRenderPass> renderPass_;
+    vk::Handle<VkFramebuffer> framebuffer_;
+    vk::Handle<VkPipeline> pipeline_;
+    uint32_t width_ = 0;
+    uint32_t height_ = 0;
+};
+
+}  // namespace punctual::render

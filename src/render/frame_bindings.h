@@ -1,0 +1,36 @@
+#pragma once
+// Descriptor set 0, shared by every raster pass of a frame: the frame uniform, the packed lights,
+// objects, materials and base-colour textures (see the PUNCTUAL_BINDING_* numbers in
+// gpu_types.h), plus the pipeline layout with the per-draw object index push constant.
+#include <vulkan/vulkan.h>
+
+#include "vk/buffer.h"
+#include "vk/handle.h"
+
+namespace punctual::vk {
+class Context;
+}
+
+namespace punctual::render {
+
+class SceneGpu;
+
+class FrameBindings {
+public:
+    FrameBindings(const vk::Context& context, const SceneGpu& scene, const vk::Buffer& frameUniform,
+                  const vk::Buffer& lights);
+
+    VkDescriptorSetLayout setLayout() const { return setLayout_; }
+    VkPipelineLayout pipelineLayout() const { return pipelineLayout_; }
+    uint32_t textureCount() const { return textureCount_; }
+    void bind(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint) const;
+
+private:
+    vk::Handle<VkDescriptorSetLayout> setLayout_;
+    vk::Handle<VkPipelineLayout> pipelineLayout_;
+    vk::Handle<VkDescriptorPool> pool_;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;  // freed with the pool
+    uint32_t textureCount_ = 1;
+};
+
+}  // namespace punctual::render

@@ -1,0 +1,75 @@
+#pragma once
+// One frame, end to end: light setup, depth prepass, (culling, shadows: later stages), forward
+// pass, tone mapping, readback. Owns every GPU resource of the frame, sized to the scene and the
+// output: nothing is allocated for lights, objects or textures the scene does not have.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "lights/light_setup.h"
+#include "scene/scene.h"
+
+namespace punctual::vk {
+class Context;
+}
+
+namespace punctual::render {
+
+struct RenderSettings {
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    float exposure = 1.0f;  // linear multiplier before tone mapping
+};
+
+// GPU milliseconds per pass, by the names the stats JSON uses. A pass not run is 0.
+struct PassTimings {
+    double depth = 0.0;
+    double culling = 0.0;
+    double shadows = 0.0;
+    double forward = 0.0;
+    double tonemap = 0.0;
+    double total = 0.0;  // first to last timestamp of the frame
+};
+
+struct FrameResult {
+    ImageRgba8 image;
+    PassTimings medianMs;              // per pass, median over the timed frames
+    std::vector<PassTimings> framesMs; // every timed frame
+};
+
+class Renderer {
+public:
+    Renderer(vk::Context& context, const Scene& scene, const RenderSettings& settings);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    // Renders `frames` frames (the same frame each time) and returns the last image with the
+    // median per-pass GPU times.
+    FrameResult render(uint32_t frames = 1);
+
+    // Depth buffer of the last frame, row-major top to bottom, in [0, 1] (1 = background).
+    std::vector<float> readDepth();
+
+    const FrameLights& lights() const { return lights_; }
+    const glm::mat4& view() const { return view_; }
+    const glm::mat4& projection() const { return projection_; }
+    const RenderSettings& settings() const { return settings_; }
+
+private:
+    struct Resources;
+    void recordFrame();
+
+    vk::Context& context_;
+    const Scene& scene_;
+    RenderSettings settings_;
+    glm::mat4 view_{1.0f};
+    glm::mat4 projection_{1.0f};
+    FrameLights lights_;
+    std::unique_ptr<Resources> resources_;
+};
+
+}  // namespace punctual::render

@@ -1,0 +1,123 @@
+#include "render/scene_gpu.h"
+
+#include <cstddef>
+
+#include "core/error.h"
+#include "gpu_types.h"
+#include "vk/check.h"
+#include "vk/context.h"
+
+namespace punctual::render {
+namespace {
+
+vk::Image uploadTexture(vk::Context& context, uint32_t width, uint32_t height, const uint8_t* rgba,
+                        const std::string& name) {
+    vk::ImageDesc desc;
+    desc.format = VK_FORMAT_R8G8B8A8_SRGB;  // glTF base-colour textures are sRGB-encoded
+    desc.width = width;
+    desc.height = height;
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    desc.debugName = name;
+    vk::Image image(context, desc);
+    const VkDeviceSize bytes = VkDeviceSize(width) * height * 4;
+    vk::Buffer staging(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload, "texture staging");
+    staging.write(rgba, bytes);
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+        vk::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_ACCESS_TRANSFER_WRITE_BIT);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {width, height, 1};
+        vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        vk::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                         VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    });
+    return image;
+}
+
+template <typename T>
+vk::Buffer deviceBuffer(vk::Context& context, const std::vector<T>& data, VkBufferUsageFlags usage,
+                        const std::string& name) {
+    const VkDeviceSize bytes = data.size() * sizeof(T);
+    vk::Buffer buffer(context, bytes, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::DeviceLocal, name);
+    vk::uploadToBuffer(context, buffer, data.data(), bytes);
+    return buffer;
+}
+
+}  // namespace
+
+SceneGpu::SceneGpu(vk::Context& context, const Scene& scene) {
+    if (scene.vertices.empty() || scene.indices.empty() || scene.objects.empty()) {
+        throw Error(scene.source, "no triangle meshes to draw");
+    }
+    vertices_ = deviceBuffer(context, scene.vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertices");
+    indices_ = deviceBuffer(context, scene.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "indices");
+
+    std::vector<gpu::GpuObject> objects;
+    objects.reserve(scene.objects.size());
+    for (const Object& object : scene.objects) {
+        const Mesh& mesh = scene.meshes.at(object.mesh);
+        gpu::GpuObject packed{};
+        packed.model = object.model;
+        packed.normalMatrix = glm::transpose(glm::inverse(object.model));
+        const bool mirrored = glm::determinant(glm::mat3(object.model)) < 0.0f;
+        packed.material = glm::uvec4(mesh.material, mirrored ? 1u : 0u, 0u, 0u);
+        objects.push_back(packed);
+        draws_.push_back({mesh.firstIndex, mesh.indexCount, int32_t(mesh.vertexOffset)});
+    }
+    objects_ = deviceBuffer(context, objects, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "objects");
+
+    std::vector<gpu::GpuMaterial> materials;
+    for (const Material& material : scene.materials) {
+        gpu::GpuMaterial packed{};
+        packed.baseColorFactor = material.baseColorFactor;
+        packed.metallicRoughness = glm::vec2(material.metallic, material.roughness);
+        packed.baseColorTexture = material.baseColorTexture;
+        materials.push_back(packed);
+    }
+    if (materials.empty()) throw Error(scene.source, "scene has no materials");
+    materials_ = deviceBuffer(context, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");
+
+    for (const Texture& texture : scene.textures) {
+        textures_.push_back(uploadTexture(context, texture.width, texture.height, texture.rgba.data(), texture.name));
+    }
+    if (textures_.empty()) {
+        const uint8_t white[4] = {255, 255, 255, 255};
+        textures_.push_back(uploadTexture(context, 1, 1, white, "placeholder"));
+    }
+
+    VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    samplerInfo.magFilter = VK_FILTER_LINEAR;
+    samplerInfo.minFilter = VK_FILTER_LINEAR;
+    samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    samplerInfo.maxLod = 0.0f;
+    VkSampler sampler = VK_NULL_HANDLE;
+    vk::check(vkCreateSampler(context.device(), &samplerInfo, nullptr, &sampler), "vkCreateSampler");
+    sampler_ = vk::Handle<VkSampler>(context.device(), sampler, vkDestroySampler);
+}
+
+void SceneGpu::drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout) const {
+    const VkBuffer vertexBuffer = vertices_.handle();
+    const VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+    vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+    for (uint32_t i = 0; i < draws_.size(); ++i) {
+        vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(uint32_t), &i);
+        vkCmdDrawIndexed(cmd, draws_[i].indexCount, 1, draws_[i].firstIndex, draws_[i].vertexOffset, 0);
+    }
+}
+
+std::vector<VkVertexInputAttributeDescription> SceneGpu::vertexAttributes() {
+    return {
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(offsetof(Vertex, position))},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(offsetof(Vertex, normal))},
+        {2, 0, VK_FORMAT_R32G32_SFLOAT, uint32_t(offsetof(Vertex, uv))},
+    };
+}
+
+}  // namespace punctual::render

@@ -1,0 +1,36 @@
+#pragma once
+// Tone mapping (compute): radiance -> exposure -> ACES -> sRGB -> packed RGBA8 words in a buffer.
+#include <vulkan/vulkan.h>
+
+#include "vk/buffer.h"
+#include "vk/handle.h"
+
+namespace punctual::vk {
+class Context;
+class Image;
+}  // namespace punctual::vk
+
+namespace punctual::render {
+
+class TonemapPass {
+public:
+    // `radiance` must be in SHADER_READ_ONLY_OPTIMAL when the pass runs.
+    TonemapPass(const vk::Context& context, const vk::Image& radiance, float exposure);
+    void record(VkCommandBuffer cmd) const;
+    // The packed pixels (width * height words), written by record().
+    const vk::Buffer& output() const { return output_; }
+
+private:
+    vk::Handle<VkSampler> sampler_;
+    vk::Handle<VkDescriptorSetLayout> setLayout_;
+    vk::Handle<VkPipelineLayout> pipelineLayout_;
+    vk::Handle<VkDescriptorPool> pool_;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    vk::Handle<VkPipeline> pipeline_;
+    vk::Buffer output_;
+    uint32_t width_ = 0;
+    uint32_t height_ = 0;
+    float exposure_ = 1.0f;
+};
+
+}  // namespace punctual::render
