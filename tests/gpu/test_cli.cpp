@@ -1,0 +1,134 @@
+// The command line as users meet it: a good run writes the PNG and the stats JSON; every bad
+// input gives one clear line on stderr naming the file or option, a non-zero exit, and no
+// output file.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "gpu_test_support.h"
+
+namespace punctual {
+namespace {
+
+struct RunResult {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string readText(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+RunResult runPunctual(const testing::TempFolder& folder, const std::string& args) {
+    const std::string outFile = folder.file("stdout.txt");
+    const std::string errFile = folder.file("stderr.txt");
+    const std::string command = std::string("'") + PUNCTUAL_BINARY + "' " + args + " >'" + outFile + "' 2>'" + errFile + "'";
+    const int status = std::system(command.c_str());
+    RunResult result;
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = readText(outFile);
+    result.err = readText(errFile);
+    return result;
+}
+
+size_t lineCount(const std::string& text) {
+    size_t lines = 0;
+    for (char c : text) lines += c == '\n';
+    return lines;
+}
+
+// One failing run: non-zero exit, exactly one line on stderr containing `mention`, no output.
+void expectCleanFailure(const testing::TempFolder& folder, const std::string& args, const std::string& mention) {
+    const std::string png = folder.file("out.png");
+    const std::string json = folder.file("stats.json");
+    const RunResult run = runPunctual(folder, args + " --validate --out '" + png + "' --stats '" + json + "'");
+    EXPECT_NE(run.exitCode, 0) << args;
+    EXPECT_NE(run.exitCode, 3) << "internal error instead of a clear one: " << run.err;
+    EXPECT_EQ(lineCount(run.err), 1u) << args << "\nstderr:\n" << run.err;
+    EXPECT_NE(run.err.find("punctual: error: "), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find(mention), std::string::npos) << "stderr should name '" << mention << "': " << run.err;
+    EXPECT_FALSE(std::filesystem::exists(png)) << args;
+    EXPECT_FALSE(std::filesystem::exists(json)) << args;
+    EXPECT_FALSE(std::filesystem::exists(png + ".partial")) << args;
+}
+
+TEST(Cli, RenderWritesImageAndStats) {
+    testing::TempFolder folder;
+    const std::string png = folder.file("frame.png");
+    const std::string json = folder.file("stats.json");
+    const RunResult run =
+        runPunctual(folder, "render --validate --size 160x90 --out '" + png + "' --stats '" + json + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_EQ(run.err, "");  // validation printed nothing
+    EXPECT_NE(run.out.find("forward"), std::string::npos);
+    const ImageRgba8 image = readPng(png);
+    EXPECT_EQ(image.width, 160u);
+    EXPECT_EQ(image.height, 90u);
+    const nlohmann::json stats = nlohmann::json::parse(readText(json));
+    for (const char* pass : {"depth", "culling", "shadows", "forward", "total"}) {
+        ASSERT_TRUE(stats["gpu_ms"].contains(pass)) << pass;
+        EXPECT_GE(stats["gpu_ms"][pass].get<double>(), 0.0);
+    }
+    EXPECT_GT(stats["gpu_ms"]["forward"].get<double>(), 0.0);
+    EXPECT_EQ(stats["gpu_ms"]["culling"].get<double>(), 0.0);  // not run yet: brute force
+    EXPECT_EQ(stats["lights"]["spot"].get<int>(), 64);
+    EXPECT_EQ(stats["lights"]["point"].get<int>(), 32);
+    EXPECT_EQ(stats["lights"]["directional"].get<int>(), 0);
+}
+
+TEST(Cli, GeneratedLightsReplaceTheScenes) {
+    testing::TempFolder folder;
+    const std::string json = folder.file("stats.json");
+    const RunResult run = runPunctual(folder, "render --validate --size 64x36 --lights 5,3,9 --stats '" + json + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json stats = nlohmann::json::parse(readText(json));
+    EXPECT_EQ(stats["lights"]["in_scene"].get<int>(), 8);
+    EXPECT_LE(stats["lights"]["spot"].get<int>(), 5);
+    EXPECT_LE(stats["lights"]["point"].get<int>(), 3);
+}
+
+TEST(Cli, HelpExitsZero) {
+    testing::TempFolder folder;
+    const RunResult run = runPunctual(folder, "render --help");
+    EXPECT_EQ(run.exitCode, 0);
+    EXPECT_NE(run.out.find("--lights S,P[,SEED]"), std::string::npos);
+}
+
+TEST(Cli, BadOptionsFailCleanly) {
+    testing::TempFolder folder;
+    expectCleanFailure(folder, "render --size 0x5", "--size");
+    expectCleanFailure(folder, "render --size big", "--size");
+    expectCleanFailure(folder, "render --lights 65,0", "--lights");
+    expectCleanFailure(folder, "render --lights 1,x", "--lights");
+    expectCleanFailure(folder, "render --frames 0", "--frames");
+    expectCleanFailure(folder, "render --exposure -1", "--exposure");
+    expectCleanFailure(folder, "render --device 99", "--device");
+    expectCleanFailure(folder, "render --no-such-option", "--no-such-option");
+}
+
+TEST(Cli, BadFilesFailCleanly) {
+    testing::TempFolder folder;
+    expectCleanFailure(folder, "render '" + folder.file("missing.gltf") + "'", "missing.gltf");
+
+    const std::string truncated = folder.file("truncated.gltf");
+    std::ofstream(truncated) << R"({"asset": {"version": "2.0"}, "meshes": [{"primitives": [)";
+    expectCleanFailure(folder, "render '" + truncated + "'", "truncated.gltf");
+
+    // An output folder that does not exist fails before any work.
+    const RunResult run = runPunctual(folder, "render --out '" + folder.file("no/such/folder/x.png") + "'");
+    EXPECT_EQ(run.exitCode, 1);
+    EXPECT_NE(run.err.find("does not exist"), std::string::npos) << run.err;
+}
+
+}  // namespace
+}  // namespace punctual

@@ -1,0 +1,89 @@
+// The default scene rendered through the whole brute-force frame: lit, deterministic, and
+// without validation messages; its lights overlap as a many-light scene should.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gpu_test_support.h"
+#include "lights/light_setup.h"
+#include "render/renderer.h"
+#include "scene/default_scene.h"
+#include "shading.h"
+
+namespace punctual {
+namespace {
+
+render::RenderSettings smallSettings() {
+    render::RenderSettings settings;
+    settings.width = 320;
+    settings.height = 180;
+    return settings;
+}
+
+TEST(RenderDefaultScene, IsLitDeterministicAndValidationClean) {
+    auto context = testing::makeValidatedContext();
+    const Scene scene = makeDefaultScene();
+
+    render::Renderer first(*context, scene, smallSettings());
+    const render::FrameResult a = first.render(2);
+    render::Renderer second(*context, scene, smallSettings());
+    const render::FrameResult b = second.render(1);
+
+    ASSERT_EQ(a.image.width, 320u);
+    ASSERT_EQ(a.image.height, 180u);
+    // Lit: most of the frame shows lit geometry, and the average brightness is mid-range, not
+    // black and not blown out.
+    EXPECT_GT(testing::fractionBrighterThan(a.image, 20), 0.6);
+    const double luma = testing::meanLuma(a.image);
+    EXPECT_GT(luma, 0.2);
+    EXPECT_LT(luma, 0.85);
+    // Bit-identical across frames and across renderer instances.
+    EXPECT_TRUE(a.image.pixels == b.image.pixels);
+    EXPECT_EQ(first.lights().spotCount, 64u);
+    EXPECT_EQ(first.lights().pointCount, 32u);
+    EXPECT_GT(a.medianMs.forward, 0.0);
+    EXPECT_GE(a.medianMs.total, a.medianMs.depth + a.medianMs.forward);
+    testing::expectNoValidationMessages(*context);
+}
+
+// On average at least 4 lights reach each lit pixel of the default view, so that no culling
+// method wins merely because lights are small. Positions come from the GPU's own depth buffer.
+TEST(RenderDefaultScene, AtLeastFourLightsReachEachLitPixelOnAverage) {
+    auto context = testing::makeValidatedContext();
+    const Scene scene = makeDefaultScene();
+    render::Renderer renderer(*context, scene, smallSettings());
+    renderer.render(1);
+    const std::vector<float> depth = renderer.readDepth();
+    const glm::mat4 inverseViewProjection = glm::inverse(renderer.projection() * renderer.view());
+    const FrameLights& lights = renderer.lights();
+
+    size_t litPixels = 0;
+    size_t reaching = 0;
+    const uint32_t width = renderer.settings().width;
+    const uint32_t height = renderer.settings().height;
+    for (uint32_t y = 0; y < height; ++y) {
+        for (uint32_t x = 0; x < width; ++x) {
+            const float d = depth[size_t(y) * width + x];
+            if (d >= 1.0f) continue;  // background
+            const glm::vec4 ndc((float(x) + 0.5f) / float(width) * 2.0f - 1.0f,
+                                (float(y) + 0.5f) / float(height) * 2.0f - 1.0f, d, 1.0f);
+            const glm::vec4 world = inverseViewProjection * ndc;
+            const glm::vec3 position = glm::vec3(world) / world.w;
+            size_t count = 0;
+            for (const gpu::GpuPunctualLight& light : lights.packed) {
+                if (gpu::punctualAttenuation(light, position) > 0.0f) ++count;
+            }
+            if (count > 0) {
+                ++litPixels;
+                reaching += count;
+            }
+        }
+    }
+    ASSERT_GT(litPixels, size_t(width) * height / 2);
+    const double average = double(reaching) / double(litPixels);
+    EXPECT_GE(average, 4.0) << "average lights per lit pixel";
+    testing::expectNoValidationMessages(*context);
+}
+
+}  // namespace
+}  // namespace punctual
