@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs what punctual needs from Debian's packages, only what is missing. Safe to rerun.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  mesa-vulkan-drivers libvulkan-dev vulkan-validationlayers  # Vulkan: lavapipe, headers/loader, validation
+  glslang-tools                                              # GLSL -> SPIR-V at build time
+  libglm-dev libembree-dev libtbb-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libgtest-dev
+  python3-matplotlib                                         # charts in bench/
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "installing: ${missing[*]}" >&2
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
