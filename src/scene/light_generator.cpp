@@ -1,0 +1,169 @@
+#include "scene/light_generator.h"
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+#include "core/error.h"
+#include "gpu_types.h"
+
+namespace punctual {
+
+namespace {
+
+constexpr uint32_t kMaxSpot = PUNCTUAL_MAX_SPOT_LIGHTS;
+constexpr uint32_t kMaxPoint = PUNCTUAL_MAX_POINT_LIGHTS;
+constexpr float kDegree = 0.0174532925f;  // pi / 180
+
+[[noreturn]] void throwOverCaps(uint64_t spotCount, uint64_t pointCount) {
+    throw Error("--lights", "at most " + std::to_string(kMaxSpot) + " spot and " + std::to_string(kMaxPoint) +
+                                " point lights (got " + std::to_string(spotCount) + "," +
+                                std::to_string(pointCount) + ")");
+}
+
+// A unit vector pointing down, tilted in x and z by up to atan(maxTilt) from vertical. Built from
+// a random offset in a square and normalised (no trigonometry, so no libm differences).
+glm::vec3 downwardDirection(PortableRandom& random, float maxTilt) {
+    const float tiltX = random.uniform(-maxTilt, maxTilt);
+    const float tiltZ = random.uniform(-maxTilt, maxTilt);
+    return glm::normalize(glm::vec3(tiltX, -1.0f, tiltZ));
+}
+
+}  // namespace
+
+PortableRandom::PortableRandom(uint64_t seed) {
+    std::seed_seq sequence{static_cast<uint32_t>(seed & 0xffffffffu), static_cast<uint32_t>(seed >> 32)};
+    engine_.seed(sequence);
+}
+
+float PortableRandom::uniform() {
+    // mt19937 yields 32 random bits; keep the top 24 (a float's significand) so that
+    // k * 2^-24 is exact for every k in [0, 2^24) and the result is strictly below 1.
+    const uint32_t bits = static_cast<uint32_t>(engine_()) >> 8;
+    return static_cast<float>(bits) * (1.0f / 16777216.0f);
+}
+
+float PortableRandom::uniform(float lo, float hi) { return lo + (hi - lo) * uniform(); }
+
+glm::vec3 randomLightColor(PortableRandom& random) {
+    // A fully saturated random hue (three random channels stretched so the smallest is 0 and the
+    // largest 1), mixed with white by a random saturation of at most 85%: tinted whites to vivid
+    // colours, so neighbouring lights can be told apart in an image (a missing light shows). The
+    // largest channel stays exactly 1 and the smallest is 1 - saturation >= 0.15.
+    const glm::vec3 raw(random.uniform(), random.uniform(), random.uniform());
+    const float saturation = random.uniform(0.0f, 0.85f);
+    const float lo = std::min({raw.r, raw.g, raw.b});
+    const float spread = std::max({raw.r, raw.g, raw.b}) - lo;
+    if (spread <= 0.0f) return glm::vec3(1.0f);
+    const glm::vec3 hue = (raw - lo) / spread;
+    return glm::mix(glm::vec3(1.0f), hue, saturation);
+}
+
+void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed) {
+    if (spotCount > kMaxSpot || pointCount > kMaxPoint) throwOverCaps(spotCount, pointCount);
+    if (scene.bounds.empty())
+        throw Error("--lights", "the scene has no geometry whose bounds could hold generated lights");
+
+    const Bounds& bounds = scene.bounds;
+    const glm::vec3 size = bounds.size();
+    const float horizontal = std::max(size.x, size.z);
+    const float diagonal = std::max(glm::length(size), 1e-3f);
+
+    // Height band: above the lowest 10% (the floor and what stands on it) and below the top 10%
+    // (a ceiling). A flat scene (a terrain, a single quad) has no useful height: hang the lights at
+    // a height proportional to its horizontal size instead, as if above a floor.
+    float yLow = bounds.min.y + 0.1f * size.y;
+    float yHigh = bounds.min.y + 0.9f * size.y;
+    if (size.y < 0.1f * horizontal) {
+        yLow = bounds.min.y + 0.05f * horizontal;
+        yHigh = bounds.min.y + 0.2f * horizontal;
+    }
+
+    PortableRandom random(seed);
+    auto randomPosition = [&]() {
+        const float x = random.uniform(bounds.min.x, bounds.max.x);
+        const float y = random.uniform(yLow, yHigh);
+        const float z = random.uniform(bounds.min.z, bounds.max.z);
+        // uniform(lo, hi) rounds once; clamp so "inside the bounds" holds exactly.
+        return glm::clamp(glm::vec3(x, y, z), glm::vec3(bounds.min.x, yLow, bounds.min.z),
+                          glm::vec3(bounds.max.x, yHigh, bounds.max.z));
+    };
+
+    std::vector<Light> lights;
+    lights.reserve(size_t(spotCount) + pointCount);
+    for (uint32_t i = 0; i < spotCount; ++i) {
+        Light light;
+        light.name = "generated spot " + std::to_string(i);
+        light.type = LightType::Spot;
+        light.position = randomPosition();
+        light.direction = downwardDirection(random, 0.5f);  // tilt <= atan(0.5 * sqrt 2) = 35.3 deg
+        light.color = randomLightColor(random);
+        light.outerConeAngle = random.uniform(25.0f, 50.0f) * kDegree;
+        light.innerConeAngle = light.outerConeAngle * random.uniform(0.5f, 0.9f);
+        light.range = diagonal * random.uniform(0.25f, 0.45f);
+        // Spots are brighter per steradian than points (they light a smaller area): on the axis
+        // at half the range the illuminance is I * 0.879 / (r/2)^2 = 3.5 * I / r^2, i.e.
+        // 0.26-0.53 lux for I = (0.075-0.15) r^2.
+        light.intensity = light.range * light.range * random.uniform(0.075f, 0.15f);
+        light.castsShadow = true;
+        lights.push_back(light);
+    }
+    for (uint32_t i = 0; i < pointCount; ++i) {
+        Light light;
+        light.name = "generated point " + std::to_string(i);
+        light.type = LightType::Point;
+        light.position = randomPosition();
+        light.direction = glm::vec3(0.0f, -1.0f, 0.0f);  // unused by points
+        light.color = randomLightColor(random);
+        light.range = diagonal * random.uniform(0.25f, 0.45f);
+        // 0.09-0.18 lux at half the range (see above), since points overlap more.
+        light.intensity = light.range * light.range * random.uniform(0.025f, 0.05f);
+        light.castsShadow = true;
+        lights.push_back(light);
+    }
+    scene.lights = std::move(lights);
+}
+
+namespace {
+
+// Parses one decimal field of `text`: digits only, at most 2^64 - 1. `what` names it in errors.
+uint64_t parseField(const std::string& field, const std::string& text, const char* what) {
+    const std::string usage = " (expected S,P or S,P,SEED with non-negative integers, got \"" + text + "\")";
+    if (field.empty()) throw Error("--lights", std::string("missing ") + what + usage);
+    uint64_t value = 0;
+    for (const char c : field) {
+        if (c < '0' || c > '9')
+            throw Error("--lights", std::string(what) + " \"" + field + "\" is not a non-negative integer" + usage);
+        const auto digit = static_cast<uint64_t>(c - '0');
+        if (value > (std::numeric_limits<uint64_t>::max() - digit) / 10)
+            throw Error("--lights", std::string(what) + " \"" + field + "\" is too large" + usage);
+        value = value * 10 + digit;
+    }
+    return value;
+}
+
+}  // namespace
+
+LightCounts parseLightCounts(const std::string& text) {
+    std::vector<std::string> fields;
+    size_t start = 0;
+    while (true) {
+        const size_t comma = text.find(',', start);
+        fields.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    if (fields.size() < 2 || fields.size() > 3)
+        throw Error("--lights", "expected S,P or S,P,SEED (spot count, point count, optional seed), got \"" + text + "\"");
+
+    const uint64_t spot = parseField(fields[0], text, "spot count");
+    const uint64_t point = parseField(fields[1], text, "point count");
+    LightCounts counts;
+    if (fields.size() == 3) counts.seed = parseField(fields[2], text, "seed");
+    if (spot > kMaxSpot || point > kMaxPoint) throwOverCaps(spot, point);
+    counts.spot = static_cast<uint32_t>(spot);
+    counts.point = static_cast<uint32_t>(point);
+    return counts;
+}
+
+}  // namespace punctual
