@@ -3,6 +3,7 @@
 // reference. It holds only what a glTF scene (or a built-in one) really has; nothing is padded
 // to the per-frame caps here.
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>

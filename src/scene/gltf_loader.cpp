@@ -1,0 +1,517 @@
+// glTF 2.0 -> Scene: tinygltf parses the file; this walks the default scene's node graph and
+// converts materials, textures, primitives, the camera and KHR_lights_punctual lights.
+#include "scene/gltf_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <utility>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "scene/gltf_detail.h"
+
+namespace punctual {
+namespace {
+
+using namespace gltf_detail;
+
+std::string quoted(const std::string& name) { return "'" + name + "'"; }
+
+std::string modeName(int mode) {
+    switch (mode) {
+        case TINYGLTF_MODE_POINTS: return "POINTS";
+        case TINYGLTF_MODE_LINE: return "LINES";
+        case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+        case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+        case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
+        case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
+        default: return "mode " + std::to_string(mode);
+    }
+}
+
+bool finite(const glm::mat4& m) {
+    for (int column = 0; column < 4; ++column)
+        for (int row = 0; row < 4; ++row)
+            if (!std::isfinite(m[column][row])) return false;
+    return true;
+}
+
+// What a primitive without any material is drawn with. The glTF spec's default material is
+// metallic 1, roughness 1: a rough white metal, which under punctual lights alone (no
+// environment) looks nearly black from most angles. An untextured, unassigned surface is far
+// more likely meant as a neutral matte one, so we use a white dielectric with medium roughness,
+// as most viewers do. Materials that exist in the file but omit the factors still get the glTF
+// defaults (metallic 1, roughness 1).
+Material implicitDefaultMaterial() {
+    Material material;
+    material.name = "default";
+    material.baseColorFactor = glm::vec4(1.0f);
+    material.metallic = 0.0f;
+    material.roughness = 0.5f;
+    return material;
+}
+
+class SceneBuilder {
+public:
+    SceneBuilder(const tinygltf::Model& model, const std::string& path, const ImageDecoding& decoding)
+        : model_(model), path_(path), decoding_(decoding) {}
+
+    Scene build() {
+        scene_.source = path_;
+        // The spec requires a loader to refuse a file that requires an extension it lacks (e.g.
+        // Draco-compressed geometry, which would otherwise surface as confusing accessor errors).
+        for (const std::string& extension : model_.extensionsRequired)
+            if (extension != "KHR_lights_punctual")
+                fail("requires the glTF extension " + extension + ", which is not supported");
+        convertMaterials();
+        const std::vector<Light> lightPrototypes = convertLights();
+        walk(rootNodes(), lightPrototypes);
+        if (scene_.objects.empty()) fail("no triangle meshes to draw");
+        if (scene_.materials.empty()) scene_.materials.push_back(implicitDefaultMaterial());
+        scene_.computeBounds();
+        // Finite but huge coordinates (e.g. 1e38) overflow the bounds' extent, and with it the
+        // camera's far plane and every light's culling maths.
+        if (!std::isfinite(scene_.bounds.radius()))
+            fail("the scene's extent is too large for single-precision floats");
+        placeCamera();
+        warnAboutSkippedPrimitives();
+        validateLights(scene_.lights, path_);
+        return std::move(scene_);
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& problem) const { throw Error(path_, problem); }
+
+    std::string meshLabel(size_t meshIndex) const {
+        const std::string& name = model_.meshes[meshIndex].name;
+        return name.empty() ? "mesh " + std::to_string(meshIndex) : "mesh " + quoted(name);
+    }
+
+    std::string meshName(size_t meshIndex) const {
+        const std::string& name = model_.meshes[meshIndex].name;
+        return name.empty() ? "mesh " + std::to_string(meshIndex) : name;
+    }
+
+    // --- materials and textures ------------------------------------------------------------
+
+    void convertMaterials() {
+        for (size_t i = 0; i < model_.materials.size(); ++i) {
+            const tinygltf::Material& source = model_.materials[i];
+            const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
+            Material material;
+            material.name = source.name.empty() ? "material " + std::to_string(i) : source.name;
+            // The spec bounds all these factors to [0, 1]; the shading model assumes it.
+            if (pbr.baseColorFactor.size() == 4)
+                material.baseColorFactor = glm::clamp(
+                    glm::vec4(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
+                              float(pbr.baseColorFactor[2]), float(pbr.baseColorFactor[3])),
+                    0.0f, 1.0f);
+            material.metallic = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
+            material.roughness = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
+            material.doubleSided = source.doubleSided;
+            material.baseColorTexture = baseColorTexture(pbr.baseColorTexture.index, material.name);
+            scene_.materials.push_back(std::move(material));
+        }
+    }
+
+    std::string describeImage(int imageIndex) const {
+        const tinygltf::Image& image = model_.images[size_t(imageIndex)];
+        std::string description = "image " + std::to_string(imageIndex);
+        if (!image.uri.empty()) return description + " " + quoted(image.uri);
+        if (!image.name.empty()) description += " " + quoted(image.name);
+        return description + (image.bufferView >= 0 ? " (in buffer view " + std::to_string(image.bufferView) + ")"
+                                                     : " (embedded)");
+    }
+
+    // Index into Scene::textures, or -1 when the material must fall back to its factor.
+    int baseColorTexture(int textureIndex, const std::string& materialName) {
+        if (textureIndex < 0) return -1;
+        if (size_t(textureIndex) >= model_.textures.size())
+            fail("material " + quoted(materialName) + " uses texture " + std::to_string(textureIndex) +
+                 ", which does not exist");
+        const int imageIndex = model_.textures[size_t(textureIndex)].source;
+        if (imageIndex < 0 || size_t(imageIndex) >= model_.images.size()) {
+            log::warn(path_ + ": material " + quoted(materialName) + ": texture " + std::to_string(textureIndex) +
+                      " has no image we can decode; using baseColorFactor instead");
+            return -1;
+        }
+        if (const auto known = textureOfImage_.find(imageIndex); known != textureOfImage_.end()) return known->second;
+
+        const tinygltf::Image& image = model_.images[size_t(imageIndex)];
+        const size_t expectedBytes = size_t(std::max(image.width, 0)) * size_t(std::max(image.height, 0)) * 4;
+        int result = -1;
+        if (!image.image.empty() && image.image.size() == expectedBytes) {
+            Texture texture;
+            texture.name = !image.uri.empty() ? image.uri : !image.name.empty() ? image.name : describeImage(imageIndex);
+            texture.width = uint32_t(image.width);
+            texture.height = uint32_t(image.height);
+            texture.rgba = image.image;
+            result = int(scene_.textures.size());
+            scene_.textures.push_back(std::move(texture));
+        } else {
+            std::string reason = "has no pixel data";
+            if (const auto failure = decoding_.failures.find(imageIndex); failure != decoding_.failures.end())
+                reason = "cannot be decoded (" + failure->second + ")";
+            else if (!image.uri.empty())
+                reason = "cannot be read (missing, empty or unreadable file)";
+            // One warning per image, however many materials use it.
+            log::warn(path_ + ": material " + quoted(materialName) + ": base colour " + describeImage(imageIndex) +
+                      " " + reason + "; using baseColorFactor instead");
+        }
+        textureOfImage_[imageIndex] = result;
+        return result;
+    }
+
+    uint32_t defaultMaterial() {
+        if (!defaultMaterialIndex_) {
+            defaultMaterialIndex_ = uint32_t(scene_.materials.size());
+            scene_.materials.push_back(implicitDefaultMaterial());
+        }
+        return *defaultMaterialIndex_;
+    }
+
+    // --- lights ------------------------------------------------------------------------------
+
+    // One Light per KHR_lights_punctual definition, positioned later per referencing node.
+    // Validated here so an error names the light's index in the file.
+    std::vector<Light> convertLights() const {
+        std::vector<Light> lights;
+        for (size_t i = 0; i < model_.lights.size(); ++i) {
+            const tinygltf::Light& source = model_.lights[i];
+            const std::string who = "light " + std::to_string(i) + (source.name.empty() ? "" : " " + quoted(source.name));
+            Light light;
+            light.name = source.name;
+            if (source.type == "point") light.type = LightType::Point;
+            else if (source.type == "spot") light.type = LightType::Spot;
+            else if (source.type == "directional") light.type = LightType::Directional;
+            else fail(who + " has unknown type " + quoted(source.type) + " (expected point, spot or directional)");
+            if (!source.color.empty()) {
+                if (source.color.size() != 3) fail(who + ": color must have 3 components");
+                light.color = glm::vec3(float(source.color[0]), float(source.color[1]), float(source.color[2]));
+            }
+            light.intensity = float(source.intensity);
+            if (light.type == LightType::Spot) {
+                light.innerConeAngle = float(source.spot.innerConeAngle);
+                light.outerConeAngle = float(source.spot.outerConeAngle);
+            }
+            if (light.type != LightType::Directional) {
+                // tinygltf reports an absent range as 0; the spec says absent means infinite. A
+                // negative range is kept so validateLights rejects it.
+                if (source.range == 0.0) {
+                    light.range = derivedRange(light.intensity, light.color);
+                    light.rangeDerived = true;
+                } else {
+                    light.range = float(source.range);
+                }
+            }
+            lights.push_back(light);
+        }
+        validateLights(lights, path_);
+        return lights;
+    }
+
+    void placeLight(const tinygltf::Node& node, size_t nodeIndex, const glm::mat4& world,
+                    const std::vector<Light>& prototypes) {
+        const auto extension = node.extensions.find("KHR_lights_punctual");
+        if (extension == node.extensions.end()) return;
+        const tinygltf::Value& value = extension->second;
+        if (!value.IsObject() || !value.Has("light") || !value.Get("light").IsInt())
+            fail("node " + std::to_string(nodeIndex) + ": KHR_lights_punctual has no integer 'light'");
+        const int lightIndex = value.Get("light").GetNumberAsInt();
+        if (lightIndex < 0 || size_t(lightIndex) >= prototypes.size())
+            fail("node " + std::to_string(nodeIndex) + " refers to light " + std::to_string(lightIndex) +
+                 ", which does not exist");
+        Light light = prototypes[size_t(lightIndex)];
+        if (light.name.empty()) light.name = node.name;
+        light.position = glm::vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        // A singular transform gives NaN here, which validateLights reports.
+        light.direction = glm::normalize(glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f));
+        scene_.lights.push_back(std::move(light));
+    }
+
+    // --- node graph ----------------------------------------------------------------------------
+
+    std::vector<int> rootNodes() const {
+        if (!model_.scenes.empty()) {
+            const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+            if (size_t(sceneIndex) >= model_.scenes.size())
+                fail("default scene " + std::to_string(sceneIndex) + " does not exist (the file has " +
+                     std::to_string(model_.scenes.size()) + (model_.scenes.size() == 1 ? " scene)" : " scenes)"));
+            return model_.scenes[size_t(sceneIndex)].nodes;
+        }
+        // No scenes: draw every node that is nobody's child.
+        std::vector<bool> isChild(model_.nodes.size(), false);
+        for (const tinygltf::Node& node : model_.nodes)
+            for (int child : node.children)
+                if (child >= 0 && size_t(child) < isChild.size()) isChild[size_t(child)] = true;
+        std::vector<int> roots;
+        for (size_t i = 0; i < isChild.size(); ++i)
+            if (!isChild[i]) roots.push_back(int(i));
+        return roots;
+    }
+
+    glm::mat4 localTransform(const tinygltf::Node& node, size_t nodeIndex) const {
+        const std::string who = "node " + std::to_string(nodeIndex);
+        if (!node.matrix.empty()) {
+            if (node.matrix.size() != 16) fail(who + ": matrix has " + std::to_string(node.matrix.size()) + " numbers, not 16");
+            glm::mat4 matrix;  // glTF matrices are column-major, like glm's
+            for (int i = 0; i < 16; ++i) matrix[i / 4][i % 4] = float(node.matrix[size_t(i)]);
+            return matrix;
+        }
+        glm::mat4 transform(1.0f);
+        if (!node.translation.empty()) {
+            if (node.translation.size() != 3) fail(who + ": translation does not have 3 numbers");
+            transform[3] = glm::vec4(float(node.translation[0]), float(node.translation[1]), float(node.translation[2]), 1.0f);
+        }
+        if (!node.rotation.empty()) {
+            if (node.rotation.size() != 4) fail(who + ": rotation does not have 4 numbers");
+            // glTF stores x, y, z, w; glm::quat's constructor takes w first.
+            glm::quat rotation(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
+                               float(node.rotation[2]));
+            const float length = glm::length(rotation);
+            if (!(length > 1e-6f)) fail(who + ": rotation is a zero quaternion");
+            transform *= glm::mat4_cast(rotation / length);
+        }
+        if (!node.scale.empty()) {
+            if (node.scale.size() != 3) fail(who + ": scale does not have 3 numbers");
+            transform = glm::scale(transform, glm::vec3(float(node.scale[0]), float(node.scale[1]), float(node.scale[2])));
+        }
+        return transform;
+    }
+
+    // Depth-first, pre-order, children in file order (so "the first camera" is well defined),
+    // with an explicit stack so a deep hierarchy cannot overflow the call stack.
+    void walk(const std::vector<int>& roots, const std::vector<Light>& lightPrototypes) {
+        enum class State : uint8_t { Unvisited, OnPath, Done };
+        std::vector<State> state(model_.nodes.size(), State::Unvisited);
+        struct Step {
+            int node;
+            glm::mat4 parentWorld;
+            bool leaving;  // pops the node off the current path
+        };
+        std::vector<Step> stack;
+        for (auto root = roots.rbegin(); root != roots.rend(); ++root) {
+            if (*root < 0 || size_t(*root) >= model_.nodes.size())
+                fail("the scene refers to node " + std::to_string(*root) + ", which does not exist");
+            stack.push_back({*root, glm::mat4(1.0f), false});
+        }
+        while (!stack.empty()) {
+            const Step step = stack.back();
+            stack.pop_back();
+            const size_t index = size_t(step.node);
+            if (step.leaving) {
+                state[index] = State::Done;
+                continue;
+            }
+            if (state[index] == State::OnPath) fail("node " + std::to_string(index) + " is its own ancestor");
+            if (state[index] == State::Done)
+                fail("node " + std::to_string(index) + " is reached twice (a glTF node may have only one parent)");
+            state[index] = State::OnPath;
+
+            const tinygltf::Node& node = model_.nodes[index];
+            const glm::mat4 world = step.parentWorld * localTransform(node, index);
+            if (!finite(world)) fail("node " + std::to_string(index) + " has a transform that is not finite");
+            visit(node, index, world, lightPrototypes);
+
+            stack.push_back({step.node, world, true});
+            for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
+                if (*child < 0 || size_t(*child) >= model_.nodes.size())
+                    fail("node " + std::to_string(index) + " has child " + std::to_string(*child) +
+                         ", which does not exist");
+                stack.push_back({*child, world, false});
+            }
+        }
+    }
+
+    void visit(const tinygltf::Node& node, size_t index, const glm::mat4& world, const std::vector<Light>& lightPrototypes) {
+        if (node.mesh >= 0) addMeshInstance(node, index, world);
+        if (node.camera >= 0) noteCamera(node, index, world);
+        placeLight(node, index, world, lightPrototypes);
+    }
+
+    // --- meshes --------------------------------------------------------------------------------
+
+    void addMeshInstance(const tinygltf::Node& node, size_t nodeIndex, const glm::mat4& world) {
+        const size_t meshIndex = size_t(node.mesh);
+        if (meshIndex >= model_.meshes.size())
+            fail("node " + std::to_string(nodeIndex) + " refers to mesh " + std::to_string(node.mesh) +
+                 ", which does not exist");
+        const tinygltf::Mesh& mesh = model_.meshes[meshIndex];
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const std::optional<uint32_t> converted = meshOfPrimitive(meshIndex, p);
+            if (!converted) continue;
+            Object object;
+            object.name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : "node " + std::to_string(nodeIndex);
+            object.mesh = *converted;
+            object.model = world;
+            scene_.objects.push_back(std::move(object));
+        }
+    }
+
+    // The punctual Mesh of a glTF primitive, converted on first use so a primitive instanced by
+    // several nodes is stored once. nullopt for primitives that draw nothing we support.
+    std::optional<uint32_t> meshOfPrimitive(size_t meshIndex, size_t primitiveIndex) {
+        const auto key = std::make_pair(meshIndex, primitiveIndex);
+        if (const auto known = primitiveMeshes_.find(key); known != primitiveMeshes_.end()) return known->second;
+
+        const tinygltf::Primitive& primitive = model_.meshes[meshIndex].primitives[primitiveIndex];
+        const std::string label = meshLabel(meshIndex) + " primitive " + std::to_string(primitiveIndex);
+        std::optional<uint32_t> result;
+        if (primitive.mode != TINYGLTF_MODE_TRIANGLES) {
+            ++skippedPrimitives_[primitive.mode];
+        } else if (std::optional<Mesh> mesh =
+                       appendPrimitive(model_, primitive, label, path_, scene_.vertices, scene_.indices)) {
+            if (primitive.material < 0) {
+                mesh->material = defaultMaterial();
+            } else if (size_t(primitive.material) < model_.materials.size()) {
+                mesh->material = uint32_t(primitive.material);
+            } else {
+                fail(label + " uses material " + std::to_string(primitive.material) + ", which does not exist");
+            }
+            mesh->name = model_.meshes[meshIndex].primitives.size() > 1
+                             ? meshName(meshIndex) + "#" + std::to_string(primitiveIndex)
+                             : meshName(meshIndex);
+            result = uint32_t(scene_.meshes.size());
+            scene_.meshes.push_back(std::move(*mesh));
+        }
+        primitiveMeshes_[key] = result;
+        return result;
+    }
+
+    void warnAboutSkippedPrimitives() const {
+        if (skippedPrimitives_.empty()) return;
+        int total = 0;
+        std::string modes;
+        for (const auto& [mode, count] : skippedPrimitives_) {
+            total += count;
+            modes += (modes.empty() ? "" : ", ") + modeName(mode);
+        }
+        log::warn(path_ + ": skipped " + std::to_string(total) + " primitive(s) that are not triangle lists (" +
+                  modes + ")");
+    }
+
+    // --- camera --------------------------------------------------------------------------------
+
+    void noteCamera(const tinygltf::Node& node, size_t nodeIndex, const glm::mat4& world) {
+        if (size_t(node.camera) >= model_.cameras.size())
+            fail("node " + std::to_string(nodeIndex) + " refers to camera " + std::to_string(node.camera) +
+                 ", which does not exist");
+        if (cameraNode_) return;  // the first one in traversal order wins
+        const tinygltf::Camera& camera = model_.cameras[size_t(node.camera)];
+        if (camera.type != "perspective") {
+            sawOtherCamera_ = true;
+            return;
+        }
+        cameraNode_ = nodeIndex;
+        cameraWorld_ = world;
+    }
+
+    void placeCamera() {
+        if (!cameraNode_) {
+            if (sawOtherCamera_)
+                log::warn(path_ + ": orthographic cameras are not supported; using a view fitted to the scene");
+            scene_.camera = fitCameraToBounds(scene_.bounds);
+            scene_.cameraFromFile = false;
+            return;
+        }
+        const tinygltf::Node& node = model_.nodes[*cameraNode_];
+        const tinygltf::Camera& source = model_.cameras[size_t(node.camera)];
+        const tinygltf::PerspectiveCamera& perspective = source.perspective;
+        const std::string who = "camera " + std::to_string(node.camera);
+        if (!(perspective.yfov > 0.0 && perspective.yfov < std::numbers::pi))
+            fail(who + ": yfov must be between 0 and pi radians");
+        if (!(perspective.znear > 0.0)) fail(who + ": znear must be greater than 0");
+        if (perspective.zfar != 0.0 && !(perspective.zfar > perspective.znear))
+            fail(who + ": zfar must be greater than znear");
+
+        // The view ignores the node's scale: rebuild an orthonormal frame from its axes, keeping
+        // the viewing direction (-Z) exact.
+        const glm::vec3 back = glm::vec3(cameraWorld_[2]);
+        const glm::vec3 upHint = glm::vec3(cameraWorld_[1]);
+        const glm::vec3 rightUnnormalized = glm::cross(upHint, back);
+        if (!(glm::length(back) > 1e-12f) || !(glm::length(rightUnnormalized) > 1e-20f))
+            fail("node " + std::to_string(*cameraNode_) + " (camera) has a degenerate transform");
+        const glm::vec3 z = glm::normalize(back);
+        const glm::vec3 x = glm::normalize(glm::cross(upHint, z));
+        const glm::vec3 y = glm::cross(z, x);
+        glm::mat4 rigid(1.0f);
+        rigid[0] = glm::vec4(x, 0.0f);
+        rigid[1] = glm::vec4(y, 0.0f);
+        rigid[2] = glm::vec4(z, 0.0f);
+        rigid[3] = cameraWorld_[3];
+
+        Camera camera;
+        camera.name = !source.name.empty() ? source.name : node.name;
+        camera.view = glm::inverse(rigid);
+        camera.yfov = float(perspective.yfov);
+        camera.znear = float(perspective.znear);
+        if (perspective.zfar != 0.0) {
+            camera.zfar = float(perspective.zfar);
+        } else {
+            // Infinite far plane in the file: reach just past the farthest corner of the scene.
+            const glm::vec3 eye = glm::vec3(rigid[3]);
+            float farthest = 0.0f;
+            for (int corner = 0; corner < 8; ++corner) {
+                const glm::vec3 p((corner & 1) ? scene_.bounds.max.x : scene_.bounds.min.x,
+                                  (corner & 2) ? scene_.bounds.max.y : scene_.bounds.min.y,
+                                  (corner & 4) ? scene_.bounds.max.z : scene_.bounds.min.z);
+                farthest = std::max(farthest, glm::distance(eye, p));
+            }
+            camera.zfar = std::max(farthest * 1.1f, camera.znear * 10.0f);
+        }
+        if (!std::isfinite(camera.znear) || !std::isfinite(camera.zfar) || !finite(camera.view))
+            fail(who + ": its clip planes or position are too large for single-precision floats");
+        scene_.camera = camera;
+        scene_.cameraFromFile = true;
+    }
+
+    const tinygltf::Model& model_;
+    const std::string& path_;
+    const ImageDecoding& decoding_;
+    Scene scene_;
+    std::map<int, int> textureOfImage_;  // image index -> Scene::textures index or -1
+    std::map<std::pair<size_t, size_t>, std::optional<uint32_t>> primitiveMeshes_;
+    std::map<int, int> skippedPrimitives_;  // mode -> count
+    std::optional<uint32_t> defaultMaterialIndex_;
+    std::optional<size_t> cameraNode_;
+    glm::mat4 cameraWorld_{1.0f};
+    bool sawOtherCamera_ = false;
+};
+
+}  // namespace
+
+Scene loadGltf(const std::string& path) {
+    const SourceFile source = readSource(path);
+    preflight(source.json, path);
+
+    ImageDecoding decoding;
+    decoding.wanted = baseColorImages(source.json);
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(&decodeImage, &decoding);
+
+    // We already hold the bytes (to detect the format and pre-check the JSON), so hand them to
+    // tinygltf instead of letting LoadASCIIFromFile/LoadBinaryFromFile read the file again.
+    tinygltf::Model model;
+    std::string error;
+    std::string warning;
+    const auto size = static_cast<unsigned int>(source.bytes.size());
+    const bool loaded =
+        source.binary
+            ? loader.LoadBinaryFromMemory(&model, &error, &warning, source.bytes.data(), size, source.baseDir)
+            : loader.LoadASCIIFromString(&model, &error, &warning, reinterpret_cast<const char*>(source.bytes.data()),
+                                         size, source.baseDir);
+    for (const std::string& line : relevantWarnings(warning)) log::warn(path + ": " + line);
+    if (!loaded) throw Error(path, describeLoadError(error, source.json));
+    // tinygltf also appends non-fatal complaints to the error text of a successful load.
+    for (const std::string& line : relevantWarnings(error)) log::warn(path + ": " + line);
+
+    return SceneBuilder(model, path, decoding).build();
+}
+
+}  // namespace punctual

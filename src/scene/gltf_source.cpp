@@ -1,0 +1,337 @@
+// Reading a glTF file before tinygltf sees it, and the glue around tinygltf: error and warning
+// text, image decoding.
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <tuple>
+
+#include <stb_image.h>
+
+#include "core/error.h"
+#include "scene/gltf_detail.h"
+
+namespace punctual::gltf_detail {
+namespace {
+
+constexpr uint32_t kGlbMagic = 0x46546C67;      // "glTF"
+constexpr uint32_t kGlbJsonChunk = 0x4E4F534A;  // "JSON"
+constexpr size_t kGlbHeaderBytes = 12;
+constexpr size_t kGlbChunkHeaderBytes = 8;
+
+uint32_t readLittleEndian32(const unsigned char* bytes) {
+    return uint32_t(bytes[0]) | (uint32_t(bytes[1]) << 8) | (uint32_t(bytes[2]) << 16) |
+           (uint32_t(bytes[3]) << 24);
+}
+
+bool hasGlbExtension(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension == ".glb";
+}
+
+// Where the JSON text is inside a GLB; throws for the truncations and corruptions a user can
+// hit (a partial download, a file cut short), with the sizes involved.
+std::pair<size_t, size_t> glbJsonChunk(const std::vector<unsigned char>& bytes, const std::string& path) {
+    const size_t minimum = kGlbHeaderBytes + kGlbChunkHeaderBytes;
+    if (bytes.size() < minimum)
+        throw Error(path, "truncated GLB file: " + std::to_string(bytes.size()) + " bytes, less than the " +
+                              std::to_string(minimum) + "-byte header");
+    if (readLittleEndian32(bytes.data()) != kGlbMagic) throw Error(path, "not a GLB file (no \"glTF\" magic)");
+    const uint32_t version = readLittleEndian32(bytes.data() + 4);
+    if (version != 2) throw Error(path, "GLB version " + std::to_string(version) + " is not supported (need 2)");
+    const uint32_t declaredLength = readLittleEndian32(bytes.data() + 8);
+    if (declaredLength > bytes.size())
+        throw Error(path, "truncated GLB file: the header says " + std::to_string(declaredLength) +
+                              " bytes but the file has " + std::to_string(bytes.size()));
+    const uint32_t jsonLength = readLittleEndian32(bytes.data() + kGlbHeaderBytes);
+    const uint32_t jsonType = readLittleEndian32(bytes.data() + kGlbHeaderBytes + 4);
+    if (jsonType != kGlbJsonChunk) throw Error(path, "invalid GLB file: the first chunk is not JSON");
+    if (uint64_t(minimum) + jsonLength > declaredLength)
+        throw Error(path, "truncated GLB file: the JSON chunk runs past the end of the file");
+    return {minimum, jsonLength};
+}
+
+// "[json.exception.parse_error.101] parse error at line 3, ..." -> "parse error at line 3, ..."
+std::string withoutNlohmannPrefix(const std::string& message) {
+    if (!message.empty() && message.front() == '[') {
+        const size_t end = message.find("] ");
+        if (end != std::string::npos) return message.substr(end + 2);
+    }
+    return message;
+}
+
+std::vector<std::string> splitLines(const std::string& text) {
+    std::vector<std::string> result;
+    std::istringstream stream(text);
+    std::string line;
+    while (std::getline(stream, line)) {
+        const size_t first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos) continue;
+        const size_t last = line.find_last_not_of(" \t\r");
+        result.push_back(line.substr(first, last - first + 1));
+    }
+    return result;
+}
+
+bool startsWith(const std::string& text, const std::string& prefix) {
+    return text.compare(0, prefix.size(), prefix) == 0;
+}
+
+std::string percentDecoded(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+            out.push_back(static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
+            i += 2;
+        } else {
+            out.push_back(uri[i]);
+        }
+    }
+    return out;
+}
+
+// Index of the buffer whose URI is `file` (as tinygltf reports it: decoded, possibly with the
+// base directory in front), or -1.
+int bufferWithUri(const nlohmann::json& gltf, const std::string& file) {
+    const auto buffers = gltf.find("buffers");
+    if (buffers == gltf.end() || !buffers->is_array()) return -1;
+    for (size_t i = 0; i < buffers->size(); ++i) {
+        const nlohmann::json& buffer = (*buffers)[i];
+        if (!buffer.is_object() || !buffer.contains("uri") || !buffer["uri"].is_string()) continue;
+        const std::string uri = percentDecoded(buffer["uri"].get<std::string>());
+        if (uri.empty()) continue;
+        const bool suffix = file.size() >= uri.size() && file.compare(file.size() - uri.size(), uri.size(), uri) == 0;
+        if (file == uri || suffix) return static_cast<int>(i);
+    }
+    return -1;
+}
+
+// "buffer 2: 'name.bin'" for a file that is some buffer's URI, else "'file'" as tinygltf gave it
+// (with the base directory in front).
+std::string describeFile(const nlohmann::json& gltf, const std::string& file) {
+    const int index = bufferWithUri(gltf, file);
+    if (index < 0) return "'" + file + "'";
+    return "buffer " + std::to_string(index) + ": '" + gltf["buffers"][size_t(index)]["uri"].get<std::string>() + "'";
+}
+
+// Non-negative integer member `key` of `object`, or nullopt when absent or of another type.
+std::optional<uint64_t> unsignedMember(const nlohmann::json& object, const char* key) {
+    const auto it = object.find(key);
+    if (it == object.end() || !it->is_number_integer() || it->get<int64_t>() < 0) return std::nullopt;
+    return it->get<uint64_t>();
+}
+
+const nlohmann::json* arrayElement(const nlohmann::json& gltf, const char* array, uint64_t index) {
+    const auto it = gltf.find(array);
+    if (it == gltf.end() || !it->is_array() || index >= it->size() || !(*it)[index].is_object()) return nullptr;
+    return &(*it)[index];
+}
+
+void checkImageBufferViews(const nlohmann::json& gltf, const std::string& path) {
+    const auto images = gltf.find("images");
+    if (images == gltf.end() || !images->is_array()) return;
+    for (size_t i = 0; i < images->size(); ++i) {
+        const nlohmann::json& image = (*images)[i];
+        if (!image.is_object()) continue;
+        const std::optional<uint64_t> viewIndex = unsignedMember(image, "bufferView");
+        if (!viewIndex) continue;  // no buffer view, or a malformed one tinygltf reports itself
+        const std::string who = "image " + std::to_string(i) + ": buffer view " + std::to_string(*viewIndex);
+        const nlohmann::json* view = arrayElement(gltf, "bufferViews", *viewIndex);
+        if (!view) throw Error(path, who + " does not exist");
+        const std::optional<uint64_t> bufferIndex = unsignedMember(*view, "buffer");
+        const nlohmann::json* buffer = bufferIndex ? arrayElement(gltf, "buffers", *bufferIndex) : nullptr;
+        if (!buffer) throw Error(path, who + " refers to a buffer that does not exist");
+        const uint64_t offset = unsignedMember(*view, "byteOffset").value_or(0);
+        const uint64_t length = unsignedMember(*view, "byteLength").value_or(0);
+        const uint64_t bufferLength = unsignedMember(*buffer, "byteLength").value_or(0);
+        // tinygltf checks that a buffer's data has exactly its byteLength, so this bounds the read.
+        if (length == 0 || offset > bufferLength || length > bufferLength - offset)
+            throw Error(path, who + " lies outside buffer " + std::to_string(*bufferIndex));
+    }
+}
+
+void checkLightPropertyTypes(const nlohmann::json& gltf, const std::string& path) {
+    const auto extensions = gltf.find("extensions");
+    if (extensions == gltf.end() || !extensions->is_object()) return;
+    const auto punctual = extensions->find("KHR_lights_punctual");
+    if (punctual == extensions->end() || !punctual->is_object()) return;
+    const auto lights = punctual->find("lights");
+    if (lights == punctual->end()) return;
+    if (!lights->is_array()) throw Error(path, "KHR_lights_punctual: 'lights' is not an array");
+    for (size_t i = 0; i < lights->size(); ++i) {
+        const nlohmann::json& light = (*lights)[i];
+        const std::string who = "light " + std::to_string(i);
+        if (!light.is_object()) throw Error(path, who + " is not a JSON object");
+        for (const char* key : {"intensity", "range"})
+            if (light.contains(key) && !light[key].is_number())
+                throw Error(path, who + ": '" + key + "' is not a number");
+        if (light.contains("color")) {
+            const nlohmann::json& color = light["color"];
+            if (!color.is_array() || color.size() != 3 ||
+                !std::all_of(color.begin(), color.end(), [](const nlohmann::json& c) { return c.is_number(); }))
+                throw Error(path, who + ": 'color' is not an array of 3 numbers");
+        }
+        // tinygltf 2.7 rejects a spot light without a "spot" object with a message that does
+        // not say which light.
+        if (light.contains("type") && light["type"] == "spot" && !light.contains("spot"))
+            throw Error(path, who + " is a spot light without a 'spot' object");
+        if (light.contains("spot")) {
+            const nlohmann::json& spot = light["spot"];
+            if (!spot.is_object()) throw Error(path, who + ": 'spot' is not an object");
+            for (const char* key : {"innerConeAngle", "outerConeAngle"})
+                if (spot.contains(key) && !spot[key].is_number())
+                    throw Error(path, who + ": '" + key + "' is not a number");
+        }
+    }
+}
+
+}  // namespace
+
+SourceFile readSource(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    const fs::file_status status = fs::status(path, error);
+    if (!fs::exists(status)) throw Error(path, "no such file");
+    if (fs::is_directory(status)) throw Error(path, "is a directory, not a glTF file");
+
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) throw Error(path, "cannot open the file for reading");
+    const std::streamoff size = in.tellg();
+    if (size < 0) throw Error(path, "cannot read the file");
+    // tinygltf takes the size as an unsigned int.
+    if (static_cast<uint64_t>(size) > std::numeric_limits<uint32_t>::max())
+        throw Error(path, "file is larger than 4 GiB, which tinygltf cannot load");
+
+    SourceFile source;
+    source.bytes.resize(static_cast<size_t>(size));
+    in.seekg(0);
+    if (!in.read(reinterpret_cast<char*>(source.bytes.data()), size)) throw Error(path, "cannot read the file");
+    source.baseDir = fs::path(path).parent_path().string();
+
+    const bool magic = source.bytes.size() >= 4 && readLittleEndian32(source.bytes.data()) == kGlbMagic;
+    source.binary = magic || hasGlbExtension(path);
+    size_t jsonOffset = 0;
+    size_t jsonLength = source.bytes.size();
+    if (source.binary) std::tie(jsonOffset, jsonLength) = glbJsonChunk(source.bytes, path);
+
+    const auto jsonBegin = source.bytes.begin() + static_cast<std::ptrdiff_t>(jsonOffset);
+    try {
+        source.json = nlohmann::json::parse(jsonBegin, jsonBegin + static_cast<std::ptrdiff_t>(jsonLength));
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(path, "cannot parse JSON: " + withoutNlohmannPrefix(e.what()));
+    }
+    if (!source.json.is_object()) throw Error(path, "cannot parse JSON: the top level is not an object");
+    return source;
+}
+
+void preflight(const nlohmann::json& gltf, const std::string& path) {
+    checkImageBufferViews(gltf, path);
+    checkLightPropertyTypes(gltf, path);
+}
+
+std::set<int> baseColorImages(const nlohmann::json& gltf) {
+    std::set<int> images;
+    const auto materials = gltf.find("materials");
+    if (materials == gltf.end() || !materials->is_array()) return images;
+    for (const nlohmann::json& material : *materials) {
+        if (!material.is_object()) continue;
+        const auto pbr = material.find("pbrMetallicRoughness");
+        if (pbr == material.end() || !pbr->is_object()) continue;
+        const auto info = pbr->find("baseColorTexture");
+        if (info == pbr->end() || !info->is_object()) continue;
+        const std::optional<uint64_t> textureIndex = unsignedMember(*info, "index");
+        const nlohmann::json* texture = textureIndex ? arrayElement(gltf, "textures", *textureIndex) : nullptr;
+        if (!texture) continue;
+        const std::optional<uint64_t> source = unsignedMember(*texture, "source");
+        if (source && *source <= uint64_t(std::numeric_limits<int>::max())) images.insert(static_cast<int>(*source));
+    }
+    return images;
+}
+
+bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* /*err*/, std::string* /*warn*/,
+                 int /*requestedWidth*/, int /*requestedHeight*/, const unsigned char* bytes, int size,
+                 void* userData) {
+    auto& decoding = *static_cast<ImageDecoding*>(userData);
+    // Other images (normal, occlusion, ... maps) are not rendered: skip the decoding cost.
+    if (!decoding.wanted.count(imageIndex)) return true;
+    if (bytes == nullptr || size <= 0) {
+        decoding.failures[imageIndex] = "no image data";
+        return true;
+    }
+    int width = 0;
+    int height = 0;
+    int channelsInFile = 0;
+    stbi_uc* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channelsInFile, STBI_rgb_alpha);
+    if (pixels == nullptr) {
+        const char* reason = stbi_failure_reason();
+        decoding.failures[imageIndex] = reason ? reason : "unknown error";
+        return true;
+    }
+    image->width = width;
+    image->height = height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
+    stbi_image_free(pixels);
+    return true;
+}
+
+std::string describeLoadError(const std::string& tinygltfError, const nlohmann::json& gltf) {
+    const std::vector<std::string> lines = splitLines(tinygltfError);
+    for (const std::string& line : lines) {
+        // Messages from tinygltf's LoadExternalFile; for buffers they are errors.
+        if (startsWith(line, "File not found : ")) {
+            const std::string file = line.substr(std::strlen("File not found : "));
+            return describeFile(gltf, file) + " cannot be read (no such file)";
+        }
+        if (startsWith(line, "File read error : ")) {
+            const std::string rest = line.substr(std::strlen("File read error : "));
+            const std::string file = rest.substr(0, rest.find(" : "));
+            return describeFile(gltf, file) + " cannot be read";
+        }
+        if (startsWith(line, "File is empty : ")) {
+            const std::string file = line.substr(std::strlen("File is empty : "));
+            return describeFile(gltf, file) + " is empty";
+        }
+        if (startsWith(line, "File size mismatch : ")) {
+            // "File size mismatch : dir/a.bin, requestedBytes 96, but got 48"
+            const std::string rest = line.substr(std::strlen("File size mismatch : "));
+            const std::string file = rest.substr(0, rest.find(", requestedBytes"));
+            const size_t requested = rest.find("requestedBytes ");
+            const size_t got = rest.find("but got ");
+            if (requested == std::string::npos || got == std::string::npos) break;
+            const std::string wanted = rest.substr(requested + 15, rest.find(',', requested) - (requested + 15));
+            return describeFile(gltf, file) + " has " + rest.substr(got + 8) + " bytes but the buffer's byteLength is " +
+                   wanted;
+        }
+    }
+    std::string joined;
+    for (const std::string& line : lines) joined += (joined.empty() ? "" : "; ") + line;
+    if (joined.empty()) joined = "tinygltf failed without saying why";
+    constexpr size_t kMaxLength = 300;
+    if (joined.size() > kMaxLength) joined = joined.substr(0, kMaxLength) + "...";
+    return "invalid glTF: " + joined;
+}
+
+std::vector<std::string> relevantWarnings(const std::string& tinygltfWarnings) {
+    std::vector<std::string> result;
+    for (const std::string& line : splitLines(tinygltfWarnings)) {
+        // tinygltf reads buffers with no warning sink, so these come from images only.
+        const bool aboutImage = startsWith(line, "File not found : ") || startsWith(line, "File read error : ") ||
+                                startsWith(line, "File is empty : ") || line.find("for image[") != std::string::npos;
+        if (aboutImage) continue;
+        if (std::find(result.begin(), result.end(), line) == result.end()) result.push_back(line);
+    }
+    return result;
+}
+
+}  // namespace punctual::gltf_detail
