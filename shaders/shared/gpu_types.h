@@ -20,9 +20,29 @@
 #define PUNCTUAL_BINDING_OBJECTS 2
 #define PUNCTUAL_BINDING_MATERIALS 3
 #define PUNCTUAL_BINDING_TEXTURES 4
+#define PUNCTUAL_BINDING_DEPTH 5          // depth prepass result, read by the culling passes
+#define PUNCTUAL_BINDING_LIGHT_GRID 6     // per tile (or cluster): 3 words = 64-bit spot mask, 32-bit point mask
+#define PUNCTUAL_BINDING_DEPTH_RANGE 7    // GpuDepthRange: the frame's geometry depth range and cluster slice starts
+#define PUNCTUAL_BINDING_OBJECT_LIGHTS 8  // per object: PUNCTUAL_MAX_LIGHTS_PER_OBJECT packed-light indices
+#define PUNCTUAL_BINDING_LIGHT_STATS 9    // debug: per pixel uvec4 (tested, affecting | covered bit, luminances)
+
+// Words per light-grid cell: spot bits 0-31, spot bits 32-63, point bits 0-31.
+#define PUNCTUAL_GRID_WORDS 3
+// Clusters use at most 32 depth slices, so a tile's occupied slices fit one 32-bit mask.
+#define PUNCTUAL_MAX_CLUSTER_SLICES 32
+
+// Light-list sources of the forward pass (specialization constant PUNCTUAL_SPEC_LIGHT_LIST).
+#define PUNCTUAL_LIGHT_LIST_BRUTE 0u
+#define PUNCTUAL_LIGHT_LIST_PER_OBJECT 1u
+#define PUNCTUAL_LIGHT_LIST_TILED 2u
+#define PUNCTUAL_LIGHT_LIST_CLUSTERED 3u
 
 // Specialization constant ids.
 #define PUNCTUAL_SPEC_TEXTURE_COUNT 0
+#define PUNCTUAL_SPEC_LIGHT_LIST 1
+#define PUNCTUAL_SPEC_TILE_SIZE 2
+#define PUNCTUAL_SPEC_SLICE_COUNT 3
+#define PUNCTUAL_SPEC_WRITE_LIGHT_STATS 4
 
 PUNCTUAL_NAMESPACE_BEGIN
 
@@ -32,7 +52,7 @@ struct GpuPunctualLight {
     vec4 positionInvRangeSq;   // xyz: world position; w: 1 / max(range^2, 1e-4)
     vec4 radiantColor;         // rgb: linear colour x intensity (candela); w: range (metres)
     vec4 directionAngleScale;  // xyz: unit direction the light shines (node -Z); w: k = 1/max(cosInner - cosOuter, 1e-4), 0 for points
-    vec4 angleOffsetShadow;    // x: -cosOuter * k (1 for points); y: shadow slot or -1; zw: reserved
+    vec4 angleOffsetShadow;    // x: -cosOuter * k (1 for points); y: shadow slot or -1; z: cos outer (-1 for points, for culling); w: reserved
 };
 
 struct GpuDirectionalLight {
@@ -50,12 +70,25 @@ struct GpuFrame {
     uvec4 lightCounts;    // x: spot lights, y: point lights (stored after the spots), z: directional (0/1)
     vec4 exposure;        // x: linear exposure multiplier applied before tone mapping
     GpuDirectionalLight sun;
+    uvec4 lightGrid;      // x: tile size in pixels, y: tiles across, z: tiles down, w: depth slices (1 = tiled)
+    vec4 depthToView;     // xy: (a, b) with view distance = a / (depth + b) (see culling.h); zw: unused
+    vec4 ndcToView;       // (1/P00, 1/P11, P20, P21): view ray through an NDC point (see culling.h)
+};
+
+// Written on the GPU each frame (clustered culling): depth-range pass, then slice-boundaries pass.
+struct GpuDepthRange {
+    uint minDepthBits;  // float bits of the nearest geometry depth (non-negative floats sort as uints)
+    uint maxDepthBits;  // float bits of the farthest
+    uint sliceCount;
+    uint reserved;
+    float sliceStartDepth[PUNCTUAL_MAX_CLUSTER_SLICES];  // depth where slice s begins; slice 0 = nearest
 };
 
 struct GpuObject {
     mat4 model;
     mat4 normalMatrix;  // inverse transpose of model (mat4 keeps std430 and C++ layouts equal)
-    uvec4 material;     // x: material index
+    uvec4 material;     // x: material index, y: 1 if the transform mirrors (winding flips),
+                        // z: per-object light count (<= PUNCTUAL_MAX_LIGHTS_PER_OBJECT), w: unused
 };
 
 struct GpuMaterial {

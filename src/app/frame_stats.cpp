@@ -26,6 +26,32 @@ nlohmann::json frameStatsJson(const render::FrameResult& result, const render::R
     return stats;
 }
 
+nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Renderer& renderer) {
+    const render::RenderSettings& settings = renderer.settings();
+    nlohmann::json json = {
+        {"method", render::methodName(settings.method)},
+        {"tested_per_pixel", stats.testedPerPixel},
+        {"affecting_per_pixel", stats.affectingPerPixel},
+        {"efficiency", stats.efficiency},
+        {"max_tested", stats.maxTested},
+        {"max_affecting", stats.maxAffecting},
+        {"missed_energy", stats.missedEnergy},
+        {"pixels_missing_light", stats.pixelsMissingLight},
+        {"covered_pixels", stats.coveredPixels},
+    };
+    if (render::usesLightGrid(settings.method)) {
+        const render::LightGridLayout& grid = renderer.gridLayout();
+        json["tile_size"] = grid.tileSize;
+        json["slices"] = grid.slices;
+        json["cells"] = grid.cellCount();
+    }
+    if (settings.method == render::LightListMethod::PerObject) {
+        json["per_object"] = {{"objects_over_cap", renderer.perObjectLists().objectsOverCap},
+                              {"max_candidates", renderer.perObjectLists().maxCandidates}};
+    }
+    return json;
+}
+
 std::string timingTable(const render::PassTimings& ms) {
     std::string table = "pass        GPU ms\n";
     auto row = [&](const char* name, double value) {

@@ -13,6 +13,11 @@ namespace punctual::app {
 nlohmann::json frameStatsJson(const render::FrameResult& result, const render::Renderer& renderer,
                               const Scene& scene, const std::string& deviceName, uint32_t frames);
 
+// {"method", "tile_size", "slices", "tested_per_pixel", "affecting_per_pixel", "efficiency",
+//  "max_tested", "max_affecting", "missed_energy", "pixels_missing_light", "covered_pixels",
+//  "per_object": {"objects_over_cap", "max_candidates"}}
+nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Renderer& renderer);
+
 std::string timingTable(const render::PassTimings& ms);
 
 }  // namespace punctual::app

@@ -43,8 +43,10 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
     RenderOptions options;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
+        // An option's value never starts with "--": `--heatmap --out x.png` is a missing value,
+        // not a heat map written to a file called "--out".
         auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size()) throw Error(arg, "needs a value");
+            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error(arg, "needs a value");
             return args[++i];
         };
         if (arg == "--lights") {
@@ -61,6 +63,14 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             options.validate = true;
         } else if (arg == "--frames") {
             options.frames = parseCount(arg, value(), 1, 1000);
+        } else if (arg == "--culling") {
+            options.culling = render::parseMethod(value());
+        } else if (arg == "--tile-size") {
+            options.tileSize = parseCount(arg, value(), 4, 128);
+        } else if (arg == "--slices") {
+            options.slices = parseCount(arg, value(), 1, PUNCTUAL_MAX_CLUSTER_SLICES);
+        } else if (arg == "--heatmap") {
+            options.heatmapPath = value();
         } else if (arg == "--exposure") {
             const std::string& text = value();
             float exposure = 0.0f;
@@ -89,7 +99,12 @@ options:
                        lights generated inside its bounds (same seed, same lights; seed 1)
   --size WxH           output size in pixels (default 1280x720)
   --out FILE.png       write the tone-mapped image
-  --stats FILE.json    write per-pass GPU times and light counts
+  --stats FILE.json    write per-pass GPU times, light counts and culling statistics
+  --culling METHOD     how each pixel finds its lights: brute (every light), per-object
+                       (at most 8 per object), tiled (default) or clustered
+  --tile-size N        tile size in pixels for tiled and clustered culling (default 16)
+  --slices N           depth slices for clustered culling, 1 to 32 (default 16)
+  --heatmap FILE.png   draw the lights tested per pixel as a colour map with a legend
   --exposure X         linear exposure before tone mapping (default 1)
   --frames N           render N frames and report the median GPU times (default 1)
   --device N           use Vulkan device N (see `punctual devices`); default: the best one

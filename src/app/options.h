@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "render/light_list_method.h"
 #include "scene/light_generator.h"
 
 namespace punctual::app {
@@ -20,6 +21,10 @@ struct RenderOptions {
     bool validate = false;                 // --validate
     float exposure = 1.0f;                 // --exposure X
     uint32_t frames = 1;                   // --frames N (timed; the median is reported)
+    render::LightListMethod culling = render::LightListMethod::Tiled;  // --culling
+    uint32_t tileSize = 16;                // --tile-size N
+    uint32_t slices = 16;                  // --slices N (clustered)
+    std::optional<std::string> heatmapPath;  // --heatmap FILE.png
 };
 
 // Parses the arguments after the command name. Throws punctual::Error naming the option.

@@ -1,7 +1,7 @@
 #include "app/render_command.h"
 
 #include <cstdio>
-#include <filesystem>
+#include <sstream>
 
 #include "app/frame_stats.h"
 #include "app/options.h"
@@ -9,10 +9,26 @@
 #include "app/scene_source.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/output_files.h"
+#include "metrics/heatmap.h"
 #include "render/renderer.h"
 #include "vk/context.h"
 
 namespace punctual::app {
+
+namespace {
+
+std::string heatmapTitle(const RenderOptions& options) {
+    std::ostringstream title;  // (not string +: GCC 12 warns falsely about it, bug 105329)
+    title << "lights tested per pixel: " << render::methodName(options.culling);
+    if (render::usesLightGrid(options.culling)) {
+        title << " " << options.tileSize << "x" << options.tileSize;
+        if (options.culling == render::LightListMethod::Clustered) title << " x " << options.slices << " slices";
+    }
+    return title.str();
+}
+
+}  // namespace
 
 int runRenderCommand(const std::vector<std::string>& args) {
     for (const std::string& arg : args) {
@@ -24,6 +40,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
     const RenderOptions options = parseRenderOptions(args);
     checkOutputPath(options.outPath);
     checkOutputPath(options.statsPath);
+    checkOutputPath(options.heatmapPath);
     const Scene scene = loadSceneForOptions(options);
 
     vk::ContextOptions contextOptions;
@@ -35,8 +52,14 @@ int runRenderCommand(const std::vector<std::string>& args) {
     settings.width = options.width;
     settings.height = options.height;
     settings.exposure = options.exposure;
+    settings.method = options.culling;
+    settings.tileSize = options.tileSize;
+    settings.clusterSlices = options.slices;
+    settings.collectLightStats = options.statsPath.has_value() || options.heatmapPath.has_value();
     render::Renderer renderer(context, scene, settings);
     const render::FrameResult result = renderer.render(options.frames);
+    std::optional<LightStatsImage> lightStats;
+    if (settings.collectLightStats) lightStats = renderer.readLightStats();
 
     if (context.validationMessageCount() > 0) {
         throw Error("vulkan", std::to_string(context.validationMessageCount()) +
@@ -46,27 +69,37 @@ int runRenderCommand(const std::vector<std::string>& args) {
     const FrameLights& lights = renderer.lights();
     std::printf("scene: %s (%zu triangles, %zu objects)\n", scene.source.c_str(), scene.triangleCount(),
                 scene.objects.size());
-    std::printf("device: %s, %ux%u, %u frame(s), median GPU times\n", context.deviceName().c_str(), settings.width,
-                settings.height, options.frames);
+    std::printf("device: %s, %ux%u, %s culling, %u frame(s), median GPU times\n", context.deviceName().c_str(),
+                settings.width, settings.height, render::methodName(settings.method), options.frames);
     std::printf("lights: %u spot, %u point, %u directional (%u outside the view, %u over the caps)\n",
                 lights.spotCount, lights.pointCount, lights.directionalCount, lights.culledByFrustum,
                 lights.droppedByCap);
     std::fputs(timingTable(result.medianMs).c_str(), stdout);
 
-    if (options.outPath) writePng(*options.outPath, result.image);
-    if (options.statsPath) {
-        try {
-            writeFileAtomically(*options.statsPath,
-                                frameStatsJson(result, renderer, scene, context.deviceName(), options.frames).dump(2) + "\n");
-        } catch (...) {
-            // No partial output: the image goes too when its stats cannot be written.
-            std::error_code ec;
-            if (options.outPath) std::filesystem::remove(*options.outPath, ec);
-            throw;
+    OutputFiles outputs;
+    if (options.outPath) outputs.add(*options.outPath, encodePng(result.image));
+    if (lightStats) {
+        const CullingStats culling = computeCullingStats(*lightStats);
+        std::printf("culling: %.2f lights tested per pixel, %.2f reach it (efficiency %.2f), max %u, missed energy %.4f\n",
+                    culling.testedPerPixel, culling.affectingPerPixel, culling.efficiency, culling.maxTested,
+                    culling.missedEnergy);
+        if (options.statsPath) {
+            nlohmann::json stats = frameStatsJson(result, renderer, scene, context.deviceName(), options.frames);
+            stats["culling"] = cullingStatsJson(culling, renderer);
+            outputs.add(*options.statsPath, stats.dump(2) + "\n");
+        }
+        if (options.heatmapPath) {
+            std::vector<uint8_t> background(lightStats->covered.size());
+            for (size_t i = 0; i < background.size(); ++i) background[i] = lightStats->covered[i] ? 0 : 1;
+            HeatmapOptions heatmap;
+            heatmap.title = heatmapTitle(options);
+            outputs.add(*options.heatmapPath,
+                        encodePng(renderHeatmap(lightStats->tested, background, settings.width, settings.height, heatmap)));
         }
     }
-    if (options.outPath) std::printf("wrote %s\n", options.outPath->c_str());
-    if (options.statsPath) std::printf("wrote %s\n", options.statsPath->c_str());
+    const auto written = outputs.pending();
+    outputs.commit();
+    for (const auto& file : written) std::printf("wrote %s\n", file.first.c_str());
     return 0;
 }
 

@@ -43,6 +43,21 @@ void writePng(const std::string& path, const ImageRgba8& image) {
     publish(temporary, path);
 }
 
+std::string encodePng(const ImageRgba8& image) {
+    if (image.width == 0 || image.height == 0 || image.pixels.size() != size_t(image.width) * image.height * 4) {
+        throw Error("png", "refusing to encode an empty or inconsistent image");
+    }
+    std::string bytes;
+    auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+    };
+    if (!stbi_write_png_to_func(append, &bytes, int(image.width), int(image.height), 4, image.pixels.data(),
+                                int(image.width * 4))) {
+        throw Error("png", "encoding failed");
+    }
+    return bytes;
+}
+
 ImageRgba8 readPng(const std::string& path) {
     int w = 0, h = 0, channels = 0;
     stbi_uc* data = stbi_load(path.c_str(), &w, &h, &channels, 4);

@@ -18,6 +18,8 @@ struct ImageRgba8 {
 
 // Throws punctual::Error naming `path` when it cannot be written.
 void writePng(const std::string& path, const ImageRgba8& image);
+// The PNG file's bytes, for writing later (see OutputFiles).
+std::string encodePng(const ImageRgba8& image);
 ImageRgba8 readPng(const std::string& path);
 
 // Writes `contents` to `path` atomically (temporary file + rename).

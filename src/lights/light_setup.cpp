@@ -108,11 +108,11 @@ gpu::GpuPunctualLight packPunctualLight(const Light& light) {
         const float cosInner = std::cos(std::clamp(light.innerConeAngle, 0.0f, kHalfPi));
         const float k = gpu::spotAngleScale(cosInner, cosOuter);
         packed.directionAngleScale = glm::vec4(unitDirection(light), k);
-        packed.angleOffsetShadow = glm::vec4(-cosOuter * k, -1.0f, 0.0f, 0.0f);
+        packed.angleOffsetShadow = glm::vec4(-cosOuter * k, -1.0f, cosOuter, 0.0f);
     } else {
         // Scale 0, offset 1: the angular factor is saturate(1)^2 = 1 exactly.
         packed.directionAngleScale = glm::vec4(unitDirection(light), 0.0f);
-        packed.angleOffsetShadow = glm::vec4(1.0f, -1.0f, 0.0f, 0.0f);
+        packed.angleOffsetShadow = glm::vec4(1.0f, -1.0f, -1.0f, 0.0f);  // cos outer -1: all directions
     }
     return packed;
 }

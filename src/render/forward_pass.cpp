@@ -1,6 +1,7 @@
 #include "render/forward_pass.h"
 
 #include <array>
+#include <cstddef>
 
 #include "gpu_types.h"
 #include "render/depth_prepass.h"
@@ -15,7 +16,7 @@
 namespace punctual::render {
 
 ForwardPass::ForwardPass(const vk::Context& context, const FrameBindings& bindings, const vk::Image& radiance,
-                         const vk::Image& depth)
+                         const vk::Image& depth, const ForwardVariant& variant)
     : width_(radiance.desc().width), height_(radiance.desc().height) {
     const VkDevice device = context.device();
     vk::RenderPassDesc passDesc;
@@ -30,9 +31,23 @@ ForwardPass::ForwardPass(const vk::Context& context, const FrameBindings& bindin
     const std::array<VkImageView, 2> views = {radiance.view(), depth.view()};
     framebuffer_ = vk::createFramebuffer(device, renderPass_, views, width_, height_);
 
-    const int32_t textureCount = int32_t(bindings.textureCount());
-    const VkSpecializationMapEntry entry{PUNCTUAL_SPEC_TEXTURE_COUNT, 0, sizeof(int32_t)};
-    VkSpecializationInfo specialization{1, &entry, sizeof(int32_t), &textureCount};
+    struct Constants {
+        int32_t textureCount;
+        uint32_t lightList;
+        uint32_t tileSize;
+        uint32_t slices;
+        VkBool32 writeLightStats;
+    };
+    const Constants constants{int32_t(bindings.textureCount()), variant.lightList, variant.tileSize, variant.slices,
+                              variant.writeLightStats ? VK_TRUE : VK_FALSE};
+    const std::array<VkSpecializationMapEntry, 5> entries = {{
+        {PUNCTUAL_SPEC_TEXTURE_COUNT, offsetof(Constants, textureCount), sizeof(int32_t)},
+        {PUNCTUAL_SPEC_LIGHT_LIST, offsetof(Constants, lightList), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_TILE_SIZE, offsetof(Constants, tileSize), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_SLICE_COUNT, offsetof(Constants, slices), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_WRITE_LIGHT_STATS, offsetof(Constants, writeLightStats), sizeof(VkBool32)},
+    }};
+    const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(constants), &constants};
 
     vk::GraphicsPipelineDesc pipelineDesc;
     pipelineDesc.layout = bindings.pipelineLayout();

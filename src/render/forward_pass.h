@@ -15,12 +15,20 @@ namespace punctual::render {
 class FrameBindings;
 class SceneGpu;
 
+// The specialization of the one forward shader.
+struct ForwardVariant {
+    uint32_t lightList = 0;  // PUNCTUAL_LIGHT_LIST_*
+    uint32_t tileSize = 16;
+    uint32_t slices = 1;
+    bool writeLightStats = false;  // debug variant: per-pixel light statistics
+};
+
 class ForwardPass {
 public:
     // `radiance` ends in SHADER_READ_ONLY_OPTIMAL for the tone-mapping pass; `depth` must be in
     // DEPTH_STENCIL_READ_ONLY_OPTIMAL (the prepass leaves it so) and stays there.
     ForwardPass(const vk::Context& context, const FrameBindings& bindings, const vk::Image& radiance,
-                const vk::Image& depth);
+                const vk::Image& depth, const ForwardVariant& variant);
     void record(VkCommandBuffer cmd, const SceneGpu& scene, const FrameBindings& bindings) const;
 
     static constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;

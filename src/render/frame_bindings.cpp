@@ -1,5 +1,6 @@
 #include "render/frame_bindings.h"
 
+#include <utility>
 #include <vector>
 
 #include "gpu_types.h"
@@ -9,8 +10,7 @@
 
 namespace punctual::render {
 
-FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, const vk::Buffer& frameUniform,
-                             const vk::Buffer& lights)
+FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, const FrameBindingResources& resources)
     : textureCount_(uint32_t(scene.textures().size())) {
     const VkDevice device = context.device();
     const VkShaderStageFlags raster = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -22,6 +22,11 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
         {PUNCTUAL_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
         {PUNCTUAL_BINDING_TEXTURES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount_,
          VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {PUNCTUAL_BINDING_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {PUNCTUAL_BINDING_LIGHT_GRID, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+        {PUNCTUAL_BINDING_DEPTH_RANGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+        {PUNCTUAL_BINDING_OBJECT_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {PUNCTUAL_BINDING_LIGHT_STATS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
     };
     VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     layoutInfo.bindingCount = uint32_t(bindings.size());
@@ -42,8 +47,8 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
 
     const std::vector<VkDescriptorPoolSize> sizes = {
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
-        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount_},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount_ + 1},
     };
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = 1;
@@ -59,8 +64,14 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
     allocInfo.pSetLayouts = &setLayout;
     vk::check(vkAllocateDescriptorSets(device, &allocInfo, &set_), "vkAllocateDescriptorSets");
 
-    const VkDescriptorBufferInfo frameInfo{frameUniform.handle(), 0, VK_WHOLE_SIZE};
-    const VkDescriptorBufferInfo lightInfo{lights.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo frameInfo{resources.frameUniform.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo lightInfo{resources.lights.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo gridInfo{resources.lightGrid.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo depthRangeInfo{resources.depthRange.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo objectLightsInfo{resources.objectLights.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo statsInfo{resources.lightStats.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorImageInfo depthInfo{resources.depthSampler, resources.depthView,
+                                          VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
     const VkDescriptorBufferInfo objectInfo{scene.objectBuffer().handle(), 0, VK_WHOLE_SIZE};
     const VkDescriptorBufferInfo materialInfo{scene.materialBuffer().handle(), 0, VK_WHOLE_SIZE};
     std::vector<VkDescriptorImageInfo> textureInfos;
@@ -86,6 +97,18 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
     writes.back().pBufferInfo = &materialInfo;
     writes.push_back(write(PUNCTUAL_BINDING_TEXTURES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount_));
     writes.back().pImageInfo = textureInfos.data();
+    writes.push_back(write(PUNCTUAL_BINDING_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1));
+    writes.back().pImageInfo = &depthInfo;
+    const std::pair<uint32_t, const VkDescriptorBufferInfo*> storage[] = {
+        {PUNCTUAL_BINDING_LIGHT_GRID, &gridInfo},
+        {PUNCTUAL_BINDING_DEPTH_RANGE, &depthRangeInfo},
+        {PUNCTUAL_BINDING_OBJECT_LIGHTS, &objectLightsInfo},
+        {PUNCTUAL_BINDING_LIGHT_STATS, &statsInfo},
+    };
+    for (const auto& [binding, info] : storage) {
+        writes.push_back(write(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1));
+        writes.back().pBufferInfo = info;
+    }
     vkUpdateDescriptorSets(device, uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 

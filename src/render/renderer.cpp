@@ -25,13 +25,20 @@ struct Renderer::Resources {
     vk::Buffer lights;
     vk::Image depth;
     vk::Image radiance;
+    vk::Handle<VkSampler> depthSampler;
+    LightGridBuffers grid;
+    vk::Buffer objectLights;
+    vk::Buffer lightStats;
     FrameBindings bindings;
     DepthPrepass depthPrepass;
+    std::unique_ptr<LightCullingPass> cullingPass;  // tiled and clustered only
     ForwardPass forwardPass;
+    std::unique_ptr<ForwardPass> statsForwardPass;  // only with collectLightStats
     TonemapPass tonemapPass;
     vk::Buffer readback;
     vk::GpuTimer timer;
     VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
+    VkCommandBuffer statsCommandBuffer = VK_NULL_HANDLE;
     vk::Handle<VkFence> fence;
 
     static vk::Image makeImage(const vk::Context& context, VkFormat format, VkImageUsageFlags usage,
@@ -45,12 +52,35 @@ struct Renderer::Resources {
         return vk::Image(context, desc);
     }
 
-    Resources(vk::Context& context, const Scene& sceneData, const RenderSettings& settings, const FrameLights& frameLights)
-        : scene(context, sceneData),
+    static vk::Handle<VkSampler> makeNearestSampler(const vk::Context& context) {
+        VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+        info.magFilter = VK_FILTER_NEAREST;
+        info.minFilter = VK_FILTER_NEAREST;
+        info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        VkSampler sampler = VK_NULL_HANDLE;
+        vk::check(vkCreateSampler(context.device(), &info, nullptr, &sampler), "vkCreateSampler");
+        return {context.device(), sampler, vkDestroySampler};
+    }
+
+    // A storage buffer holding `words`, or one word when the frame does not use it (a descriptor
+    // cannot point at nothing).
+    static vk::Buffer storageWords(vk::Context& context, const std::vector<uint32_t>& words, const char* name) {
+        const std::vector<uint32_t> data = words.empty() ? std::vector<uint32_t>{0u} : words;
+        vk::Buffer buffer(context, data.size() * sizeof(uint32_t),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                          vk::MemoryUse::DeviceLocal, name);
+        vk::uploadToBuffer(context, buffer, data.data(), data.size() * sizeof(uint32_t));
+        return buffer;
+    }
+
+    Resources(vk::Context& context, const Scene& sceneData, const RenderSettings& settings,
+              const FrameLights& frameLights, const PerObjectLightLists& perObject, const LightGridLayout& gridLayout)
+        : scene(context, sceneData, perObject.counts),
           frameUniform(context, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload,
                        "frame"),
-          // Sized to the lights this frame really uses; one slot when there are none, because a
-          // Vulkan buffer cannot be empty.
+          // Sized to the lights this frame really uses; one slot when there are none.
           lights(context, std::max<size_t>(frameLights.packed.size(), 1) * sizeof(gpu::GpuPunctualLight),
                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "lights"),
           depth(makeImage(context, DepthPrepass::kDepthFormat,
@@ -59,13 +89,33 @@ struct Renderer::Resources {
                           settings, "depth")),
           radiance(makeImage(context, ForwardPass::kRadianceFormat,
                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, settings, "radiance")),
-          bindings(context, scene, frameUniform, lights),
+          depthSampler(makeNearestSampler(context)),
+          grid(context, gridLayout, usesLightGrid(settings.method)),
+          objectLights(storageWords(context, perObject.lights, "object lights")),
+          lightStats(context,
+                     settings.collectLightStats ? VkDeviceSize(settings.width) * settings.height * 16 : 16,
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                         VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                     vk::MemoryUse::DeviceLocal, "light stats"),
+          bindings(context, scene,
+                   FrameBindingResources{frameUniform, lights, depth.view(), depthSampler, grid.grid, grid.depthRange,
+                                         objectLights, lightStats}),
           depthPrepass(context, bindings, depth),
-          forwardPass(context, bindings, radiance, depth),
+          forwardPass(context, bindings, radiance, depth,
+                      ForwardVariant{uint32_t(settings.method), gridLayout.tileSize, gridLayout.slices, false}),
           tonemapPass(context, radiance, settings.exposure),
           readback(context, VkDeviceSize(settings.width) * settings.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                    vk::MemoryUse::Readback, "readback"),
-          timer(context, 16) {}
+          timer(context, 16) {
+        if (usesLightGrid(settings.method)) {
+            cullingPass = std::make_unique<LightCullingPass>(context, bindings, gridLayout, settings.width, settings.height);
+        }
+        if (settings.collectLightStats) {
+            statsForwardPass = std::make_unique<ForwardPass>(
+                context, bindings, radiance, depth,
+                ForwardVariant{uint32_t(settings.method), gridLayout.tileSize, gridLayout.slices, true});
+        }
+    }
 };
 
 namespace {
@@ -79,10 +129,14 @@ void validateSettings(const RenderSettings& settings) {
     if (!(settings.exposure > 0.0f) || !std::isfinite(settings.exposure)) {
         throw Error("--exposure", "must be a finite number > 0");
     }
+    if (settings.tileSize < 4 || settings.tileSize > 128) throw Error("--tile-size", "must be from 4 to 128 pixels");
+    if (settings.clusterSlices < 1 || settings.clusterSlices > PUNCTUAL_MAX_CLUSTER_SLICES) {
+        throw Error("--slices", "must be from 1 to " + std::to_string(PUNCTUAL_MAX_CLUSTER_SLICES));
+    }
 }
 
 gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, const glm::mat4& view,
-                        const glm::mat4& projection, const FrameLights& lights) {
+                        const glm::mat4& projection, const FrameLights& lights, const LightGridLayout& grid) {
     gpu::GpuFrame frame{};
     frame.view = view;
     frame.projection = projection;
@@ -94,6 +148,11 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     frame.lightCounts = glm::uvec4(lights.spotCount, lights.pointCount, lights.directionalCount, 0u);
     frame.exposure = glm::vec4(settings.exposure, 0.0f, 0.0f, 0.0f);
     frame.sun = lights.sun;
+    frame.lightGrid = glm::uvec4(grid.tileSize, grid.tilesX, grid.tilesY, grid.slices);
+    // See culling.h: view distance = a / (depth + b) with a = P[3][2], b = P[2][2]; view rays
+    // through NDC use 1/P00, 1/P11 and the off-centre terms P20, P21.
+    frame.depthToView = glm::vec4(projection[3][2], projection[2][2], 0.0f, 0.0f);
+    frame.ndcToView = glm::vec4(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
     return frame;
 }
 
@@ -112,9 +171,12 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     view_ = scene.camera.view;
     projection_ = scene.camera.projection(float(settings.width) / float(settings.height));
     lights_ = setupFrameLights(scene, view_, projection_);
-    resources_ = std::make_unique<Resources>(context, scene, settings, lights_);
+    if (settings.method == LightListMethod::PerObject) perObjectLists_ = buildPerObjectLightLists(scene, lights_);
+    const uint32_t slices = settings.method == LightListMethod::Clustered ? settings.clusterSlices : 1u;
+    gridLayout_ = LightGridLayout::forFrame(settings.width, settings.height, settings.tileSize, slices);
+    resources_ = std::make_unique<Resources>(context, scene, settings, lights_, perObjectLists_, gridLayout_);
 
-    const gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_);
+    const gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_, gridLayout_);
     resources_->frameUniform.write(&frame, sizeof(frame));
     if (!lights_.packed.empty()) {
         resources_->lights.write(lights_.packed.data(), lights_.packed.size() * sizeof(gpu::GpuPunctualLight));
@@ -126,45 +188,68 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     allocInfo.commandBufferCount = 1;
     vk::check(vkAllocateCommandBuffers(context.device(), &allocInfo, &resources_->commandBuffer),
               "vkAllocateCommandBuffers");
+    if (settings.collectLightStats) {
+        vk::check(vkAllocateCommandBuffers(context.device(), &allocInfo, &resources_->statsCommandBuffer),
+                  "vkAllocateCommandBuffers");
+    }
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence fence = VK_NULL_HANDLE;
     vk::check(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence), "vkCreateFence");
     resources_->fence = vk::Handle<VkFence>(context.device(), fence, vkDestroyFence);
-    recordFrame();
+    recordFrame(resources_->commandBuffer, false);
+    if (settings.collectLightStats) recordFrame(resources_->statsCommandBuffer, true);
 }
 
 Renderer::~Renderer() {
     if (resources_) {
         vkDeviceWaitIdle(context_.device());
         vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &resources_->commandBuffer);
+        if (resources_->statsCommandBuffer) {
+            vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &resources_->statsCommandBuffer);
+        }
     }
 }
 
-void Renderer::recordFrame() {
+// One frame: depth prepass, light culling (tiled, clustered), forward, tone mapping, readback.
+// The statistics variant swaps in the forward shader that also writes per-pixel light counts
+// and skips tone mapping; it is never timed.
+void Renderer::recordFrame(VkCommandBuffer cmd, bool withStats) {
     Resources& r = *resources_;
-    VkCommandBuffer cmd = r.commandBuffer;
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     vk::check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
-    r.timer.reset(cmd);
-    const uint32_t total = r.timer.begin(cmd, "total");
+    if (!withStats) r.timer.reset(cmd);
+    auto timed = [&](const char* name, auto&& work) {
+        if (withStats) return work();
+        const uint32_t scope = r.timer.begin(cmd, name);
+        work();
+        r.timer.end(cmd, scope);
+    };
+    const uint32_t total = withStats ? 0 : r.timer.begin(cmd, "total");
 
-    uint32_t scope = r.timer.begin(cmd, "depth");
-    r.depthPrepass.record(cmd, r.scene, r.bindings);
-    r.timer.end(cmd, scope);
-    // Depth writes of the prepass must land before the forward pass's EQUAL test reads them.
+    timed("depth", [&] { r.depthPrepass.record(cmd, r.scene, r.bindings); });
+    // Depth writes of the prepass must land before the culling kernel samples them and the
+    // forward pass's EQUAL test reads them.
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+                      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
+    if (r.cullingPass) timed("culling", [&] { r.cullingPass->record(cmd, r.bindings, r.grid); });
 
-    scope = r.timer.begin(cmd, "forward");
-    r.forwardPass.record(cmd, r.scene, r.bindings);
-    r.timer.end(cmd, scope);
+    if (withStats) {
+        vkCmdFillBuffer(cmd, r.lightStats.handle(), 0, VK_WHOLE_SIZE, 0u);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+        r.statsForwardPass->record(cmd, r.scene, r.bindings);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+        return;
+    }
+
+    timed("forward", [&] { r.forwardPass.record(cmd, r.scene, r.bindings); });
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-
-    scope = r.timer.begin(cmd, "tonemap");
-    r.tonemapPass.record(cmd);
-    r.timer.end(cmd, scope);
+    timed("tonemap", [&] { r.tonemapPass.record(cmd); });
     r.timer.end(cmd, total);
 
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
@@ -176,19 +261,13 @@ void Renderer::recordFrame() {
     vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
 }
 
-FrameResult Renderer::render(uint32_t frames) {
+FrameResult Renderer::render(uint32_t frames, uint32_t warmup) {
     if (frames == 0) throw Error("--frames", "must be at least 1");
     Resources& r = *resources_;
     FrameResult result;
+    for (uint32_t i = 0; i < warmup; ++i) submitAndWait(r.commandBuffer);
     for (uint32_t i = 0; i < frames; ++i) {
-        VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        submit.commandBufferCount = 1;
-        submit.pCommandBuffers = &r.commandBuffer;
-        VkFence fence = r.fence;
-        vk::check(vkResetFences(context_.device(), 1, &fence), "vkResetFences");
-        vk::check(vkQueueSubmit(context_.queue(), 1, &submit, fence), "vkQueueSubmit");
-        constexpr uint64_t kTimeoutNs = 600ull * 1000 * 1000 * 1000;
-        vk::check(vkWaitForFences(context_.device(), 1, &fence, VK_TRUE, kTimeoutNs), "vkWaitForFences");
+        submitAndWait(r.commandBuffer);
         const auto ms = r.timer.resolveMilliseconds();
         auto get = [&](const char* name) {
             const auto it = ms.find(name);
@@ -212,6 +291,73 @@ FrameResult Renderer::render(uint32_t frames) {
     const auto* bytes = static_cast<const uint8_t*>(r.readback.mapped());
     result.image.pixels.assign(bytes, bytes + r.readback.size());
     return result;
+}
+
+void Renderer::submitAndWait(VkCommandBuffer cmd) {
+    Resources& r = *resources_;
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    VkFence fence = r.fence;
+    vk::check(vkResetFences(context_.device(), 1, &fence), "vkResetFences");
+    vk::check(vkQueueSubmit(context_.queue(), 1, &submit, fence), "vkQueueSubmit");
+    // A generous timeout turns a hung GPU into an error instead of a hung process.
+    constexpr uint64_t kTimeoutNs = 600ull * 1000 * 1000 * 1000;
+    vk::check(vkWaitForFences(context_.device(), 1, &fence, VK_TRUE, kTimeoutNs), "vkWaitForFences");
+}
+
+std::vector<uint8_t> Renderer::readBuffer(const vk::Buffer& buffer) {
+    vk::Buffer staging(context_, buffer.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback, "readback");
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        const VkBufferCopy copy{0, 0, buffer.size()};
+        vkCmdCopyBuffer(cmd, buffer.handle(), staging.handle(), 1, &copy);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    });
+    staging.invalidate();
+    const auto* bytes = static_cast<const uint8_t*>(staging.mapped());
+    return std::vector<uint8_t>(bytes, bytes + buffer.size());
+}
+
+std::vector<uint32_t> Renderer::readLightGrid() {
+    if (!usesLightGrid(settings_.method)) return {};
+    const std::vector<uint8_t> bytes = readBuffer(resources_->grid.grid);
+    std::vector<uint32_t> words(bytes.size() / sizeof(uint32_t));
+    std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
+    return words;
+}
+
+gpu::GpuDepthRange Renderer::readDepthRange() {
+    const std::vector<uint8_t> bytes = readBuffer(resources_->grid.depthRange);
+    gpu::GpuDepthRange range;
+    std::memcpy(&range, bytes.data(), sizeof(range));
+    return range;
+}
+
+LightStatsImage Renderer::readLightStats() {
+    if (!settings_.collectLightStats) throw Error("renderer", "light statistics were not requested");
+    submitAndWait(resources_->statsCommandBuffer);
+    const std::vector<uint8_t> bytes = readBuffer(resources_->lightStats);
+    const size_t pixels = size_t(settings_.width) * settings_.height;
+    std::vector<uint32_t> words(pixels * 4);
+    std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
+    LightStatsImage stats;
+    stats.width = settings_.width;
+    stats.height = settings_.height;
+    stats.tested.resize(pixels);
+    stats.affecting.resize(pixels);
+    stats.covered.resize(pixels);
+    stats.methodLuminance.resize(pixels);
+    stats.bruteLuminance.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+        const uint32_t* w = &words[i * 4];
+        stats.covered[i] = (w[1] & 0x80000000u) ? uint8_t{1} : uint8_t{0};  // the shader marks every pixel it shades
+        stats.tested[i] = w[0];
+        stats.affecting[i] = w[1] & 0x7FFFFFFFu;
+        std::memcpy(&stats.methodLuminance[i], &w[2], sizeof(float));
+        std::memcpy(&stats.bruteLuminance[i], &w[3], sizeof(float));
+    }
+    return stats;
 }
 
 std::vector<float> Renderer::readDepth() {

@@ -6,13 +6,22 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/image.h"
+#include "gpu_types.h"
 #include "lights/light_setup.h"
+#include "lights/per_object_lights.h"
+#include "metrics/culling_stats.h"
+#include "render/light_culling_pass.h"
+#include "render/light_list_method.h"
 #include "scene/scene.h"
 
+#include <vulkan/vulkan.h>
+
 namespace punctual::vk {
+class Buffer;
 class Context;
 }
 
@@ -22,7 +31,12 @@ struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
     float exposure = 1.0f;  // linear multiplier before tone mapping
+    LightListMethod method = LightListMethod::Tiled;
+    uint32_t tileSize = 16;       // pixels, tiled and clustered
+    uint32_t clusterSlices = 16;  // depth slices, clustered only
+    bool collectLightStats = false;  // allocate what readLightStats() needs
 };
+
 
 // GPU milliseconds per pass, by the names the stats JSON uses. A pass not run is 0.
 struct PassTimings {
@@ -47,13 +61,22 @@ public:
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    // Renders `frames` frames (the same frame each time) and returns the last image with the
-    // median per-pass GPU times.
-    FrameResult render(uint32_t frames = 1);
+    // Renders `warmup` untimed frames (the first frame pays for lazy driver work such as shader
+    // compilation on lavapipe), then `frames` timed ones (the same frame each time), and returns
+    // the last image with the median per-pass GPU times.
+    FrameResult render(uint32_t frames = 1, uint32_t warmup = 1);
 
     // Depth buffer of the last frame, row-major top to bottom, in [0, 1] (1 = background).
     std::vector<float> readDepth();
+    // The light grid of the last frame: gridLayout().cellCount() * PUNCTUAL_GRID_WORDS words
+    // (tiled and clustered only). Clustered also reports the frame's geometry depth range.
+    std::vector<uint32_t> readLightGrid();
+    gpu::GpuDepthRange readDepthRange();
+    // Runs the statistics variant of the forward pass (needs settings.collectLightStats).
+    LightStatsImage readLightStats();
 
+    const LightGridLayout& gridLayout() const { return gridLayout_; }
+    const PerObjectLightLists& perObjectLists() const { return perObjectLists_; }
     const FrameLights& lights() const { return lights_; }
     const glm::mat4& view() const { return view_; }
     const glm::mat4& projection() const { return projection_; }
@@ -61,7 +84,9 @@ public:
 
 private:
     struct Resources;
-    void recordFrame();
+    void recordFrame(VkCommandBuffer cmd, bool withStats);
+    void submitAndWait(VkCommandBuffer cmd);
+    std::vector<uint8_t> readBuffer(const vk::Buffer& buffer);
 
     vk::Context& context_;
     const Scene& scene_;
@@ -69,6 +94,8 @@ private:
     glm::mat4 view_{1.0f};
     glm::mat4 projection_{1.0f};
     FrameLights lights_;
+    PerObjectLightLists perObjectLists_;
+    LightGridLayout gridLayout_;
     std::unique_ptr<Resources> resources_;
 };
 

@@ -48,7 +48,7 @@ vk::Buffer deviceBuffer(vk::Context& context, const std::vector<T>& data, VkBuff
 
 }  // namespace
 
-SceneGpu::SceneGpu(vk::Context& context, const Scene& scene) {
+SceneGpu::SceneGpu(vk::Context& context, const Scene& scene, const std::vector<uint32_t>& objectLightCounts) {
     if (scene.vertices.empty() || scene.indices.empty() || scene.objects.empty()) {
         throw Error(scene.source, "no triangle meshes to draw");
     }
@@ -57,13 +57,15 @@ SceneGpu::SceneGpu(vk::Context& context, const Scene& scene) {
 
     std::vector<gpu::GpuObject> objects;
     objects.reserve(scene.objects.size());
-    for (const Object& object : scene.objects) {
+    for (size_t index = 0; index < scene.objects.size(); ++index) {
+        const Object& object = scene.objects[index];
         const Mesh& mesh = scene.meshes.at(object.mesh);
         gpu::GpuObject packed{};
         packed.model = object.model;
         packed.normalMatrix = glm::transpose(glm::inverse(object.model));
         const bool mirrored = glm::determinant(glm::mat3(object.model)) < 0.0f;
-        packed.material = glm::uvec4(mesh.material, mirrored ? 1u : 0u, 0u, 0u);
+        const uint32_t lightCount = index < objectLightCounts.size() ? objectLightCounts[index] : 0u;
+        packed.material = glm::uvec4(mesh.material, mirrored ? 1u : 0u, lightCount, 0u);
         objects.push_back(packed);
         draws_.push_back({mesh.firstIndex, mesh.indexCount, int32_t(mesh.vertexOffset)});
     }

@@ -20,7 +20,8 @@ namespace punctual::render {
 
 class SceneGpu {
 public:
-    SceneGpu(vk::Context& context, const Scene& scene);
+    // `objectLightCounts`: per object, the length of its per-object light list (empty: none).
+    SceneGpu(vk::Context& context, const Scene& scene, const std::vector<uint32_t>& objectLightCounts);
 
     const vk::Buffer& objectBuffer() const { return objects_; }
     const vk::Buffer& materialBuffer() const { return materials_; }

@@ -22,7 +22,13 @@ static_assert(offsetof(GpuFrame, viewport) == 272);
 static_assert(offsetof(GpuFrame, lightCounts) == 288);
 static_assert(offsetof(GpuFrame, exposure) == 304);
 static_assert(offsetof(GpuFrame, sun) == 320);
-static_assert(sizeof(GpuFrame) == 352);
+static_assert(offsetof(GpuFrame, lightGrid) == 352);
+static_assert(offsetof(GpuFrame, depthToView) == 368);
+static_assert(offsetof(GpuFrame, ndcToView) == 384);
+static_assert(sizeof(GpuFrame) == 400);
+
+static_assert(sizeof(GpuDepthRange) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES);
+static_assert(offsetof(GpuDepthRange, sliceStartDepth) == 16);
 
 static_assert(sizeof(GpuObject) == 144);
 static_assert(offsetof(GpuObject, normalMatrix) == 64);

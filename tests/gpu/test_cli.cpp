@@ -80,10 +80,25 @@ TEST(Cli, RenderWritesImageAndStats) {
         EXPECT_GE(stats["gpu_ms"][pass].get<double>(), 0.0);
     }
     EXPECT_GT(stats["gpu_ms"]["forward"].get<double>(), 0.0);
-    EXPECT_EQ(stats["gpu_ms"]["culling"].get<double>(), 0.0);  // not run yet: brute force
+    EXPECT_GT(stats["gpu_ms"]["culling"].get<double>(), 0.0);  // tiled culling is the default
+    EXPECT_EQ(stats["gpu_ms"]["shadows"].get<double>(), 0.0);  // not run
+    EXPECT_EQ(stats["culling"]["method"].get<std::string>(), "tiled");
+    for (const char* key : {"tested_per_pixel", "affecting_per_pixel", "max_tested", "missed_energy"}) {
+        EXPECT_TRUE(stats["culling"].contains(key)) << key;
+    }
     EXPECT_EQ(stats["lights"]["spot"].get<int>(), 64);
     EXPECT_EQ(stats["lights"]["point"].get<int>(), 32);
     EXPECT_EQ(stats["lights"]["directional"].get<int>(), 0);
+}
+
+TEST(Cli, BruteForceRunsNoCullingPass) {
+    testing::TempFolder folder;
+    const std::string json = folder.file("stats.json");
+    const RunResult run = runPunctual(folder, "render --validate --size 64x36 --culling brute --stats '" + json + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json stats = nlohmann::json::parse(readText(json));
+    EXPECT_EQ(stats["gpu_ms"]["culling"].get<double>(), 0.0);
+    EXPECT_EQ(stats["culling"]["tested_per_pixel"].get<double>(), 96.0);
 }
 
 TEST(Cli, GeneratedLightsReplaceTheScenes) {
@@ -113,6 +128,10 @@ TEST(Cli, BadOptionsFailCleanly) {
     expectCleanFailure(folder, "render --frames 0", "--frames");
     expectCleanFailure(folder, "render --exposure -1", "--exposure");
     expectCleanFailure(folder, "render --device 99", "--device");
+    expectCleanFailure(folder, "render --culling fast", "--culling");
+    expectCleanFailure(folder, "render --tile-size 2", "--tile-size");
+    expectCleanFailure(folder, "render --slices 33", "--slices");
+    expectCleanFailure(folder, "render --heatmap", "--heatmap");
     expectCleanFailure(folder, "render --no-such-option", "--no-such-option");
 }
 

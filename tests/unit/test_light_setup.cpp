@@ -309,7 +309,7 @@ TEST(LightSetup, SpotPackingMatchesFormulas) {
     EXPECT_NEAR(packed.directionAngleScale.w, k, 1e-4f);
     EXPECT_NEAR(packed.angleOffsetShadow.x, -cosOuter * k, 1e-4f);
     EXPECT_EQ(packed.angleOffsetShadow.y, -1.0f);  // no shadow slot yet
-    EXPECT_EQ(packed.angleOffsetShadow.z, 0.0f);
+    EXPECT_FLOAT_EQ(packed.angleOffsetShadow.z, cosOuter);  // for the culling cone test
     EXPECT_EQ(packed.angleOffsetShadow.w, 0.0f);
     // The packed light reproduces the cone: 1 on the inner edge, 0 on the outer.
     const glm::vec3 apex(1.0f, 2.0f, -5.0f);
@@ -333,7 +333,7 @@ TEST(LightSetup, PointPackingMatchesFormulas) {
     EXPECT_EQ(packed.positionInvRangeSq, glm::vec4(3.0f, -1.0f, -8.0f, 1.0f / 1e-4f));
     EXPECT_EQ(packed.radiantColor, glm::vec4(2.5f, 5.0f, 0.0f, 0.001f));
     EXPECT_EQ(packed.directionAngleScale.w, 0.0f);
-    EXPECT_EQ(packed.angleOffsetShadow, glm::vec4(1.0f, -1.0f, 0.0f, 0.0f));
+    EXPECT_EQ(packed.angleOffsetShadow, glm::vec4(1.0f, -1.0f, -1.0f, 0.0f));
 }
 
 TEST(LightSetup, NoDirectionalLight) {

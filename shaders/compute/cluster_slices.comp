@@ -1,0 +1,32 @@
+#version 450
+// Cluster slice boundaries for this frame, from the geometry depth range the depth-range pass
+// found: sliceStartDepth[s] = depth of D_s = Dnear (Dfar / Dnear)^(s / S) (see culling.h). One
+// workgroup, one thread per slice. Every later reader compares depths against these values.
+#extension GL_GOOGLE_include_directive : require
+#include "gpu_types.h"
+#include "culling.h"
+
+layout(local_size_x = PUNCTUAL_MAX_CLUSTER_SLICES) in;
+layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
+
+layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) buffer DepthRangeBlock { GpuDepthRange depthRange; };
+
+void main() {
+    uint slice = gl_LocalInvocationIndex;
+    if (slice >= PUNCTUAL_MAX_CLUSTER_SLICES) return;
+    if (slice == 0u) depthRange.sliceCount = SLICE_COUNT;
+    // An empty frame (no geometry) leaves min > max: every slice starts at depth 0.
+    if (depthRange.minDepthBits > depthRange.maxDepthBits || slice >= SLICE_COUNT) {
+        depthRange.sliceStartDepth[slice] = slice == 0u || depthRange.minDepthBits > depthRange.maxDepthBits ? 0.0 : 2.0;
+        return;
+    }
+    float minDepth = uintBitsToFloat(depthRange.minDepthBits);
+    float maxDepth = uintBitsToFloat(depthRange.maxDepthBits);
+    float nearDistance = viewDistanceFromDepth(minDepth, frame.depthToView.xy);
+    float farDistance = viewDistanceFromDepth(maxDepth, frame.depthToView.xy);
+    float start = slice == 0u ? 0.0
+                              : depthFromViewDistance(sliceStartDistance(slice, nearDistance, farDistance, SLICE_COUNT),
+                                                      frame.depthToView.xy);
+    depthRange.sliceStartDepth[slice] = start;
+}

@@ -1,0 +1,162 @@
+#version 450
+// Tiled and clustered light culling. One workgroup per screen tile:
+//  1. every pixel of the tile reads the prepass depth; pixels with geometry record their view
+//     distance into the min/max of their depth slice (shared atomics). Tiled culling is the case
+//     SLICE_COUNT = 1: one slice spanning the tile's own min..max depth.
+//  2. the occupied slices are listed, each with its frustum segment bounded by the distances of
+//     the pixels really in it (computed once per slice, not per light);
+//  3. each (occupied slice, light) pair is tested: the light's conservative shapes against the
+//     segment. Empty slices test nothing, and a light reaching only the foreground of a tile
+//     never lands in a slice that holds only background.
+//  4. the masks (64-bit spot, 32-bit point) of every slice are written out (zero when empty).
+#extension GL_GOOGLE_include_directive : require
+#include "gpu_types.h"
+#include "culling.h"
+
+// 64 threads, each covering (TILE_SIZE / 8)^2 pixels of the tile: a thread folds its pixels'
+// depths in registers and touches shared memory only when its slice changes, which keeps the
+// shared atomics (the cost that dominates this pass on CPU drivers) few.
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
+layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
+
+layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHTS) readonly buffer LightBlock { GpuPunctualLight lights[]; };
+layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) writeonly buffer GridBlock { uint lightGrid[]; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
+
+const uint kThreads = 64u;
+const uint kSide = 8u;
+
+shared uint sliceMinDistance[SLICE_COUNT];  // float bits of view distances (positive: bits sort like values)
+shared uint sliceMaxDistance[SLICE_COUNT];
+shared uint sliceMasks[SLICE_COUNT * PUNCTUAL_GRID_WORDS];
+shared CullLight cullLights[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
+shared float sliceStart[SLICE_COUNT];  // copy of depthRange.sliceStartDepth for the pixel loop
+shared uint occupiedCount;
+shared uint tileLightCount;  // lights passing the whole-tile test (clustered: tested again per slice)
+shared uint tileLights[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
+shared TileVolume tileVolume;
+shared uint occupiedSlices[SLICE_COUNT];
+shared TileVolume occupiedVolumes[SLICE_COUNT];
+
+// Marks packed light `light` in the masks of `slice`: spots in words 0-1, points in word 2.
+void setLightBit(uint slice, uint light) {
+    uint word = light < frame.lightCounts.x ? light >> 5u : 2u;
+    uint bit = light < frame.lightCounts.x ? light & 31u : light - frame.lightCounts.x;
+    atomicOr(sliceMasks[slice * PUNCTUAL_GRID_WORDS + word], 1u << bit);
+}
+
+void main() {
+    uint thread = gl_LocalInvocationIndex;
+    uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
+    for (uint i = thread; i < SLICE_COUNT; i += kThreads) {
+        sliceMinDistance[i] = 0x7F7FFFFFu;  // FLT_MAX
+        sliceMaxDistance[i] = 0u;
+    }
+    for (uint i = thread; i < SLICE_COUNT * PUNCTUAL_GRID_WORDS; i += kThreads) sliceMasks[i] = 0u;
+    for (uint i = thread; i < lightCount; i += kThreads) cullLights[i] = makeCullLight(lights[i], frame.view);
+    for (uint i = thread; i < SLICE_COUNT; i += kThreads) sliceStart[i] = depthRange.sliceStartDepth[i];
+    if (thread == 0u) {
+        occupiedCount = 0u;
+        tileLightCount = 0u;
+    }
+    barrier();
+
+    // 1. Depth extent of each slice in this tile.
+    uvec2 tile = gl_WorkGroupID.xy;
+    uvec2 viewport = uvec2(frame.viewport.xy);
+    uint runSlice = 0xFFFFFFFFu;  // the slice of the current run of this thread's pixels
+    uint runMin = 0xFFFFFFFFu;
+    uint runMax = 0u;
+    for (uint y = gl_LocalInvocationID.y; y < TILE_SIZE; y += kSide) {
+        for (uint x = gl_LocalInvocationID.x; x < TILE_SIZE; x += kSide) {
+            uvec2 pixel = tile * TILE_SIZE + uvec2(x, y);
+            if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
+            float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
+            if (depth >= 1.0) continue;  // background: nothing to shade
+            // The pixel's slice: a binary search for the last slice start at or before its depth,
+            // the same exact comparisons as lightGridCell() in forward.frag.
+            uint first = 1u;
+            for (uint count = SLICE_COUNT - 1u; count > 0u;) {
+                uint step = count / 2u;
+                if (sliceStart[first + step] <= depth) {
+                    first += step + 1u;
+                    count -= step + 1u;
+                } else {
+                    count = step;
+                }
+            }
+            uint slice = first - 1u;
+            uint distanceBits = floatBitsToUint(viewDistanceFromDepth(depth, frame.depthToView.xy));
+            if (slice != runSlice) {
+                if (runSlice != 0xFFFFFFFFu) {
+                    atomicMin(sliceMinDistance[runSlice], runMin);
+                    atomicMax(sliceMaxDistance[runSlice], runMax);
+                }
+                runSlice = slice;
+                runMin = distanceBits;
+                runMax = distanceBits;
+            } else {
+                runMin = min(runMin, distanceBits);
+                runMax = max(runMax, distanceBits);
+            }
+        }
+    }
+    if (runSlice != 0xFFFFFFFFu) {
+        atomicMin(sliceMinDistance[runSlice], runMin);
+        atomicMax(sliceMaxDistance[runSlice], runMax);
+    }
+    barrier();
+
+    // 2. List the occupied slices with their frustum segments.
+    vec2 pixelToNdc = 2.0 * frame.viewport.zw;
+    vec2 ndcA = vec2(tile * TILE_SIZE) * pixelToNdc - 1.0;
+    vec2 ndcB = min(vec2((tile + 1u) * TILE_SIZE), frame.viewport.xy) * pixelToNdc - 1.0;
+    for (uint slice = thread; slice < SLICE_COUNT; slice += kThreads) {
+        if (sliceMaxDistance[slice] == 0u) continue;  // no pixel in this slice
+        uint index = atomicAdd(occupiedCount, 1u);
+        occupiedSlices[index] = slice;
+        occupiedVolumes[index] = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(sliceMinDistance[slice]),
+                                                uintBitsToFloat(sliceMaxDistance[slice]), frame.ndcToView);
+    }
+    barrier();
+
+    // 3. Test every light against the tile's whole depth extent (for tiled, the only test). For
+    //    clustered, the lights that pass are then tested against each occupied slice: a
+    //    two-level hierarchy that keeps the slice tests to the few lights near the tile.
+    if (thread == 0u && occupiedCount > 0u) {
+        float nearest = uintBitsToFloat(0x7F7FFFFFu);
+        float farthest = 0.0;
+        for (uint slice = 0u; slice < SLICE_COUNT; ++slice) {
+            if (sliceMaxDistance[slice] == 0u) continue;
+            nearest = min(nearest, uintBitsToFloat(sliceMinDistance[slice]));
+            farthest = max(farthest, uintBitsToFloat(sliceMaxDistance[slice]));
+        }
+        tileVolume = SLICE_COUNT == 1u ? occupiedVolumes[0]
+                                       : makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), nearest, farthest, frame.ndcToView);
+    }
+    barrier();
+    for (uint light = thread; occupiedCount > 0u && light < lightCount; light += kThreads) {
+        if (!lightMayTouchTile(cullLights[light], tileVolume)) continue;
+        if (SLICE_COUNT == 1u) {
+            setLightBit(0u, light);
+        } else {
+            tileLights[atomicAdd(tileLightCount, 1u)] = light;
+        }
+    }
+    barrier();
+    for (uint job = thread; job < occupiedCount * tileLightCount; job += kThreads) {
+        uint index = job / tileLightCount;
+        uint light = tileLights[job - index * tileLightCount];
+        if (lightMayTouchTile(cullLights[light], occupiedVolumes[index])) setLightBit(occupiedSlices[index], light);
+    }
+    barrier();
+
+    // 4. Write the cells of this tile: cell = tile index * SLICE_COUNT + slice.
+    uint tileIndex = tile.y * frame.lightGrid.y + tile.x;
+    for (uint i = thread; i < SLICE_COUNT * PUNCTUAL_GRID_WORDS; i += kThreads) {
+        lightGrid[tileIndex * SLICE_COUNT * PUNCTUAL_GRID_WORDS + i] = sliceMasks[i];
+    }
+}

@@ -1,0 +1,176 @@
+// Light-culling geometry shared by the culling compute shader, the forward shader (which finds
+// its pixel's cluster with the same function) and the CPU reference in the tests.
+//
+// Everything here is in view space: the camera at the origin looking down -Z, distances along the
+// view axis positive ("view distance" D = -z).
+#ifndef PUNCTUAL_CULLING_H
+#define PUNCTUAL_CULLING_H
+
+#include "glsl_cpp.h"
+#include "gpu_types.h"
+
+PUNCTUAL_NAMESPACE_BEGIN
+
+// Culling is conservative by a small margin, because the forward pass shades interpolated world
+// positions while culling sees positions rebuilt from the depth buffer. A 32-bit depth buffer
+// rebuilds the view distance to within ~2e-5 relative at 30 m with a 0.1 m near plane (depth
+// step 6e-8 times dD/ddepth = D^2/near); we widen depth ranges and light radii by 1e-3 relative,
+// which costs no measurable efficiency.
+#define PUNCTUAL_CULL_RELATIVE_MARGIN 1e-3f
+
+// Perspective depth (Vulkan, 0 at near, 1 at far) to view distance. For a projection with
+// P[2][2] = b and P[3][2] = a (GLM's column-major perspectiveRH_ZO): depth = (b z + a) / (-z), so
+// D = -z = a / (depth + b). `depthToView` = (a, b).
+PUNCTUAL_FN float viewDistanceFromDepth(float depth, vec2 depthToView) {
+    return depthToView.x / (depth + depthToView.y);
+}
+
+// Cluster slices are logarithmic between the nearest and farthest geometry of the frame
+// (Dnear, Dfar from the depth-range pass), so every slice is used and each spans the same ratio
+// of distances, which matches how perspective spreads pixels: slice s starts at
+// D_s = Dnear (Dfar / Dnear)^(s / S). The slice-boundaries pass turns each D_s into the depth
+// value where it starts, once per frame; the culling kernel and the forward pass then find a
+// pixel's slice by comparing its depth with those stored values. Comparisons are exact, so both
+// pipelines agree bit for bit (recomputing a logarithm in each would not: drivers compile each
+// pipeline on its own and may round a transcendental differently).
+PUNCTUAL_FN float sliceStartDistance(uint slice, float nearDistance, float farDistance, uint sliceCount) {
+    return nearDistance * pow(farDistance / nearDistance, float(slice) / float(sliceCount));
+}
+
+// Perspective depth of a view distance: the inverse of viewDistanceFromDepth.
+PUNCTUAL_FN float depthFromViewDistance(float distance, vec2 depthToView) {
+    return depthToView.x / distance - depthToView.y;
+}
+
+// The part of a screen tile between two view distances: a frustum segment. Culling tests a light
+// against three bounding shapes of it and culls when any test says the light misses:
+//   the four side planes through the eye (tight sideways),
+//   the depth interval [nearDistance, farDistance],
+//   its view-space AABB (tight for thin segments, where plane tests alone leave the well-known
+//   false positives near frustum corners).
+// The sphere around the AABB is what the spot-cone test uses.
+struct TileVolume {
+    vec4 sidePlanes[4];  // xyz: unit normal pointing into the tile; planes pass through the eye
+    vec3 aabbMin;
+    vec3 aabbMax;
+    float nearDistance;
+    float farDistance;
+    vec3 sphereCenter;
+    float sphereRadius;
+};
+
+// View-space direction (at distance 1) through an NDC point. `ndcToView` = (1/P00, 1/P11, P20, P21):
+// x_ndc = (P00 x + P20 z) / (-z) gives x = D (x_ndc + P20) / P00 at z = -D, and the same for y.
+PUNCTUAL_FN vec3 viewRayThroughNdc(vec2 ndc, vec4 ndcToView) {
+    return vec3((ndc.x + ndcToView.z) * ndcToView.x, (ndc.y + ndcToView.w) * ndcToView.y, -1.0f);
+}
+
+PUNCTUAL_FN vec4 planeThroughEye(vec3 a, vec3 b, vec3 inside) {
+    vec3 n = normalize(cross(a, b));
+    if (dot(n, inside) < 0.0f) n = -n;
+    return vec4(n, 0.0f);
+}
+
+PUNCTUAL_FN TileVolume makeTileVolume(vec2 ndcMin, vec2 ndcMax, float nearDistance, float farDistance,
+                                      vec4 ndcToView) {
+    TileVolume v;
+    vec3 c00 = viewRayThroughNdc(vec2(ndcMin.x, ndcMin.y), ndcToView);
+    vec3 c10 = viewRayThroughNdc(vec2(ndcMax.x, ndcMin.y), ndcToView);
+    vec3 c01 = viewRayThroughNdc(vec2(ndcMin.x, ndcMax.y), ndcToView);
+    vec3 c11 = viewRayThroughNdc(vec2(ndcMax.x, ndcMax.y), ndcToView);
+    vec3 centre = (c00 + c10 + c01 + c11) * 0.25f;
+    v.sidePlanes[0] = planeThroughEye(c00, c01, centre);  // x = min edge
+    v.sidePlanes[1] = planeThroughEye(c10, c11, centre);  // x = max edge
+    v.sidePlanes[2] = planeThroughEye(c00, c10, centre);  // y = min edge
+    v.sidePlanes[3] = planeThroughEye(c01, c11, centre);  // y = max edge
+    float nearD = nearDistance * (1.0f - PUNCTUAL_CULL_RELATIVE_MARGIN);
+    float farD = farDistance * (1.0f + PUNCTUAL_CULL_RELATIVE_MARGIN);
+    v.nearDistance = nearD;
+    v.farDistance = farD;
+    // The segment's eight corners are the four rays scaled to the two distances (rays have z = -1).
+    vec3 lo = min(min(c00, c10), min(c01, c11));
+    vec3 hi = max(max(c00, c10), max(c01, c11));
+    v.aabbMin = min(lo * nearD, lo * farD);
+    v.aabbMax = max(hi * nearD, hi * farD);
+    v.aabbMin.z = -farD;
+    v.aabbMax.z = -nearD;
+    v.sphereCenter = (v.aabbMin + v.aabbMax) * 0.5f;
+    v.sphereRadius = length(v.aabbMax - v.aabbMin) * 0.5f;
+    return v;
+}
+
+// True when the sphere (view space) may overlap the tile segment.
+PUNCTUAL_FN bool sphereMayTouchTile(vec3 center, float radius, TileVolume v) {
+    float distance = -center.z;
+    if (distance + radius < v.nearDistance || distance - radius > v.farDistance) return false;
+    for (int i = 0; i < 4; ++i) {
+        if (dot(vec3(v.sidePlanes[i]), center) < -radius) return false;
+    }
+    vec3 closest = clamp(center, v.aabbMin, v.aabbMax);
+    vec3 offset = center - closest;
+    return dot(offset, offset) <= radius * radius;
+}
+
+// True when a cone (apex, unit axis, slant length `range`, half-angle with cos/sin) may overlap
+// a sphere. Wronski, "Cull that cone!" (2017): the distance from the sphere centre to the cone's
+// surface is cos(a) |v x axis| - sin(a) (v . axis) for v = centre - apex; the cone misses when
+// that exceeds the radius, or the sphere lies beyond the range or behind the apex.
+PUNCTUAL_FN bool coneMayTouchSphere(vec3 apex, vec3 axis, float range, float cosAngle, vec3 center,
+                                    float radius) {
+    vec3 v = center - apex;
+    float lengthSquared = dot(v, v);
+    float alongAxis = dot(v, axis);
+    float sinAngle = sqrt(max(1.0f - cosAngle * cosAngle, 0.0f));
+    float distanceToSurface = cosAngle * sqrt(max(lengthSquared - alongAxis * alongAxis, 0.0f)) - alongAxis * sinAngle;
+    if (distanceToSurface > radius) return false;
+    if (alongAxis > radius + range) return false;
+    if (alongAxis < -radius) return false;
+    return true;
+}
+
+// A packed light moved to view space, with its conservative culling shapes.
+struct CullLight {
+    vec3 position;     // view space
+    float range;       // widened by the margin
+    vec3 axis;         // view space, unit (spots)
+    float cosOuter;    // -1 for points
+    vec3 sphereCenter; // bounding sphere of everything the light can reach
+    float sphereRadius;
+};
+
+// Same bounding sphere as lightBoundingSphere() in src/lights/light_setup.cpp (derivation there):
+// the cone's rim sphere for wide cones, the sphere through apex and rim for narrow ones.
+PUNCTUAL_FN CullLight makeCullLight(GpuPunctualLight light, mat4 view) {
+    CullLight c;
+    c.position = vec3(view * vec4(vec3(light.positionInvRangeSq), 1.0f));
+    c.axis = normalize(mat3(view) * vec3(light.directionAngleScale));
+    c.range = light.radiantColor.w * (1.0f + PUNCTUAL_CULL_RELATIVE_MARGIN);
+    c.cosOuter = light.angleOffsetShadow.z;
+    if (c.cosOuter <= -1.0f) {
+        c.sphereCenter = c.position;
+        c.sphereRadius = c.range;
+    } else if (c.cosOuter < 0.70710678f) {
+        float sinOuter = sqrt(max(1.0f - c.cosOuter * c.cosOuter, 0.0f));
+        c.sphereCenter = c.position + c.axis * (c.range * c.cosOuter);
+        c.sphereRadius = c.range * sinOuter;
+    } else {
+        float t = c.range / (2.0f * c.cosOuter);
+        c.sphereCenter = c.position + c.axis * t;
+        c.sphereRadius = t;
+    }
+    c.sphereRadius *= 1.0f + PUNCTUAL_CULL_RELATIVE_MARGIN;
+    return c;
+}
+
+// The tile test: the light's bounding sphere against the segment, and for spots also the cone
+// against the segment's bounding sphere (tighter than the sphere alone for narrow cones).
+PUNCTUAL_FN bool lightMayTouchTile(CullLight light, TileVolume v) {
+    if (!sphereMayTouchTile(light.sphereCenter, light.sphereRadius, v)) return false;
+    if (light.cosOuter <= -1.0f) return true;
+    return coneMayTouchSphere(light.position, light.axis, light.range, light.cosOuter, v.sphereCenter,
+                              v.sphereRadius);
+}
+
+PUNCTUAL_NAMESPACE_END
+
+#endif

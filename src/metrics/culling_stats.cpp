@@ -1,0 +1,33 @@
+#include "metrics/culling_stats.h"
+
+#include <algorithm>
+
+namespace punctual {
+
+CullingStats computeCullingStats(const LightStatsImage& image) {
+    CullingStats stats;
+    double tested = 0.0;
+    double affecting = 0.0;
+    double methodSum = 0.0;
+    double bruteSum = 0.0;
+    for (size_t i = 0; i < image.covered.size(); ++i) {
+        if (!image.covered[i]) continue;
+        ++stats.coveredPixels;
+        tested += image.tested[i];
+        affecting += image.affecting[i];
+        stats.maxTested = std::max(stats.maxTested, image.tested[i]);
+        stats.maxAffecting = std::max(stats.maxAffecting, image.affecting[i]);
+        methodSum += double(image.methodLuminance[i]);
+        bruteSum += double(image.bruteLuminance[i]);
+        if (image.methodLuminance[i] < image.bruteLuminance[i] * (1.0f - 1e-6f)) ++stats.pixelsMissingLight;
+    }
+    if (stats.coveredPixels > 0) {
+        stats.testedPerPixel = tested / double(stats.coveredPixels);
+        stats.affectingPerPixel = affecting / double(stats.coveredPixels);
+    }
+    stats.efficiency = affecting > 0.0 ? tested / affecting : 0.0;
+    stats.missedEnergy = bruteSum > 0.0 ? std::max(0.0, 1.0 - methodSum / bruteSum) : 0.0;
+    return stats;
+}
+
+}  // namespace punctual

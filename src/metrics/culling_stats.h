@@ -1,0 +1,38 @@
+#pragma once
+// Culling statistics from the forward shader's per-pixel light counts: how many lights each pixel
+// walks, how many really reach it, and how much light a method loses.
+#include <cstdint>
+#include <vector>
+
+namespace punctual {
+
+// Per pixel, from the forward shader's statistics variant (rows top to bottom).
+struct LightStatsImage {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint32_t> tested;        // lights the method made this pixel evaluate
+    std::vector<uint32_t> affecting;     // lights with attenuation x cone > 0 at this pixel
+    std::vector<uint8_t> covered;        // 1 where geometry is, 0 for background
+    std::vector<float> methodLuminance;  // luminance of the method's radiance
+    std::vector<float> bruteLuminance;   // luminance of the brute-force radiance
+};
+
+struct CullingStats {
+    double testedPerPixel = 0.0;     // mean over covered pixels of the light-list length walked
+    double affectingPerPixel = 0.0;  // mean over covered pixels of the lights that reach them
+    uint32_t maxTested = 0;
+    uint32_t maxAffecting = 0;
+    // tested / affecting: 1 is a perfect list; brute force is lights / affecting.
+    double efficiency = 0.0;
+    // 1 - (sum of the method's luminance) / (sum of brute force's): the share of radiance the
+    // method's lists lose (0 for every conservative method, > 0 for per-object over its cap).
+    double missedEnergy = 0.0;
+    // Covered pixels where the method's luminance is below brute force's by more than 1e-6
+    // relative: where light went missing.
+    uint64_t pixelsMissingLight = 0;
+    uint64_t coveredPixels = 0;
+};
+
+CullingStats computeCullingStats(const LightStatsImage& image);
+
+}  // namespace punctual
