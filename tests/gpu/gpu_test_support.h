@@ -43,6 +43,10 @@ inline double fractionBrighterThan(const ImageRgba8& image, uint8_t threshold) {
     return double(count) / (double(image.width) * image.height);
 }
 
+// When PUNCTUAL_TEST_OUTPUT_DIR is set, writes `image` there as NAME.png (for looking at what a
+// test rendered); otherwise does nothing.
+void saveTestImage(const std::string& name, const ImageRgba8& image);
+
 // A folder under the system temp dir, unique per test, removed at the end.
 class TempFolder {
 public:

@@ -1,0 +1,244 @@
+// Light culling against brute force: tiled and clustered images are bit-identical to brute force
+// on the default scene and on adversarial scenes, a CPU reference of the tile and cluster tests
+// shows no light reaching a pixel is ever culled, and per-object lists lose light where an
+// object is lit by more than 8 lights.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "culling.h"
+#include "culling_test_scenes.h"
+#include "gpu_test_support.h"
+#include "render/renderer.h"
+#include "scene/default_scene.h"
+#include "shading.h"
+
+namespace punctual {
+namespace {
+
+using render::LightListMethod;
+
+render::RenderSettings settingsFor(LightListMethod method, uint32_t width = 256, uint32_t height = 144) {
+    render::RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.method = method;
+    return settings;
+}
+
+ImageRgba8 renderImage(vk::Context& context, const Scene& scene, const render::RenderSettings& settings) {
+    render::Renderer renderer(context, scene, settings);
+    return renderer.render(1, 0).image;
+}
+
+// The slice of a depth in the frame's stored slice starts: the forward shader's binary search.
+uint32_t sliceOfDepth(float depth, const gpu::GpuDepthRange& range, uint32_t sliceCount) {
+    uint32_t first = 1;
+    for (uint32_t count = sliceCount - 1; count > 0;) {
+        const uint32_t step = count / 2;
+        if (range.sliceStartDepth[first + step] <= depth) {
+            first += step + 1;
+            count -= step + 1;
+        } else {
+            count = step;
+        }
+    }
+    return first - 1;
+}
+
+struct ReferenceCheck {
+    size_t reachingPairs = 0;       // (pixel, light) with attenuation > 0
+    size_t culledOnGpu = 0;         // of those, missing from the GPU's cell
+    size_t culledByReference = 0;   // of those, missing from the CPU reference's cell
+    size_t maskBits = 0;            // bits compared between the GPU and CPU masks
+    size_t maskDisagreements = 0;
+};
+
+// Rebuilds every cell's masks on the CPU with the shared culling.h tests and checks, pixel by
+// pixel, that every light with attenuation x cone > 0 at the pixel's surface point is in its
+// cell, in both the GPU's grid and the CPU reference.
+ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
+    const render::LightGridLayout& layout = renderer.gridLayout();
+    const uint32_t width = renderer.settings().width;
+    const uint32_t height = renderer.settings().height;
+    const std::vector<float> depth = renderer.readDepth();
+    const std::vector<uint32_t> grid = renderer.readLightGrid();
+    const gpu::GpuDepthRange range = renderer.readDepthRange();
+    const FrameLights& lights = renderer.lights();
+    const glm::mat4& projection = renderer.projection();
+    const glm::vec2 depthToView(projection[3][2], projection[2][2]);
+    const glm::vec4 ndcToView(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
+    const glm::mat4 inverseViewProjection = glm::inverse(projection * renderer.view());
+    const uint32_t lightCount = lights.spotCount + lights.pointCount;
+
+    auto sliceOf = [&](float d) { return layout.slices > 1 ? sliceOfDepth(d, range, layout.slices) : 0u; };
+    auto cellOf = [&](uint32_t x, uint32_t y) {
+        return ((y / layout.tileSize) * layout.tilesX + x / layout.tileSize) * layout.slices + sliceOf(depth[size_t(y) * width + x]);
+    };
+    auto bitOf = [&](uint32_t light, uint32_t& word) {
+        word = light < lights.spotCount ? light / 32 : 2;
+        return 1u << (light < lights.spotCount ? light % 32 : light - lights.spotCount);
+    };
+
+    // Per-cell depth extents, as the culling kernel finds them.
+    std::vector<float> cellNear(layout.cellCount(), 1e30f), cellFar(layout.cellCount(), 0.0f);
+    for (uint32_t y = 0; y < height; ++y) {
+        for (uint32_t x = 0; x < width; ++x) {
+            const float d = depth[size_t(y) * width + x];
+            if (d >= 1.0f) continue;
+            const uint32_t cell = cellOf(x, y);
+            const float distance = gpu::viewDistanceFromDepth(d, depthToView);
+            cellNear[cell] = std::min(cellNear[cell], distance);
+            cellFar[cell] = std::max(cellFar[cell], distance);
+        }
+    }
+    std::vector<gpu::CullLight> cullLights;
+    for (const gpu::GpuPunctualLight& light : lights.packed) cullLights.push_back(gpu::makeCullLight(light, renderer.view()));
+    std::vector<uint32_t> reference(grid.size(), 0u);
+    for (uint32_t ty = 0; ty < layout.tilesY; ++ty) {
+        for (uint32_t tx = 0; tx < layout.tilesX; ++tx) {
+            const glm::vec2 ndcA = glm::vec2(float(tx * layout.tileSize) / float(width), float(ty * layout.tileSize) / float(height)) * 2.0f - 1.0f;
+            const glm::vec2 ndcB = glm::min(glm::vec2(float((tx + 1) * layout.tileSize) / float(width),
+                                                      float((ty + 1) * layout.tileSize) / float(height)),
+                                            glm::vec2(1.0f)) * 2.0f - 1.0f;
+            for (uint32_t slice = 0; slice < layout.slices; ++slice) {
+                const uint32_t cell = (ty * layout.tilesX + tx) * layout.slices + slice;
+                if (cellFar[cell] == 0.0f) continue;
+                const gpu::TileVolume volume = gpu::makeTileVolume(glm::min(ndcA, ndcB), glm::max(ndcA, ndcB),
+                                                                   cellNear[cell], cellFar[cell], ndcToView);
+                for (uint32_t light = 0; light < lightCount; ++light) {
+                    if (!gpu::lightMayTouchTile(cullLights[light], volume)) continue;
+                    uint32_t word = 0;
+                    const uint32_t bit = bitOf(light, word);
+                    reference[cell * PUNCTUAL_GRID_WORDS + word] |= bit;
+                }
+            }
+        }
+    }
+
+    ReferenceCheck check;
+    for (size_t i = 0; i < grid.size(); ++i) {
+        for (uint32_t b = 0; b < 32; ++b) {
+            ++check.maskBits;
+            check.maskDisagreements += ((grid[i] ^ reference[i]) >> b) & 1u;
+        }
+    }
+    for (uint32_t y = 0; y < height; ++y) {
+        for (uint32_t x = 0; x < width; ++x) {
+            const float d = depth[size_t(y) * width + x];
+            if (d >= 1.0f) continue;
+            const glm::vec4 ndc((float(x) + 0.5f) / float(width) * 2.0f - 1.0f, (float(y) + 0.5f) / float(height) * 2.0f - 1.0f, d, 1.0f);
+            const glm::vec4 world = inverseViewProjection * ndc;
+            const glm::vec3 position = glm::vec3(world) / world.w;
+            const uint32_t cell = cellOf(x, y);
+            for (uint32_t light = 0; light < lightCount; ++light) {
+                if (gpu::punctualAttenuation(lights.packed[light], position) <= 0.0f) continue;
+                ++check.reachingPairs;
+                uint32_t word = 0;
+                const uint32_t bit = bitOf(light, word);
+                if (!(grid[cell * PUNCTUAL_GRID_WORDS + word] & bit)) ++check.culledOnGpu;
+                if (!(reference[cell * PUNCTUAL_GRID_WORDS + word] & bit)) ++check.culledByReference;
+            }
+        }
+    }
+    return check;
+}
+
+std::vector<testing::NamedScene> allScenes() {
+    std::vector<testing::NamedScene> scenes = testing::adversarialCullingScenes();
+    scenes.insert(scenes.begin(), testing::NamedScene{"default scene", makeDefaultScene()});
+    return scenes;
+}
+
+TEST(Culling, TiledAndClusteredImagesAreBitIdenticalToBruteForce) {
+    auto context = testing::makeValidatedContext();
+    for (const testing::NamedScene& named : allScenes()) {
+        SCOPED_TRACE(named.name);
+        const ImageRgba8 brute = renderImage(*context, named.scene, settingsFor(LightListMethod::Brute));
+        testing::saveTestImage("culling-" + named.name, brute);
+        // Not a vacuous comparison: every scene shows lit pixels.
+        EXPECT_GT(testing::fractionBrighterThan(brute, 24), 0.02);
+        for (LightListMethod method : {LightListMethod::Tiled, LightListMethod::Clustered}) {
+            for (uint32_t tileSize : {8u, 16u, 32u}) {
+                render::RenderSettings settings = settingsFor(method);
+                settings.tileSize = tileSize;
+                const ImageRgba8 culled = renderImage(*context, named.scene, settings);
+                EXPECT_TRUE(culled.pixels == brute.pixels) << render::methodName(method) << " tile " << tileSize;
+            }
+        }
+    }
+    testing::expectNoValidationMessages(*context);
+}
+
+TEST(Culling, NoLightReachingAPixelIsCulled) {
+    auto context = testing::makeValidatedContext();
+    for (const testing::NamedScene& named : allScenes()) {
+        for (LightListMethod method : {LightListMethod::Tiled, LightListMethod::Clustered}) {
+            SCOPED_TRACE(named.name + " / " + render::methodName(method));
+            render::Renderer renderer(*context, named.scene, settingsFor(method));
+            renderer.render(1, 0);
+            const ReferenceCheck check = checkAgainstReference(renderer);
+            EXPECT_GT(check.reachingPairs, 1000u);
+            EXPECT_EQ(check.culledOnGpu, 0u);
+            EXPECT_EQ(check.culledByReference, 0u);
+            // The GPU kernel and the CPU reference run the same tests on the same inputs; only
+            // float rounding at a shape's very edge may flip a bit.
+            EXPECT_LE(double(check.maskDisagreements), 1e-3 * double(check.maskBits));
+        }
+    }
+    testing::expectNoValidationMessages(*context);
+}
+
+TEST(Culling, ClusteredSeparatesForegroundFromBackground) {
+    // In the near-posts scene the posts' lights must not land in the clusters of the far floor
+    // behind the same tiles: clustered tests fewer lights per pixel than tiled there.
+    auto context = testing::makeValidatedContext();
+    const Scene scene = testing::adversarialCullingScenes()[3].scene;
+    double tested[2] = {0.0, 0.0};
+    int i = 0;
+    for (LightListMethod method : {LightListMethod::Tiled, LightListMethod::Clustered}) {
+        render::RenderSettings settings = settingsFor(method);
+        settings.collectLightStats = true;
+        render::Renderer renderer(*context, scene, settings);
+        renderer.render(1, 0);
+        const CullingStats stats = computeCullingStats(renderer.readLightStats());
+        EXPECT_EQ(stats.pixelsMissingLight, 0u);
+        tested[i++] = stats.testedPerPixel;
+    }
+    EXPECT_LT(tested[1], tested[0] * 0.9) << "tiled " << tested[0] << ", clustered " << tested[1];
+    testing::expectNoValidationMessages(*context);
+}
+
+TEST(Culling, PerObjectListsLoseLightOnALargeFloorUnderMoreThanEightLights) {
+    auto context = testing::makeValidatedContext();
+    const Scene scene = testing::largeFloorScene(14);
+    render::RenderSettings settings = settingsFor(LightListMethod::PerObject);
+    settings.collectLightStats = true;
+    render::Renderer perObject(*context, scene, settings);
+    const ImageRgba8 perObjectImage = perObject.render(1, 0).image;
+    const CullingStats stats = computeCullingStats(perObject.readLightStats());
+    const ImageRgba8 bruteImage = renderImage(*context, scene, settingsFor(LightListMethod::Brute));
+
+    EXPECT_EQ(perObject.perObjectLists().objectsOverCap, 1u);
+    EXPECT_EQ(perObject.perObjectLists().maxCandidates, 14u);
+    EXPECT_EQ(stats.maxTested, 8u);
+    EXPECT_GT(stats.affectingPerPixel, 8.0);  // the floor really is lit by more than 8 lights
+    EXPECT_GT(stats.missedEnergy, 0.05);
+    EXPECT_GT(stats.pixelsMissingLight, stats.coveredPixels / 2);
+    EXPECT_LT(testing::meanLuma(perObjectImage), testing::meanLuma(bruteImage));
+    testing::expectNoValidationMessages(*context);
+}
+
+TEST(Culling, PerObjectMatchesBruteForceWhenNoObjectIsOverTheCap) {
+    auto context = testing::makeValidatedContext();
+    const Scene scene = testing::largeFloorScene(6);
+    render::RenderSettings settings = settingsFor(LightListMethod::PerObject);
+    render::Renderer perObject(*context, scene, settings);
+    const ImageRgba8 perObjectImage = perObject.render(1, 0).image;
+    EXPECT_EQ(perObject.perObjectLists().objectsOverCap, 0u);
+    EXPECT_TRUE(perObjectImage.pixels == renderImage(*context, scene, settingsFor(LightListMethod::Brute)).pixels);
+    testing::expectNoValidationMessages(*context);
+}
+
+}  // namespace
+}  // namespace punctual
