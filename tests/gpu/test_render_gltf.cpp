@@ -1,0 +1,142 @@
+// glTF scenes through the whole frame: a textured quad under a directional light, seen from the
+// file's camera, and the Cornell box from ../shared/data when it is there.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/image.h"
+#include "gpu_test_support.h"
+#include "render/renderer.h"
+#include "scene/gltf_loader.h"
+#include "scene/light_generator.h"
+
+namespace punctual {
+namespace {
+
+std::string base64(const std::string& bytes) {
+    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    size_t i = 0;
+    for (; i + 2 < bytes.size(); i += 3) {
+        const uint32_t v = uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 | uint8_t(bytes[i + 2]);
+        for (int k = 3; k >= 0; --k) out += table[(v >> (6 * k)) & 63];
+    }
+    if (i < bytes.size()) {
+        uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
+        if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+        out += table[(v >> 18) & 63];
+        out += table[(v >> 12) & 63];
+        out += i + 1 < bytes.size() ? table[(v >> 6) & 63] : '=';
+        out += '=';
+    }
+    return out;
+}
+
+template <typename T>
+void append(std::string& bytes, const std::vector<T>& values) {
+    bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+// A 2 x 2 m quad in the XZ plane, textured red on its left half (-X) and green on its right,
+// lit from straight above by a 2 lux directional light, seen from a camera 3 m above it.
+std::string writeTexturedQuad(const testing::TempFolder& folder) {
+    std::string buffer;
+    append(buffer, std::vector<float>{-1, 0, 1, 1, 0, 1, 1, 0, -1, -1, 0, -1});      // positions, 48 bytes
+    append(buffer, std::vector<float>{0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0});          // normals, 48 bytes
+    append(buffer, std::vector<float>{0, 1, 1, 1, 1, 0, 0, 0});                      // uvs, 32 bytes
+    append(buffer, std::vector<uint16_t>{0, 1, 2, 0, 2, 3});                         // indices, 12 bytes
+    ImageRgba8 texture;
+    // 8 x 1 texels, red then green: bilinear filtering and repeat wrapping blend only near the
+    // middle and the edges, so a quarter of the way in from either side the colour is pure.
+    texture.width = 8;
+    texture.height = 1;
+    for (int i = 0; i < 8; ++i) {
+        const uint8_t red = i < 4 ? 255 : 0;
+        texture.pixels.insert(texture.pixels.end(), {red, uint8_t(255 - red), 0, 255});
+    }
+    const std::string png = encodePng(texture);
+    const std::string gltf = R"({
+  "asset": {"version": "2.0"},
+  "extensionsUsed": ["KHR_lights_punctual"],
+  "extensions": {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 2.0}]}},
+  "scene": 0,
+  "scenes": [{"nodes": [0, 1, 2]}],
+  "nodes": [
+    {"mesh": 0},
+    {"camera": 0, "translation": [0, 3, 0], "rotation": [-0.70710678, 0, 0, 0.70710678]},
+    {"extensions": {"KHR_lights_punctual": {"light": 0}}, "rotation": [-0.70710678, 0, 0, 0.70710678]}
+  ],
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 10}}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": 0}]}],
+  "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0, "roughnessFactor": 1}}],
+  "textures": [{"source": 0, "sampler": 0}],
+  "samplers": [{"magFilter": 9728, "minFilter": 9728}],
+  "images": [{"uri": "data:image/png;base64,)" + base64(png) + R"("}],
+  "buffers": [{"byteLength": 140, "uri": "data:application/octet-stream;base64,)" + base64(buffer) + R"("}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": 128},
+    {"buffer": 0, "byteOffset": 128, "byteLength": 12}
+  ],
+  "accessors": [
+    {"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]},
+    {"bufferView": 0, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3"},
+    {"bufferView": 0, "byteOffset": 96, "componentType": 5126, "count": 4, "type": "VEC2"},
+    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}
+  ]
+})";
+    const std::string path = folder.file("quad.gltf");
+    std::ofstream(path) << gltf;
+    return path;
+}
+
+TEST(RenderGltf, TexturedQuadUnderDirectionalLightFromTheFilesCamera) {
+    testing::TempFolder folder;
+    const Scene scene = loadGltf(writeTexturedQuad(folder));
+    ASSERT_EQ(scene.textures.size(), 1u);
+    ASSERT_TRUE(scene.cameraFromFile);
+    auto context = testing::makeValidatedContext();
+    render::RenderSettings settings;
+    settings.width = 64;
+    settings.height = 64;
+    render::Renderer renderer(*context, scene, settings);
+    const ImageRgba8 image = renderer.render(1, 0).image;
+    testing::saveTestImage("gltf-textured-quad", image);
+    EXPECT_EQ(renderer.lights().directionalCount, 1u);
+
+    // Left of centre is red, right of centre green (the texture), both clearly lit by the sun;
+    // the corners beyond the quad stay black.
+    const uint8_t* left = image.at(16, 32);
+    const uint8_t* right = image.at(48, 32);
+    EXPECT_GT(left[0], 80);
+    EXPECT_LT(left[1], 10);
+    EXPECT_GT(right[1], 80);
+    EXPECT_LT(right[0], 10);
+    const uint8_t* corner = image.at(0, 0);
+    EXPECT_EQ(corner[0] + corner[1] + corner[2], 0);
+    testing::expectNoValidationMessages(*context);
+}
+
+TEST(RenderGltf, CornellBoxWithGeneratedLights) {
+    const std::string path = std::string(PUNCTUAL_SHARED_DATA_DIR) + "/cornell-box/cornellBox.gltf";
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path << " (../shared/data is absent)";
+    Scene scene = loadGltf(path);
+    // Its own light is an emissive cube, which punctual does not model: light it with
+    // generated spot and point lights instead.
+    replaceLights(scene, 8, 4, 3);
+    auto context = testing::makeValidatedContext();
+    render::RenderSettings settings;
+    settings.width = 160;
+    settings.height = 160;
+    render::Renderer tiled(*context, scene, settings);
+    const ImageRgba8 image = tiled.render(1, 0).image;
+    testing::saveTestImage("gltf-cornell-box", image);
+    EXPECT_GT(testing::fractionBrighterThan(image, 20), 0.1);
+    settings.method = render::LightListMethod::Brute;
+    render::Renderer brute(*context, scene, settings);
+    EXPECT_TRUE(brute.render(1, 0).image.pixels == image.pixels);
+    testing::expectNoValidationMessages(*context);
+}
+
+}  // namespace
+}  // namespace punctual
