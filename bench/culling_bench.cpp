@@ -1,11 +1,12 @@
 // Culling benchmark (issue targets, not a test): renders the default scene at 1280x720 with
-// every light-list method in one process, interleaving the methods round by round so that
-// machine noise hits them alike, and reports per-pass median GPU times, speed ratios and
+// every light-list method in one process, interleaving the methods round by round (each round
+// starting with the next method) so that machine noise hits them alike, and reports per-pass median GPU times, speed ratios and
 // culling efficiency, with a PASS/FAIL line per target:
 //   forward pass, tiled vs brute force:      >= 5x faster
 //   clustered vs tiled (forward pass):       at least as fast (ratio <= 1.0)
 //   culling efficiency (tested / affecting): tiled <= 2.0, clustered <= 1.5
 // Usage: punctual_culling_bench [--rounds N] [--size WxH] [--heatmaps DIR] [--json FILE]
+//                               [--clustered-tile N] [--slices N]
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -48,6 +49,7 @@ int main(int argc, char** argv) {
         uint32_t rounds = 9;
         uint32_t width = 1280, height = 720;
         std::string heatmapDir, jsonPath;
+        uint32_t clusteredTile = 16, slices = 16;
         for (int i = 1; i < argc; ++i) {
             const std::string arg = argv[i];
             auto value = [&]() -> std::string {
@@ -58,6 +60,8 @@ int main(int argc, char** argv) {
             else if (arg == "--size") punctual::app::parseSize(value(), width, height);
             else if (arg == "--heatmaps") heatmapDir = value();
             else if (arg == "--json") jsonPath = value();
+            else if (arg == "--clustered-tile") clusteredTile = uint32_t(std::stoul(value()));
+            else if (arg == "--slices") slices = uint32_t(std::stoul(value()));
             else throw punctual::Error(arg, "unknown option");
         }
         const punctual::Scene scene = punctual::makeDefaultScene();
@@ -70,12 +74,16 @@ int main(int argc, char** argv) {
             settings.height = height;
             settings.method = method;
             settings.collectLightStats = true;
+            settings.clusterSlices = slices;
+            if (method == LightListMethod::Clustered) settings.tileSize = clusteredTile;
             MethodRun run{method, std::make_unique<punctual::render::Renderer>(context, scene, settings), {}, {}, {}, {}};
             run.renderer->render(1, 1);  // warm up
             runs.push_back(std::move(run));
         }
         for (uint32_t round = 0; round < rounds; ++round) {
-            for (MethodRun& run : runs) {
+            // Each round starts with a different method, so no method always follows the same one.
+            for (size_t k = 0; k < runs.size(); ++k) {
+                MethodRun& run = runs[(round + k) % runs.size()];
                 const auto result = run.renderer->render(1, 0);
                 run.culling.push_back(result.medianMs.culling);
                 run.forward.push_back(result.medianMs.forward);

@@ -8,7 +8,7 @@
 //  3. each (occupied slice, light) pair is tested: the light's conservative shapes against the
 //     segment. Empty slices test nothing, and a light reaching only the foreground of a tile
 //     never lands in a slice that holds only background.
-//  4. the masks (64-bit spot, 32-bit point) of every slice are written out (zero when empty).
+//  4. the masks (64-bit spot, 32-bit point) of every occupied slice are written out.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_types.h"
 #include "culling.h"
@@ -21,7 +21,9 @@ layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
-layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHTS) readonly buffer LightBlock { GpuPunctualLight lights[]; };
+// The lights' view-space culling shapes, made once per frame on the CPU (makeCullLight in
+// culling.h) rather than by every workgroup.
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_CULL_LIGHTS) readonly buffer CullLightBlock { CullLight frameCullLights[]; };
 layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) writeonly buffer GridBlock { uint lightGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
@@ -38,6 +40,8 @@ shared uint occupiedCount;
 shared uint tileLightCount;  // lights passing the whole-tile test (clustered: tested again per slice)
 shared uint tileLights[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
 shared TileVolume tileVolume;
+shared uint tileMinDistance;  // float bits: the extent of all the tile's pixels
+shared uint tileMaxDistance;
 shared uint occupiedSlices[SLICE_COUNT];
 shared TileVolume occupiedVolumes[SLICE_COUNT];
 
@@ -56,11 +60,13 @@ void main() {
         sliceMaxDistance[i] = 0u;
     }
     for (uint i = thread; i < SLICE_COUNT * PUNCTUAL_GRID_WORDS; i += kThreads) sliceMasks[i] = 0u;
-    for (uint i = thread; i < lightCount; i += kThreads) cullLights[i] = makeCullLight(lights[i], frame.view);
+    for (uint i = thread; i < lightCount; i += kThreads) cullLights[i] = frameCullLights[i];
     for (uint i = thread; i < SLICE_COUNT; i += kThreads) sliceStart[i] = depthRange.sliceStartDepth[i];
     if (thread == 0u) {
         occupiedCount = 0u;
         tileLightCount = 0u;
+        tileMinDistance = 0x7F7FFFFFu;
+        tileMaxDistance = 0u;
     }
     barrier();
 
@@ -68,6 +74,8 @@ void main() {
     uvec2 tile = gl_WorkGroupID.xy;
     uvec2 viewport = uvec2(frame.viewport.xy);
     uint runSlice = 0xFFFFFFFFu;  // the slice of the current run of this thread's pixels
+    uint threadMin = 0xFFFFFFFFu;  // all of this thread's pixels (clustered: the tile-level test)
+    uint threadMax = 0u;
     uint runMin = 0xFFFFFFFFu;
     uint runMax = 0u;
     for (uint y = gl_LocalInvocationID.y; y < TILE_SIZE; y += kSide) {
@@ -90,6 +98,8 @@ void main() {
             }
             uint slice = first - 1u;
             uint distanceBits = floatBitsToUint(viewDistanceFromDepth(depth, frame.depthToView.xy));
+            threadMin = min(threadMin, distanceBits);
+            threadMax = max(threadMax, distanceBits);
             if (slice != runSlice) {
                 if (runSlice != 0xFFFFFFFFu) {
                     atomicMin(sliceMinDistance[runSlice], runMin);
@@ -107,6 +117,10 @@ void main() {
     if (runSlice != 0xFFFFFFFFu) {
         atomicMin(sliceMinDistance[runSlice], runMin);
         atomicMax(sliceMaxDistance[runSlice], runMax);
+    }
+    if (SLICE_COUNT > 1u && threadMax != 0u) {
+        atomicMin(tileMinDistance, threadMin);
+        atomicMax(tileMaxDistance, threadMax);
     }
     barrier();
 
@@ -127,15 +141,9 @@ void main() {
     //    clustered, the lights that pass are then tested against each occupied slice: a
     //    two-level hierarchy that keeps the slice tests to the few lights near the tile.
     if (thread == 0u && occupiedCount > 0u) {
-        float nearest = uintBitsToFloat(0x7F7FFFFFu);
-        float farthest = 0.0;
-        for (uint slice = 0u; slice < SLICE_COUNT; ++slice) {
-            if (sliceMaxDistance[slice] == 0u) continue;
-            nearest = min(nearest, uintBitsToFloat(sliceMinDistance[slice]));
-            farthest = max(farthest, uintBitsToFloat(sliceMaxDistance[slice]));
-        }
         tileVolume = SLICE_COUNT == 1u ? occupiedVolumes[0]
-                                       : makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), nearest, farthest, frame.ndcToView);
+                                       : makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(tileMinDistance),
+                                                        uintBitsToFloat(tileMaxDistance), frame.ndcToView);
     }
     barrier();
     for (uint light = thread; occupiedCount > 0u && light < lightCount; light += kThreads) {
@@ -154,9 +162,17 @@ void main() {
     }
     barrier();
 
-    // 4. Write the cells of this tile: cell = tile index * SLICE_COUNT + slice.
+    // 4. Write the cells of this tile: cell = tile index * SLICE_COUNT + slice. Only occupied
+    //    cells: a pixel only ever reads the cell of its own slice, which its depth occupies, so
+    //    the other cells are never read and need no clearing. (Tiled: the one cell, always.)
     uint tileIndex = tile.y * frame.lightGrid.y + tile.x;
-    for (uint i = thread; i < SLICE_COUNT * PUNCTUAL_GRID_WORDS; i += kThreads) {
-        lightGrid[tileIndex * SLICE_COUNT * PUNCTUAL_GRID_WORDS + i] = sliceMasks[i];
+    if (SLICE_COUNT == 1u) {
+        if (thread < PUNCTUAL_GRID_WORDS) lightGrid[tileIndex * PUNCTUAL_GRID_WORDS + thread] = sliceMasks[thread];
+    } else {
+        for (uint i = thread; i < occupiedCount * PUNCTUAL_GRID_WORDS; i += kThreads) {
+            uint slice = occupiedSlices[i / PUNCTUAL_GRID_WORDS];
+            uint word = i % PUNCTUAL_GRID_WORDS;
+            lightGrid[(tileIndex * SLICE_COUNT + slice) * PUNCTUAL_GRID_WORDS + word] = sliceMasks[slice * PUNCTUAL_GRID_WORDS + word];
+        }
     }
 }

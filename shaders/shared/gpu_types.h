@@ -25,6 +25,7 @@
 #define PUNCTUAL_BINDING_DEPTH_RANGE 7    // GpuDepthRange: the frame's geometry depth range and cluster slice starts
 #define PUNCTUAL_BINDING_OBJECT_LIGHTS 8  // per object: PUNCTUAL_MAX_LIGHTS_PER_OBJECT packed-light indices
 #define PUNCTUAL_BINDING_LIGHT_STATS 9    // debug: per pixel uvec4 (tested, affecting | covered bit, luminances)
+#define PUNCTUAL_BINDING_CULL_LIGHTS 10   // CullLight per packed light: view-space culling shapes (culling.h)
 
 // Words per light-grid cell: spot bits 0-31, spot bits 32-63, point bits 0-31.
 #define PUNCTUAL_GRID_WORDS 3

@@ -18,12 +18,14 @@ namespace punctual::app {
 
 namespace {
 
-std::string heatmapTitle(const RenderOptions& options) {
+std::string heatmapTitle(const render::Renderer& renderer) {
     std::ostringstream title;  // (not string +: GCC 12 warns falsely about it, bug 105329)
-    title << "lights tested per pixel: " << render::methodName(options.culling);
-    if (render::usesLightGrid(options.culling)) {
-        title << " " << options.tileSize << "x" << options.tileSize;
-        if (options.culling == render::LightListMethod::Clustered) title << " x " << options.slices << " slices";
+    const render::LightListMethod method = renderer.settings().method;
+    title << "lights tested per pixel: " << render::methodName(method);
+    if (render::usesLightGrid(method)) {
+        const render::LightGridLayout& grid = renderer.gridLayout();
+        title << " " << grid.tileSize << "x" << grid.tileSize;
+        if (grid.slices > 1) title << " x " << grid.slices << " slices";
     }
     return title.str();
 }
@@ -92,7 +94,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
             std::vector<uint8_t> background(lightStats->covered.size());
             for (size_t i = 0; i < background.size(); ++i) background[i] = lightStats->covered[i] ? 0 : 1;
             HeatmapOptions heatmap;
-            heatmap.title = heatmapTitle(options);
+            heatmap.title = heatmapTitle(renderer);
             outputs.add(*options.heatmapPath,
                         encodePng(renderHeatmap(lightStats->tested, background, settings.width, settings.height, heatmap)));
         }

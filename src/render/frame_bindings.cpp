@@ -27,6 +27,7 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
         {PUNCTUAL_BINDING_DEPTH_RANGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
         {PUNCTUAL_BINDING_OBJECT_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
         {PUNCTUAL_BINDING_LIGHT_STATS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {PUNCTUAL_BINDING_CULL_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
     };
     VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     layoutInfo.bindingCount = uint32_t(bindings.size());
@@ -47,7 +48,7 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
 
     const std::vector<VkDescriptorPoolSize> sizes = {
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8},
         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount_ + 1},
     };
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -70,6 +71,7 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
     const VkDescriptorBufferInfo depthRangeInfo{resources.depthRange.handle(), 0, VK_WHOLE_SIZE};
     const VkDescriptorBufferInfo objectLightsInfo{resources.objectLights.handle(), 0, VK_WHOLE_SIZE};
     const VkDescriptorBufferInfo statsInfo{resources.lightStats.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo cullLightsInfo{resources.cullLights.handle(), 0, VK_WHOLE_SIZE};
     const VkDescriptorImageInfo depthInfo{resources.depthSampler, resources.depthView,
                                           VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
     const VkDescriptorBufferInfo objectInfo{scene.objectBuffer().handle(), 0, VK_WHOLE_SIZE};
@@ -104,6 +106,7 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
         {PUNCTUAL_BINDING_DEPTH_RANGE, &depthRangeInfo},
         {PUNCTUAL_BINDING_OBJECT_LIGHTS, &objectLightsInfo},
         {PUNCTUAL_BINDING_LIGHT_STATS, &statsInfo},
+        {PUNCTUAL_BINDING_CULL_LIGHTS, &cullLightsInfo},
     };
     for (const auto& [binding, info] : storage) {
         writes.push_back(write(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1));

@@ -25,6 +25,7 @@ struct FrameBindingResources {
     const vk::Buffer& depthRange;
     const vk::Buffer& objectLights;
     const vk::Buffer& lightStats;
+    const vk::Buffer& cullLights;
 };
 
 class FrameBindings {

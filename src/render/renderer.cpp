@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "culling.h"
 #include "gpu_types.h"
 #include "render/depth_prepass.h"
 #include "render/forward_pass.h"
@@ -29,6 +30,7 @@ struct Renderer::Resources {
     LightGridBuffers grid;
     vk::Buffer objectLights;
     vk::Buffer lightStats;
+    vk::Buffer cullLights;
     FrameBindings bindings;
     DepthPrepass depthPrepass;
     std::unique_ptr<LightCullingPass> cullingPass;  // tiled and clustered only
@@ -97,9 +99,11 @@ struct Renderer::Resources {
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                          VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                      vk::MemoryUse::DeviceLocal, "light stats"),
+          cullLights(context, std::max<size_t>(frameLights.packed.size(), 1) * sizeof(gpu::CullLight),
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "cull lights"),
           bindings(context, scene,
                    FrameBindingResources{frameUniform, lights, depth.view(), depthSampler, grid.grid, grid.depthRange,
-                                         objectLights, lightStats}),
+                                         objectLights, lightStats, cullLights}),
           depthPrepass(context, bindings, depth),
           forwardPass(context, bindings, radiance, depth,
                       ForwardVariant{uint32_t(settings.method), gridLayout.tileSize, gridLayout.slices, false}),
@@ -180,6 +184,11 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     resources_->frameUniform.write(&frame, sizeof(frame));
     if (!lights_.packed.empty()) {
         resources_->lights.write(lights_.packed.data(), lights_.packed.size() * sizeof(gpu::GpuPunctualLight));
+        // The culling shapes in view space, once per frame (the same function the culling tests
+        // of the CPU reference use).
+        std::vector<gpu::CullLight> cullLights;
+        for (const gpu::GpuPunctualLight& light : lights_.packed) cullLights.push_back(gpu::makeCullLight(light, view_));
+        resources_->cullLights.write(cullLights.data(), cullLights.size() * sizeof(gpu::CullLight));
     }
 
     VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};

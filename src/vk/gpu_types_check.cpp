@@ -2,6 +2,7 @@
 // has exactly the std430/std140 layout GLSL gives them.
 #include <cstddef>
 
+#include "culling.h"
 #include "gpu_types.h"
 
 namespace punctual::gpu {
@@ -29,6 +30,13 @@ static_assert(sizeof(GpuFrame) == 400);
 
 static_assert(sizeof(GpuDepthRange) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES);
 static_assert(offsetof(GpuDepthRange, sliceStartDepth) == 16);
+
+// CullLight (culling.h) is read from a std430 buffer: each vec3 + float pair packs into 16 bytes.
+static_assert(sizeof(CullLight) == 48);
+static_assert(offsetof(CullLight, axis) == 16);
+static_assert(offsetof(CullLight, cosOuter) == 28);
+static_assert(offsetof(CullLight, sphereCenter) == 32);
+static_assert(offsetof(CullLight, sphereRadius) == 44);
 
 static_assert(sizeof(GpuObject) == 144);
 static_assert(offsetof(GpuObject, normalMatrix) == 64);

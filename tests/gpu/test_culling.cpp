@@ -50,7 +50,7 @@ struct ReferenceCheck {
     size_t reachingPairs = 0;       // (pixel, light) with attenuation > 0
     size_t culledOnGpu = 0;         // of those, missing from the GPU's cell
     size_t culledByReference = 0;   // of those, missing from the CPU reference's cell
-    size_t maskBits = 0;            // bits compared between the GPU and CPU masks
+    size_t maskBits = 0;            // bits compared between the GPU and CPU masks (occupied cells)
     size_t maskDisagreements = 0;
 };
 
@@ -80,8 +80,9 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
         return 1u << (light < lights.spotCount ? light % 32 : light - lights.spotCount);
     };
 
-    // Per-cell depth extents, as the culling kernel finds them.
+    // Per-cell and per-tile depth extents, as the culling kernel finds them.
     std::vector<float> cellNear(layout.cellCount(), 1e30f), cellFar(layout.cellCount(), 0.0f);
+    std::vector<float> tileNear(layout.tilesX * layout.tilesY, 1e30f), tileFar(layout.tilesX * layout.tilesY, 0.0f);
     for (uint32_t y = 0; y < height; ++y) {
         for (uint32_t x = 0; x < width; ++x) {
             const float d = depth[size_t(y) * width + x];
@@ -90,6 +91,9 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
             const float distance = gpu::viewDistanceFromDepth(d, depthToView);
             cellNear[cell] = std::min(cellNear[cell], distance);
             cellFar[cell] = std::max(cellFar[cell], distance);
+            const uint32_t tile = cell / layout.slices;
+            tileNear[tile] = std::min(tileNear[tile], distance);
+            tileFar[tile] = std::max(tileFar[tile], distance);
         }
     }
     std::vector<gpu::CullLight> cullLights;
@@ -101,12 +105,18 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
             const glm::vec2 ndcB = glm::min(glm::vec2(float((tx + 1) * layout.tileSize) / float(width),
                                                       float((ty + 1) * layout.tileSize) / float(height)),
                                             glm::vec2(1.0f)) * 2.0f - 1.0f;
+            const uint32_t tile = ty * layout.tilesX + tx;
+            if (tileFar[tile] == 0.0f) continue;
+            // Clustered tests each light against the whole tile first, then against each slice.
+            const gpu::TileVolume tileVolume = gpu::makeTileVolume(glm::min(ndcA, ndcB), glm::max(ndcA, ndcB),
+                                                                   tileNear[tile], tileFar[tile], ndcToView);
             for (uint32_t slice = 0; slice < layout.slices; ++slice) {
-                const uint32_t cell = (ty * layout.tilesX + tx) * layout.slices + slice;
+                const uint32_t cell = tile * layout.slices + slice;
                 if (cellFar[cell] == 0.0f) continue;
                 const gpu::TileVolume volume = gpu::makeTileVolume(glm::min(ndcA, ndcB), glm::max(ndcA, ndcB),
                                                                    cellNear[cell], cellFar[cell], ndcToView);
                 for (uint32_t light = 0; light < lightCount; ++light) {
+                    if (layout.slices > 1 && !gpu::lightMayTouchTile(cullLights[light], tileVolume)) continue;
                     if (!gpu::lightMayTouchTile(cullLights[light], volume)) continue;
                     uint32_t word = 0;
                     const uint32_t bit = bitOf(light, word);
@@ -118,6 +128,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
 
     ReferenceCheck check;
     for (size_t i = 0; i < grid.size(); ++i) {
+        if (cellFar[i / PUNCTUAL_GRID_WORDS] == 0.0f) continue;  // empty cells are never read, nor written
         for (uint32_t b = 0; b < 32; ++b) {
             ++check.maskBits;
             check.maskDisagreements += ((grid[i] ^ reference[i]) >> b) & 1u;
