@@ -91,6 +91,17 @@ TEST(Cli, RenderWritesImageAndStats) {
     EXPECT_EQ(stats["lights"]["directional"].get<int>(), 0);
 }
 
+TEST(Cli, HeatmapShowsTheFrameAndALegend) {
+    testing::TempFolder folder;
+    const std::string heatmap = folder.file("heat.png");
+    const RunResult run =
+        runPunctual(folder, "render --validate --size 320x180 --culling clustered --heatmap '" + heatmap + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const ImageRgba8 image = readPng(heatmap);
+    EXPECT_GE(image.width, 320u);
+    EXPECT_GT(image.height, 180u);  // the legend strip below the frame
+}
+
 TEST(Cli, BruteForceRunsNoCullingPass) {
     testing::TempFolder folder;
     const std::string json = folder.file("stats.json");
