@@ -9,13 +9,6 @@
 
 namespace punctual::render {
 
-void setViewportAndScissor(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
-    const VkViewport viewport{0.0f, 0.0f, float(width), float(height), 0.0f, 1.0f};
-    const VkRect2D scissor{{0, 0}, {width, height}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
-}
-
 DepthPrepass::DepthPrepass(const vk::Context& context, const FrameBindings& bindings, const vk::Image& depth)
     : width_(depth.desc().width), height_(depth.desc().height) {
     const VkDevice device = context.device();
@@ -41,16 +34,9 @@ DepthPrepass::DepthPrepass(const vk::Context& context, const FrameBindings& bind
 void DepthPrepass::record(VkCommandBuffer cmd, const SceneGpu& scene, const FrameBindings& bindings) const {
     VkClearValue clear{};
     clear.depthStencil = {1.0f, 0};
-    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    begin.renderPass = renderPass_;
-    begin.framebuffer = framebuffer_;
-    begin.renderArea = {{0, 0}, {width_, height_}};
-    begin.clearValueCount = 1;
-    begin.pClearValues = &clear;
-    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    vk::beginRenderPass(cmd, renderPass_, framebuffer_, width_, height_, {&clear, 1});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
-    setViewportAndScissor(cmd, width_, height_);
     scene.drawObjects(cmd, bindings.pipelineLayout());
     vkCmdEndRenderPass(cmd);
 }

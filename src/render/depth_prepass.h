@@ -32,7 +32,4 @@ private:
     uint32_t height_ = 0;
 };
 
-// Sets a full-target viewport and scissor.
-void setViewportAndScissor(VkCommandBuffer cmd, uint32_t width, uint32_t height);
-
 }  // namespace punctual::render

@@ -66,16 +66,9 @@ ForwardPass::ForwardPass(const vk::Context& context, const FrameBindings& bindin
 void ForwardPass::record(VkCommandBuffer cmd, const SceneGpu& scene, const FrameBindings& bindings) const {
     std::array<VkClearValue, 2> clears{};
     clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
-    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    begin.renderPass = renderPass_;
-    begin.framebuffer = framebuffer_;
-    begin.renderArea = {{0, 0}, {width_, height_}};
-    begin.clearValueCount = uint32_t(clears.size());
-    begin.pClearValues = clears.data();
-    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    vk::beginRenderPass(cmd, renderPass_, framebuffer_, width_, height_, clears);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
-    setViewportAndScissor(cmd, width_, height_);
     scene.drawObjects(cmd, bindings.pipelineLayout());
     vkCmdEndRenderPass(cmd);
 }

@@ -5,6 +5,7 @@
 #include <vulkan/vulkan.h>
 
 #include "vk/buffer.h"
+#include "vk/descriptors.h"
 #include "vk/handle.h"
 
 namespace punctual::vk {
@@ -40,8 +41,7 @@ public:
 private:
     vk::Handle<VkDescriptorSetLayout> setLayout_;
     vk::Handle<VkPipelineLayout> pipelineLayout_;
-    vk::Handle<VkDescriptorPool> pool_;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;  // freed with the pool
+    vk::DescriptorSet descriptors_;
     uint32_t textureCount_ = 1;
 };
 

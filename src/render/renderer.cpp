@@ -15,6 +15,7 @@
 #include "vk/buffer.h"
 #include "vk/check.h"
 #include "vk/context.h"
+#include "vk/descriptors.h"
 #include "vk/gpu_timer.h"
 #include "vk/image.h"
 
@@ -54,18 +55,6 @@ struct Renderer::Resources {
         return vk::Image(context, desc);
     }
 
-    static vk::Handle<VkSampler> makeNearestSampler(const vk::Context& context) {
-        VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-        info.magFilter = VK_FILTER_NEAREST;
-        info.minFilter = VK_FILTER_NEAREST;
-        info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-        info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-        info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-        VkSampler sampler = VK_NULL_HANDLE;
-        vk::check(vkCreateSampler(context.device(), &info, nullptr, &sampler), "vkCreateSampler");
-        return {context.device(), sampler, vkDestroySampler};
-    }
-
     // A storage buffer holding `words`, or one word when the frame does not use it (a descriptor
     // cannot point at nothing).
     static vk::Buffer storageWords(vk::Context& context, const std::vector<uint32_t>& words, const char* name) {
@@ -91,7 +80,7 @@ struct Renderer::Resources {
                           settings, "depth")),
           radiance(makeImage(context, ForwardPass::kRadianceFormat,
                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, settings, "radiance")),
-          depthSampler(makeNearestSampler(context)),
+          depthSampler(vk::createSampler(context.device(), VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE)),
           grid(context, gridLayout, usesLightGrid(settings.method)),
           objectLights(storageWords(context, perObject.lights, "object lights")),
           lightStats(context,

@@ -4,7 +4,7 @@
 
 #include "core/error.h"
 #include "gpu_types.h"
-#include "vk/check.h"
+#include "vk/descriptors.h"
 #include "vk/context.h"
 
 namespace punctual::render {
@@ -90,17 +90,8 @@ SceneGpu::SceneGpu(vk::Context& context, const Scene& scene, const std::vector<u
         textures_.push_back(uploadTexture(context, 1, 1, white, "placeholder"));
     }
 
-    VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    samplerInfo.magFilter = VK_FILTER_LINEAR;
-    samplerInfo.minFilter = VK_FILTER_LINEAR;
-    samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    samplerInfo.maxLod = 0.0f;
-    VkSampler sampler = VK_NULL_HANDLE;
-    vk::check(vkCreateSampler(context.device(), &samplerInfo, nullptr, &sampler), "vkCreateSampler");
-    sampler_ = vk::Handle<VkSampler>(context.device(), sampler, vkDestroySampler);
+    // glTF samplers are not read: every texture is filtered bilinearly and repeats (README).
+    sampler_ = vk::createSampler(context.device(), VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT);
 }
 
 void SceneGpu::drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout) const {

@@ -3,7 +3,7 @@
 #include <array>
 
 #include "shaders/compute_tonemap_comp_spv.h"
-#include "vk/check.h"
+#include "vk/descriptors.h"
 #include "vk/context.h"
 #include "vk/image.h"
 #include "vk/pipeline.h"
@@ -25,78 +25,30 @@ TonemapPass::TonemapPass(const vk::Context& context, const vk::Image& radiance, 
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                          vk::MemoryUse::DeviceLocal, "tone-mapped pixels");
 
-    VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    samplerInfo.magFilter = VK_FILTER_NEAREST;
-    samplerInfo.minFilter = VK_FILTER_NEAREST;
-    samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    VkSampler sampler = VK_NULL_HANDLE;
-    vk::check(vkCreateSampler(device, &samplerInfo, nullptr, &sampler), "vkCreateSampler");
-    sampler_ = vk::Handle<VkSampler>(device, sampler, vkDestroySampler);
-
+    sampler_ = vk::createSampler(device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
     const std::array<VkDescriptorSetLayoutBinding, 2> bindings = {{
         {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
         {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
     }};
-    VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    layoutInfo.bindingCount = uint32_t(bindings.size());
-    layoutInfo.pBindings = bindings.data();
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    vk::check(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
-    setLayout_ = vk::Handle<VkDescriptorSetLayout>(device, setLayout, vkDestroyDescriptorSetLayout);
+    setLayout_ = vk::createDescriptorSetLayout(device, bindings);
+    pipelineLayout_ =
+        vk::createPipelineLayout(device, setLayout_, {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(ToneMapConstants)});
+    descriptors_ = vk::allocateDescriptorSet(device, setLayout_, bindings);
 
-    const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(ToneMapConstants)};
-    VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    pipelineLayoutInfo.setLayoutCount = 1;
-    pipelineLayoutInfo.pSetLayouts = &setLayout;
-    pipelineLayoutInfo.pushConstantRangeCount = 1;
-    pipelineLayoutInfo.pPushConstantRanges = &push;
-    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    vk::check(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout), "vkCreatePipelineLayout");
-    pipelineLayout_ = vk::Handle<VkPipelineLayout>(device, pipelineLayout, vkDestroyPipelineLayout);
-
-    const std::array<VkDescriptorPoolSize, 2> sizes = {{
-        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
-    }};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = uint32_t(sizes.size());
-    poolInfo.pPoolSizes = sizes.data();
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    vk::check(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
-    pool_ = vk::Handle<VkDescriptorPool>(device, pool, vkDestroyDescriptorPool);
-
-    VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    allocInfo.descriptorPool = pool;
-    allocInfo.descriptorSetCount = 1;
-    allocInfo.pSetLayouts = &setLayout;
-    vk::check(vkAllocateDescriptorSets(device, &allocInfo, &set_), "vkAllocateDescriptorSets");
-
-    const VkDescriptorImageInfo imageInfo{sampler, radiance.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    const VkDescriptorImageInfo imageInfo{sampler_, radiance.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     const VkDescriptorBufferInfo bufferInfo{output_.handle(), 0, VK_WHOLE_SIZE};
-    std::array<VkWriteDescriptorSet, 2> writes{};
-    writes[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    writes[0].dstSet = set_;
-    writes[0].dstBinding = 0;
-    writes[0].descriptorCount = 1;
-    writes[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    writes[0].pImageInfo = &imageInfo;
-    writes[1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    writes[1].dstSet = set_;
-    writes[1].dstBinding = 1;
-    writes[1].descriptorCount = 1;
-    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[1].pBufferInfo = &bufferInfo;
+    const std::array<VkWriteDescriptorSet, 2> writes = {
+        vk::imageWrite(descriptors_.set, 0, &imageInfo),
+        vk::bufferWrite(descriptors_.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &bufferInfo),
+    };
     vkUpdateDescriptorSets(device, uint32_t(writes.size()), writes.data(), 0, nullptr);
 
-    pipeline_ = vk::createComputePipeline(device, pipelineLayout, compute_tonemap_comp_spv);
+    pipeline_ = vk::createComputePipeline(device, pipelineLayout_, compute_tonemap_comp_spv);
 }
 
 void TonemapPass::record(VkCommandBuffer cmd) const {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &descriptors_.set, 0, nullptr);
     const ToneMapConstants constants{width_, height_, exposure_};
     vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
     vkCmdDispatch(cmd, (width_ + kGroupSize - 1) / kGroupSize, (height_ + kGroupSize - 1) / kGroupSize, 1);

@@ -3,6 +3,7 @@
 #include <vulkan/vulkan.h>
 
 #include "vk/buffer.h"
+#include "vk/descriptors.h"
 #include "vk/handle.h"
 
 namespace punctual::vk {
@@ -24,8 +25,7 @@ private:
     vk::Handle<VkSampler> sampler_;
     vk::Handle<VkDescriptorSetLayout> setLayout_;
     vk::Handle<VkPipelineLayout> pipelineLayout_;
-    vk::Handle<VkDescriptorPool> pool_;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    vk::DescriptorSet descriptors_;
     vk::Handle<VkPipeline> pipeline_;
     vk::Buffer output_;
     uint32_t width_ = 0;

@@ -155,6 +155,21 @@ Handle<VkRenderPass> createRenderPass(VkDevice device, const RenderPassDesc& des
     return {device, renderPass, vkDestroyRenderPass};
 }
 
+void beginRenderPass(VkCommandBuffer cmd, VkRenderPass renderPass, VkFramebuffer framebuffer, uint32_t width,
+                     uint32_t height, std::span<const VkClearValue> clears) {
+    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    begin.renderPass = renderPass;
+    begin.framebuffer = framebuffer;
+    begin.renderArea = {{0, 0}, {width, height}};
+    begin.clearValueCount = uint32_t(clears.size());
+    begin.pClearValues = clears.data();
+    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    const VkViewport viewport{0.0f, 0.0f, float(width), float(height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, {width, height}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
 Handle<VkFramebuffer> createFramebuffer(VkDevice device, VkRenderPass renderPass,
                                         std::span<const VkImageView> attachments, uint32_t width, uint32_t height,
                                         uint32_t layers) {

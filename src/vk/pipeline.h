@@ -45,6 +45,11 @@ struct RenderPassDesc {
 };
 Handle<VkRenderPass> createRenderPass(VkDevice device, const RenderPassDesc& desc);
 
+// Begins `renderPass` over the whole `width` x `height` target and sets a matching viewport and
+// scissor (both are dynamic state in every pipeline made by createGraphicsPipeline).
+void beginRenderPass(VkCommandBuffer cmd, VkRenderPass renderPass, VkFramebuffer framebuffer, uint32_t width,
+                     uint32_t height, std::span<const VkClearValue> clears);
+
 Handle<VkFramebuffer> createFramebuffer(VkDevice device, VkRenderPass renderPass,
                                         std::span<const VkImageView> attachments, uint32_t width,
                                         uint32_t height, uint32_t layers = 1);
