@@ -1,7 +1,5 @@
 // loadGltf on small glTF files written by the tests themselves: geometry, node hierarchy,
 // materials and textures, lights, cameras, and the three ways of storing buffers.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -14,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "gltf_test_files.h"
 #include "scene/gltf_loader.h"
 
 namespace punctual {
@@ -22,54 +21,12 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-constexpr int kFloat = 5126;
-constexpr int kUnsignedShort = 5123;
-
-// A fresh directory per test, removed afterwards.
-class TempDir {
-public:
-    TempDir() {
-        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() /
-                ("punctual-gltf-" + std::to_string(::getpid()) + "-" + test->test_suite_name() + "-" + test->name());
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(path_, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
-
-void writeFile(const fs::path& path, const void* data, size_t size) {
-    std::ofstream out(path, std::ios::binary);
-    out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
-}
-void writeFile(const fs::path& path, const std::string& text) { writeFile(path, text.data(), text.size()); }
-
-std::string base64(const std::vector<unsigned char>& bytes) {
-    static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < bytes.size(); i += 3) {
-        const uint32_t chunk = (uint32_t(bytes[i]) << 16) | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0u) |
-                               (i + 2 < bytes.size() ? uint32_t(bytes[i + 2]) : 0u);
-        out += alphabet[(chunk >> 18) & 63];
-        out += alphabet[(chunk >> 12) & 63];
-        out += i + 1 < bytes.size() ? alphabet[(chunk >> 6) & 63] : '=';
-        out += i + 2 < bytes.size() ? alphabet[chunk & 63] : '=';
-    }
-    return out;
-}
-
-void appendU32(std::vector<unsigned char>& out, uint32_t value) {
-    for (int shift = 0; shift < 32; shift += 8) out.push_back(static_cast<unsigned char>(value >> shift));
-}
+using unit_testing::base64;
+using unit_testing::glbFile;
+using unit_testing::kFloat;
+using unit_testing::kUnsignedShort;
+using unit_testing::TempDir;
+using unit_testing::writeFile;
 
 // Builds a glTF document and its single binary buffer.
 class GltfBuilder {
@@ -85,15 +42,16 @@ public:
 
     int view(const void* data, size_t size, size_t stride = 0) {
         while (bin.size() % 4 != 0) bin.push_back(0);
-        json v = {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", size}};
+        json v = unit_testing::bufferViewJson(bin.size(), size);
         if (stride != 0) v["byteStride"] = stride;
         const auto* bytes = static_cast<const unsigned char*>(data);
         bin.insert(bin.end(), bytes, bytes + size);
         return push("bufferViews", v);
     }
     int accessor(int bufferView, int componentType, size_t count, const char* type, size_t byteOffset = 0) {
-        return push("accessors", {{"bufferView", bufferView}, {"componentType", componentType}, {"count", count},
-                                  {"type", type}, {"byteOffset", byteOffset}});
+        json a = unit_testing::accessorJson(bufferView, componentType, count, type);
+        a["byteOffset"] = byteOffset;
+        return push("accessors", a);
     }
     int floats(const std::vector<float>& values, const char* type, size_t components) {
         return accessor(view(values.data(), values.size() * sizeof(float)), kFloat, values.size() / components, type);
@@ -126,7 +84,7 @@ public:
     std::string writeGltf(const fs::path& dir, const std::string& name) const {
         json out = doc;
         out["buffers"] = json::array({json{{"uri", name + ".bin"}, {"byteLength", bin.size()}}});
-        writeFile(dir / (name + ".bin"), bin.data(), bin.size());
+        writeFile(dir / (name + ".bin"), bin);
         writeFile(dir / (name + ".gltf"), out.dump(2));
         return (dir / (name + ".gltf")).string();
     }
@@ -138,23 +96,7 @@ public:
         return (dir / (name + ".gltf")).string();
     }
     std::string writeGlb(const fs::path& dir, const std::string& fileName) const {
-        json out = doc;
-        out["buffers"] = json::array({json{{"byteLength", bin.size()}}});
-        std::string text = out.dump();
-        while (text.size() % 4 != 0) text += ' ';
-        std::vector<unsigned char> payload = bin;
-        while (payload.size() % 4 != 0) payload.push_back(0);
-        std::vector<unsigned char> glb;
-        appendU32(glb, 0x46546C67);
-        appendU32(glb, 2);
-        appendU32(glb, uint32_t(12 + 8 + text.size() + 8 + payload.size()));
-        appendU32(glb, uint32_t(text.size()));
-        appendU32(glb, 0x4E4F534A);
-        glb.insert(glb.end(), text.begin(), text.end());
-        appendU32(glb, uint32_t(payload.size()));
-        appendU32(glb, 0x004E4942);
-        glb.insert(glb.end(), payload.begin(), payload.end());
-        writeFile(dir / fileName, glb.data(), glb.size());
+        writeFile(dir / fileName, glbFile(doc, bin));
         return (dir / fileName).string();
     }
 

@@ -5,12 +5,13 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "light_test_scenes.h"
 #include "scene/light_generator.h"
 
 namespace punctual {
 namespace {
 
-constexpr float kDegree = 0.0174532925f;
+using unit_testing::kDegree;
 
 // Only the bounds matter to the generator.
 Scene sceneWithBounds(glm::vec3 min, glm::vec3 max) {

@@ -7,6 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "light_test_scenes.h"
 #include "lights/light_setup.h"
 #include "scene/light_generator.h"
 #include "shading.h"
@@ -14,7 +15,9 @@
 namespace punctual {
 namespace {
 
-constexpr float kDegree = 0.0174532925f;
+using unit_testing::kDegree;
+using unit_testing::pointLight;
+using unit_testing::spotLight;
 
 // A camera at the origin looking down -Z, 60 degree vertical field of view, 16:9.
 struct TestView {
@@ -28,28 +31,6 @@ struct TestView {
         projection = camera.projection(16.0f / 9.0f);
     }
 };
-
-Light pointLight(glm::vec3 position, float range, float intensity = 10.0f) {
-    Light light;
-    light.type = LightType::Point;
-    light.position = position;
-    light.range = range;
-    light.intensity = intensity;
-    return light;
-}
-
-Light spotLight(glm::vec3 position, glm::vec3 direction, float range, float outerDegrees, float innerDegrees,
-                float intensity = 10.0f) {
-    Light light;
-    light.type = LightType::Spot;
-    light.position = position;
-    light.direction = direction;
-    light.range = range;
-    light.outerConeAngle = outerDegrees * kDegree;
-    light.innerConeAngle = innerDegrees * kDegree;
-    light.intensity = intensity;
-    return light;
-}
 
 FrameLights setup(const std::vector<Light>& lights) {
     Scene scene;

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "light_test_scenes.h"
 #include "lights/light_setup.h"
 #include "lights/per_object_lights.h"
 #include "scene/default_scene.h"
@@ -18,7 +19,7 @@
 namespace punctual {
 namespace {
 
-constexpr float kDegree = 0.0174532925f;
+using unit_testing::pointLight;
 constexpr uint32_t kCap = PUNCTUAL_MAX_LIGHTS_PER_OBJECT;
 
 struct BoxSpec {
@@ -48,26 +49,10 @@ Bounds boxBounds(const glm::vec3& center, const glm::vec3& halfSize) {
     return bounds;
 }
 
-Light pointLight(glm::vec3 position, float range, float intensity = 10.0f) {
-    Light light;
-    light.type = LightType::Point;
-    light.position = position;
-    light.range = range;
-    light.intensity = intensity;
-    return light;
-}
-
+// The shared spot light, with its direction normalized.
 Light spotLight(glm::vec3 position, glm::vec3 direction, float range, float outerDegrees, float innerDegrees,
                 float intensity = 10.0f) {
-    Light light;
-    light.type = LightType::Spot;
-    light.position = position;
-    light.direction = glm::normalize(direction);
-    light.range = range;
-    light.outerConeAngle = outerDegrees * kDegree;
-    light.innerConeAngle = innerDegrees * kDegree;
-    light.intensity = intensity;
-    return light;
+    return unit_testing::spotLight(position, glm::normalize(direction), range, outerDegrees, innerDegrees, intensity);
 }
 
 // Packs the lights in the given order (callers list spots first, as setupFrameLights does).
