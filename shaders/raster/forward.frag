@@ -11,29 +11,41 @@
 #include "gpu_types.h"
 #include "shading.h"
 #include "culling.h"
+#include "shadows.h"
 
 // Depth test before shading: only the visible fragment of each pixel runs (EQUAL against the
 // prepass). Without it, the statistics variant's buffer writes would make drivers test depth late
 // and let hidden fragments write statistics too.
 layout(early_fragment_tests) in;
 
-layout(constant_id = PUNCTUAL_SPEC_TEXTURE_COUNT) const int TEXTURE_COUNT = 1;
 layout(constant_id = PUNCTUAL_SPEC_LIGHT_LIST) const uint LIGHT_LIST = PUNCTUAL_LIGHT_LIST_BRUTE;
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
 // Debug variant for statistics and heat maps: also counts, per pixel, the lights that really
 // reach it and the brute-force radiance, into lightStats. Never used for timing.
 layout(constant_id = PUNCTUAL_SPEC_WRITE_LIGHT_STATS) const bool WRITE_LIGHT_STATS = false;
+layout(constant_id = PUNCTUAL_SPEC_SHADOWS) const bool SHADOWS = false;
+layout(constant_id = PUNCTUAL_SPEC_SHADOW_FILTER) const uint SHADOW_FILTER = PUNCTUAL_SHADOW_FILTER_TENT5;
+layout(constant_id = PUNCTUAL_SPEC_SHADOW_SAMPLES) const uint SHADOW_SAMPLES = 16u;
+layout(constant_id = PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT) const uint POINT_SHADOW_LAYOUT = PUNCTUAL_POINT_SHADOW_CUBE;
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHTS) readonly buffer LightBlock { GpuPunctualLight lights[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_OBJECTS) readonly buffer ObjectBlock { GpuObject objects[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_MATERIALS) readonly buffer MaterialBlock { GpuMaterial materials[]; };
-layout(set = 0, binding = PUNCTUAL_BINDING_TEXTURES) uniform sampler2D baseColorTextures[TEXTURE_COUNT];
+// The draw's base-colour texture (a white texel when its material has none), in set 1, bound per
+// material. One texture per set instead of an array indexed per draw: lavapipe (Mesa 22.3) moves
+// dynamically indexed samplers into out-of-line functions whose code LLVM 15 fails to compile
+// for array textures, the shadow maps.
+layout(set = 1, binding = 0) uniform sampler2D baseColorTexture;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) readonly buffer GridBlock { uint lightGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_OBJECT_LIGHTS) readonly buffer ObjectLightBlock { uint objectLights[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_STATS) writeonly buffer LightStatsBlock { uvec4 lightStats[]; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_VIEWS) readonly buffer ShadowViewBlock { GpuShadowView shadowViews[]; };
+layout(set = 0, binding = PUNCTUAL_BINDING_SPOT_SHADOWS) uniform sampler2DArrayShadow spotShadows;
+layout(set = 0, binding = PUNCTUAL_BINDING_POINT_SHADOWS) uniform samplerCubeArrayShadow pointShadows;
+layout(set = 0, binding = PUNCTUAL_BINDING_POINT_SLICES) uniform sampler2DArrayShadow pointSlices;
 layout(push_constant) uniform DrawConstants { uint objectIndex; } draw;
 
 layout(location = 0) in vec3 inWorldPosition;
@@ -61,15 +73,26 @@ uint pixelSlice() {
     return first - 1u;
 }
 
+#include "shadow_sampling.glsl"
+
+// One light's contribution, with its shadow where it casts one and reaches this point (the
+// lookup is skipped where the attenuation is zero or the light has no shadow).
+vec3 shadeLight(Surface surface, GpuPunctualLight light) {
+    LightSample arrival = sampleLight(light, surface.position);
+    float shadow = 1.0;
+    if (SHADOWS && arrival.attenuation > 0.0 && light.angleOffsetShadow.y >= 0.0) {
+        shadow = shadowVisibility(light, arrival.toLight, surface.position, surface.normal);
+    }
+    return shadeLightSample(surface, light, arrival, shadow);
+}
+
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 void main() {
     GpuObject object = objects[draw.objectIndex];
     GpuMaterial material = materials[object.material.x];
     vec4 baseColor = material.baseColorFactor;
-    if (material.baseColorTexture >= 0) {
-        baseColor *= texture(baseColorTextures[material.baseColorTexture], inUv);
-    }
+    if (material.baseColorTexture >= 0) baseColor *= texture(baseColorTexture, inUv);
 
     // Faces are drawn two-sided; the normal is turned towards the viewer on back faces.
     // object.material.y marks mirrored transforms (negative determinant), whose winding flips.
@@ -87,14 +110,14 @@ void main() {
     uint tested = 0u;
     if (LIGHT_LIST == PUNCTUAL_LIGHT_LIST_BRUTE) {
         for (uint i = 0u; i < lightCount; ++i) {
-            radiance += shadePunctualLight(surface, lights[i], 1.0);
+            radiance += shadeLight(surface, lights[i]);
         }
         tested = lightCount;
     } else if (LIGHT_LIST == PUNCTUAL_LIGHT_LIST_PER_OBJECT) {
         uint count = object.material.z;
         uint first = draw.objectIndex * PUNCTUAL_MAX_LIGHTS_PER_OBJECT;
         for (uint k = 0u; k < count; ++k) {
-            radiance += shadePunctualLight(surface, lights[objectLights[first + k]], 1.0);
+            radiance += shadeLight(surface, lights[objectLights[first + k]]);
         }
         tested = count;
     } else if (LIGHT_LIST == PUNCTUAL_LIGHT_LIST_TILED) {
@@ -106,7 +129,7 @@ void main() {
             while (bits != 0u) {
                 uint bit = uint(findLSB(bits));
                 bits &= bits - 1u;  // clear the lowest set bit: ascending order
-                radiance += shadePunctualLight(surface, lights[firstLight + bit], 1.0);
+                radiance += shadeLight(surface, lights[firstLight + bit]);
                 ++tested;
             }
         }
@@ -122,7 +145,7 @@ void main() {
             while (bits != 0u) {
                 uint bit = uint(findLSB(bits));
                 bits &= bits - 1u;  // clear the lowest set bit: ascending order
-                radiance += shadePunctualLight(surface, lights[firstLight + bit], 1.0);
+                radiance += shadeLight(surface, lights[firstLight + bit]);
                 ++tested;
             }
         }
@@ -134,7 +157,7 @@ void main() {
         vec3 bruteRadiance = shadeDirectionalLight(surface, frame.sun);
         for (uint i = 0u; i < lightCount; ++i) {
             if (punctualAttenuation(lights[i], inWorldPosition) > 0.0) ++affecting;
-            bruteRadiance += shadePunctualLight(surface, lights[i], 1.0);
+            bruteRadiance += shadeLight(surface, lights[i]);
         }
         uvec2 pixel = uvec2(gl_FragCoord.xy);
         lightStats[pixel.y * uint(frame.viewport.x) + pixel.x] =

@@ -11,21 +11,39 @@
 // images bit-identical: set bits are walked in the same ascending order the brute loop uses.
 #define PUNCTUAL_MAX_SPOT_LIGHTS 64
 #define PUNCTUAL_MAX_POINT_LIGHTS 32
+// Shadowed lights per frame (the design notes' limits): spots each take one layer of a 2D depth
+// array, points six faces of a cube depth array.
+#define PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS 32
+#define PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS 8
 // Unity's classic forward path gives each object at most 8 lights.
 #define PUNCTUAL_MAX_LIGHTS_PER_OBJECT 8
 
-// Descriptor bindings of the frame's set 0 (one set for every pass keeps pipelines simple).
+// Descriptor bindings of the frame's set 0 (one set for every pass keeps pipelines simple). Set 1
+// holds one base-colour texture per material (see forward.frag).
 #define PUNCTUAL_BINDING_FRAME 0
 #define PUNCTUAL_BINDING_LIGHTS 1
 #define PUNCTUAL_BINDING_OBJECTS 2
 #define PUNCTUAL_BINDING_MATERIALS 3
-#define PUNCTUAL_BINDING_TEXTURES 4
 #define PUNCTUAL_BINDING_DEPTH 5          // depth prepass result, read by the culling passes
 #define PUNCTUAL_BINDING_LIGHT_GRID 6     // per tile (or cluster): 3 words = 64-bit spot mask, 32-bit point mask
 #define PUNCTUAL_BINDING_DEPTH_RANGE 7    // GpuDepthRange: the frame's geometry depth range and cluster slice starts
 #define PUNCTUAL_BINDING_OBJECT_LIGHTS 8  // per object: PUNCTUAL_MAX_LIGHTS_PER_OBJECT packed-light indices
 #define PUNCTUAL_BINDING_LIGHT_STATS 9    // debug: per pixel uvec4 (tested, affecting | covered bit, luminances)
 #define PUNCTUAL_BINDING_CULL_LIGHTS 10   // CullLight per packed light: view-space culling shapes (culling.h)
+#define PUNCTUAL_BINDING_SHADOW_VIEWS 11  // GpuShadowView per rendered shadow view
+#define PUNCTUAL_BINDING_SPOT_SHADOWS 12  // sampler2DArrayShadow: one layer per shadowed spot
+#define PUNCTUAL_BINDING_POINT_SHADOWS 13 // samplerCubeArrayShadow: one cube per shadowed point (cube layout)
+#define PUNCTUAL_BINDING_POINT_SLICES 14  // sampler2DArrayShadow: six layers per shadowed point (slices layout)
+
+// Shadow filters (specialization constant PUNCTUAL_SPEC_SHADOW_FILTER).
+#define PUNCTUAL_SHADOW_FILTER_HW 0u     // one hardware 2x2 compare sample
+#define PUNCTUAL_SHADOW_FILTER_TENT3 1u  // tent over 3x3 texels
+#define PUNCTUAL_SHADOW_FILTER_TENT5 2u
+#define PUNCTUAL_SHADOW_FILTER_TENT7 3u
+#define PUNCTUAL_SHADOW_FILTER_DISK 4u   // N samples on a disk rotated per pixel by a hash
+// Point-light shadow layouts (PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT).
+#define PUNCTUAL_POINT_SHADOW_CUBE 0u    // a cube depth array, hardware face selection
+#define PUNCTUAL_POINT_SHADOW_SLICES 1u  // six 2D layers with a widened field of view (URP)
 
 // Words per light-grid cell: spot bits 0-31, spot bits 32-63, point bits 0-31.
 #define PUNCTUAL_GRID_WORDS 3
@@ -39,11 +57,14 @@
 #define PUNCTUAL_LIGHT_LIST_CLUSTERED 3u
 
 // Specialization constant ids.
-#define PUNCTUAL_SPEC_TEXTURE_COUNT 0
 #define PUNCTUAL_SPEC_LIGHT_LIST 1
 #define PUNCTUAL_SPEC_TILE_SIZE 2
 #define PUNCTUAL_SPEC_SLICE_COUNT 3
 #define PUNCTUAL_SPEC_WRITE_LIGHT_STATS 4
+#define PUNCTUAL_SPEC_SHADOW_FILTER 5
+#define PUNCTUAL_SPEC_SHADOW_SAMPLES 6
+#define PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT 7
+#define PUNCTUAL_SPEC_SHADOWS 8
 
 PUNCTUAL_NAMESPACE_BEGIN
 
@@ -53,7 +74,8 @@ struct GpuPunctualLight {
     vec4 positionInvRangeSq;   // xyz: world position; w: 1 / max(range^2, 1e-4)
     vec4 radiantColor;         // rgb: linear colour x intensity (candela); w: range (metres)
     vec4 directionAngleScale;  // xyz: unit direction the light shines (node -Z); w: k = 1/max(cosInner - cosOuter, 1e-4), 0 for points
-    vec4 angleOffsetShadow;    // x: -cosOuter * k (1 for points); y: shadow slot or -1; z: cos outer (-1 for points, for culling); w: reserved
+    vec4 angleOffsetShadow;    // x: -cosOuter * k (1 for points); y: first shadow view or -1 (no shadow);
+                               // z: cos outer (-1 for points, for culling); w: shadow strength (0..1)
 };
 
 struct GpuDirectionalLight {
@@ -74,6 +96,17 @@ struct GpuFrame {
     uvec4 lightGrid;      // x: tile size in pixels, y: tiles across, z: tiles down, w: depth slices (1 = tiled)
     vec4 depthToView;     // xy: (a, b) with view distance = a / (depth + b) (see culling.h); zw: unused
     vec4 ndcToView;       // (1/P00, 1/P11, P20, P21): view ray through an NDC point (see culling.h)
+    vec4 shadowBias;      // depth, slope-scaled depth, normal, sin-scaled normal offsets (x texel size x (1 + penumbra))
+    vec4 shadowMap;       // x: resolution, y: 1 / resolution, z: disk radius (shadow-map UV), w: penumbra (texels)
+};
+
+// One rendered shadow view: a spot light's frustum, or one face of a point light (+X -X +Y -Y +Z
+// -Z, consecutive). World -> light clip space (Vulkan depth 0..1).
+struct GpuShadowView {
+    mat4 viewProjection;
+    vec4 params;  // x: array layer, or -1 when no caster is in the view (it is then always lit);
+                  // y: 2 tan(fov / 2) (a texel's world size is y x linear depth / resolution);
+                  // z: near, w: far (metres along the view axis)
 };
 
 // Written on the GPU each frame (clustered culling): depth-range pass, then slice-boundaries pass.

@@ -111,17 +111,34 @@ PUNCTUAL_FN vec3 shadeBrdf(Surface s, vec3 toLight, vec3 lightRadiance) {
     return (diffuse + specular) * lightRadiance * nDotL;
 }
 
-// Contribution of one spot/point light, `shadow` in [0, 1] (1 = fully lit).
-PUNCTUAL_FN vec3 shadePunctualLight(Surface s, GpuPunctualLight light, float shadow) {
-    vec3 lightVector = vec3(light.positionInvRangeSq) - s.position;
+// Where a spot/point light arrives at a surface point: the unit vector towards it and its
+// attenuation (distance x angle; exactly 0 outside its range and cone).
+struct LightSample {
+    vec3 toLight;
+    float attenuation;
+};
+
+PUNCTUAL_FN LightSample sampleLight(GpuPunctualLight light, vec3 position) {
+    LightSample result;
+    vec3 lightVector = vec3(light.positionInvRangeSq) - position;
     float distanceSquared = dot(lightVector, lightVector);
-    float att = distanceAttenuation(distanceSquared, light.positionInvRangeSq.w);
-    if (att <= 0.0f) return vec3(0.0f);
-    vec3 toLight = lightVector * (1.0f / sqrt(distanceSquared));
-    att *= spotAttenuation(vec3(light.directionAngleScale), toLight, light.directionAngleScale.w,
-                           light.angleOffsetShadow.x);
-    if (att <= 0.0f) return vec3(0.0f);
-    return shadeBrdf(s, toLight, vec3(light.radiantColor) * (att * shadow));
+    result.toLight = vec3(0.0f);
+    result.attenuation = distanceAttenuation(distanceSquared, light.positionInvRangeSq.w);
+    if (result.attenuation <= 0.0f) return result;
+    result.toLight = lightVector * (1.0f / sqrt(distanceSquared));
+    result.attenuation *= spotAttenuation(vec3(light.directionAngleScale), result.toLight, light.directionAngleScale.w,
+                                          light.angleOffsetShadow.x);
+    return result;
+}
+
+// Contribution of a light at a sample, `shadow` in [0, 1] (1 = fully lit).
+PUNCTUAL_FN vec3 shadeLightSample(Surface s, GpuPunctualLight light, LightSample arrival, float shadow) {
+    if (arrival.attenuation <= 0.0f) return vec3(0.0f);
+    return shadeBrdf(s, arrival.toLight, vec3(light.radiantColor) * (arrival.attenuation * shadow));
+}
+
+PUNCTUAL_FN vec3 shadePunctualLight(Surface s, GpuPunctualLight light, float shadow) {
+    return shadeLightSample(s, light, sampleLight(light, s.position), shadow);
 }
 
 PUNCTUAL_FN vec3 shadeDirectionalLight(Surface s, GpuDirectionalLight sun) {

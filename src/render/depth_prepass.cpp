@@ -37,7 +37,7 @@ void DepthPrepass::record(VkCommandBuffer cmd, const SceneGpu& scene, const Fram
     vk::beginRenderPass(cmd, renderPass_, framebuffer_, width_, height_, {&clear, 1});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
-    scene.drawObjects(cmd, bindings.pipelineLayout());
+    scene.drawObjects(cmd, bindings.pipelineLayout(), /*withTextures=*/false);
     vkCmdEndRenderPass(cmd);
 }
 

@@ -32,20 +32,27 @@ ForwardPass::ForwardPass(const vk::Context& context, const FrameBindings& bindin
     framebuffer_ = vk::createFramebuffer(device, renderPass_, views, width_, height_);
 
     struct Constants {
-        int32_t textureCount;
         uint32_t lightList;
         uint32_t tileSize;
         uint32_t slices;
         VkBool32 writeLightStats;
+        VkBool32 shadows;
+        uint32_t shadowFilter;
+        uint32_t shadowSamples;
+        uint32_t pointShadowLayout;
     };
-    const Constants constants{int32_t(bindings.textureCount()), variant.lightList, variant.tileSize, variant.slices,
-                              variant.writeLightStats ? VK_TRUE : VK_FALSE};
-    const std::array<VkSpecializationMapEntry, 5> entries = {{
-        {PUNCTUAL_SPEC_TEXTURE_COUNT, offsetof(Constants, textureCount), sizeof(int32_t)},
+    const Constants constants{variant.lightList, variant.tileSize, variant.slices,
+                              variant.writeLightStats ? VK_TRUE : VK_FALSE, variant.shadows ? VK_TRUE : VK_FALSE,
+                              variant.shadowFilter, variant.shadowSamples, variant.pointShadowLayout};
+    const std::array<VkSpecializationMapEntry, 8> entries = {{
         {PUNCTUAL_SPEC_LIGHT_LIST, offsetof(Constants, lightList), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_TILE_SIZE, offsetof(Constants, tileSize), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, offsetof(Constants, slices), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_WRITE_LIGHT_STATS, offsetof(Constants, writeLightStats), sizeof(VkBool32)},
+        {PUNCTUAL_SPEC_SHADOWS, offsetof(Constants, shadows), sizeof(VkBool32)},
+        {PUNCTUAL_SPEC_SHADOW_FILTER, offsetof(Constants, shadowFilter), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_SHADOW_SAMPLES, offsetof(Constants, shadowSamples), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT, offsetof(Constants, pointShadowLayout), sizeof(uint32_t)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(constants), &constants};
 
@@ -69,7 +76,7 @@ void ForwardPass::record(VkCommandBuffer cmd, const SceneGpu& scene, const Frame
     vk::beginRenderPass(cmd, renderPass_, framebuffer_, width_, height_, clears);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
-    scene.drawObjects(cmd, bindings.pipelineLayout());
+    scene.drawObjects(cmd, bindings.pipelineLayout(), /*withTextures=*/true);
     vkCmdEndRenderPass(cmd);
 }
 

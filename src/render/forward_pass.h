@@ -21,6 +21,10 @@ struct ForwardVariant {
     uint32_t tileSize = 16;
     uint32_t slices = 1;
     bool writeLightStats = false;  // debug variant: per-pixel light statistics
+    bool shadows = false;
+    uint32_t shadowFilter = 0;     // PUNCTUAL_SHADOW_FILTER_*
+    uint32_t shadowSamples = 16;   // disk filter
+    uint32_t pointShadowLayout = 0;  // PUNCTUAL_POINT_SHADOW_*
 };
 
 class ForwardPass {

@@ -1,7 +1,8 @@
 #pragma once
-// Descriptor set 0, shared by every raster pass of a frame: the frame uniform, the packed lights,
-// objects, materials, base-colour textures, the depth buffer and the light lists (see the
-// PUNCTUAL_BINDING_* numbers in gpu_types.h), plus the pipeline layout with the per-draw object index push constant.
+// Descriptor set 0, shared by every pass of a frame: the frame uniform, the packed lights,
+// objects, materials, the depth buffer, the light lists and the shadow maps (see the
+// PUNCTUAL_BINDING_* numbers in gpu_types.h), plus the pipeline layout (set 0, the scene's
+// per-material texture set 1, and the per-draw object index push constant).
 #include <vulkan/vulkan.h>
 
 #include "vk/buffer.h"
@@ -27,6 +28,11 @@ struct FrameBindingResources {
     const vk::Buffer& objectLights;
     const vk::Buffer& lightStats;
     const vk::Buffer& cullLights;
+    const vk::Buffer& shadowViews;
+    VkImageView spotShadows;     // 2D array
+    VkImageView pointShadows;    // cube array
+    VkImageView pointSlices;     // 2D array
+    VkSampler shadowSampler;     // compare sampler
 };
 
 class FrameBindings {
@@ -35,14 +41,14 @@ public:
 
     VkDescriptorSetLayout setLayout() const { return setLayout_; }
     VkPipelineLayout pipelineLayout() const { return pipelineLayout_; }
-    uint32_t textureCount() const { return textureCount_; }
     void bind(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint) const;
+    // Binds set 0 through another layout that shares it (e.g. with other push constants).
+    void bind(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint, VkPipelineLayout layout) const;
 
 private:
     vk::Handle<VkDescriptorSetLayout> setLayout_;
     vk::Handle<VkPipelineLayout> pipelineLayout_;
     vk::DescriptorSet descriptors_;
-    uint32_t textureCount_ = 1;
 };
 
 }  // namespace punctual::render

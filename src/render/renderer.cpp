@@ -11,6 +11,7 @@
 #include "render/forward_pass.h"
 #include "render/frame_bindings.h"
 #include "render/scene_gpu.h"
+#include "render/shadow_pass.h"
 #include "render/tonemap_pass.h"
 #include "vk/buffer.h"
 #include "vk/check.h"
@@ -32,9 +33,12 @@ struct Renderer::Resources {
     vk::Buffer objectLights;
     vk::Buffer lightStats;
     vk::Buffer cullLights;
+    vk::Buffer shadowViews;
+    ShadowMaps shadowMaps;
     FrameBindings bindings;
     DepthPrepass depthPrepass;
     std::unique_ptr<LightCullingPass> cullingPass;  // tiled and clustered only
+    std::unique_ptr<ShadowPass> shadowPass;         // always: it also puts unused placeholders in their layout
     ForwardPass forwardPass;
     std::unique_ptr<ForwardPass> statsForwardPass;  // only with collectLightStats
     TonemapPass tonemapPass;
@@ -66,8 +70,22 @@ struct Renderer::Resources {
         return buffer;
     }
 
+    static ForwardVariant forwardVariant(const RenderSettings& settings, const LightGridLayout& grid, bool stats) {
+        ForwardVariant variant;
+        variant.lightList = uint32_t(settings.method);
+        variant.tileSize = grid.tileSize;
+        variant.slices = grid.slices;
+        variant.writeLightStats = stats;
+        variant.shadows = settings.shadows.enabled;
+        variant.shadowFilter = uint32_t(settings.shadows.filter);
+        variant.shadowSamples = settings.shadows.diskSamples;
+        variant.pointShadowLayout = uint32_t(settings.shadows.pointLayout);
+        return variant;
+    }
+
     Resources(vk::Context& context, const Scene& sceneData, const RenderSettings& settings,
-              const FrameLights& frameLights, const PerObjectLightLists& perObject, const LightGridLayout& gridLayout)
+              const FrameLights& frameLights, const PerObjectLightLists& perObject, const LightGridLayout& gridLayout,
+              const ShadowPlan& shadowPlan)
         : scene(context, sceneData, perObject.counts),
           frameUniform(context, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload,
                        "frame"),
@@ -90,12 +108,16 @@ struct Renderer::Resources {
                      vk::MemoryUse::DeviceLocal, "light stats"),
           cullLights(context, std::max<size_t>(frameLights.packed.size(), 1) * sizeof(gpu::CullLight),
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "cull lights"),
+          shadowViews(context, std::max<size_t>(shadowPlan.views.size(), 1) * sizeof(gpu::GpuShadowView),
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "shadow views"),
+          shadowMaps(context, shadowPlan, settings.shadows),
           bindings(context, scene,
                    FrameBindingResources{frameUniform, lights, depth.view(), depthSampler, grid.grid, grid.depthRange,
-                                         objectLights, lightStats, cullLights}),
+                                         objectLights, lightStats, cullLights, shadowViews, shadowMaps.spots().view(),
+                                         shadowMaps.pointCubes().view(), shadowMaps.pointSlices().view(),
+                                         shadowMaps.sampler()}),
           depthPrepass(context, bindings, depth),
-          forwardPass(context, bindings, radiance, depth,
-                      ForwardVariant{uint32_t(settings.method), gridLayout.tileSize, gridLayout.slices, false}),
+          forwardPass(context, bindings, radiance, depth, forwardVariant(settings, gridLayout, false)),
           tonemapPass(context, radiance, settings.exposure),
           readback(context, VkDeviceSize(settings.width) * settings.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                    vk::MemoryUse::Readback, "readback"),
@@ -104,10 +126,10 @@ struct Renderer::Resources {
             cullingPass = std::make_unique<LightCullingPass>(context, bindings, gridLayout, settings.width, settings.height);
         }
         if (settings.collectLightStats) {
-            statsForwardPass = std::make_unique<ForwardPass>(
-                context, bindings, radiance, depth,
-                ForwardVariant{uint32_t(settings.method), gridLayout.tileSize, gridLayout.slices, true});
+            statsForwardPass = std::make_unique<ForwardPass>(context, bindings, radiance, depth,
+                                                             forwardVariant(settings, gridLayout, true));
         }
+        shadowPass = std::make_unique<ShadowPass>(context, bindings, shadowMaps, shadowPlan, settings.shadows);
     }
 };
 
@@ -146,6 +168,10 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     // through NDC use 1/P00, 1/P11 and the off-centre terms P20, P21.
     frame.depthToView = glm::vec4(projection[3][2], projection[2][2], 0.0f, 0.0f);
     frame.ndcToView = glm::vec4(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
+    const ShadowSettings& shadows = settings.shadows;
+    frame.shadowBias = shadows.bias;
+    frame.shadowMap = glm::vec4(float(shadows.resolution), 1.0f / float(shadows.resolution), shadows.diskRadius,
+                                shadows.penumbraTexels());
     return frame;
 }
 
@@ -161,13 +187,20 @@ double median(std::vector<double> values) {
 Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSettings& settings)
     : context_(context), scene_(scene), settings_(settings) {
     validateSettings(settings);
+    validateShadowSettings(settings.shadows);
     view_ = scene.camera.view;
     projection_ = scene.camera.projection(float(settings.width) / float(settings.height));
     lights_ = setupFrameLights(scene, view_, projection_);
+    shadowPlan_ = planShadows(scene, lights_, scene.camera.position(), settings.shadows);
     if (settings.method == LightListMethod::PerObject) perObjectLists_ = buildPerObjectLightLists(scene, lights_);
     const uint32_t slices = settings.method == LightListMethod::Clustered ? settings.clusterSlices : 1u;
     gridLayout_ = LightGridLayout::forFrame(settings.width, settings.height, settings.tileSize, slices);
-    resources_ = std::make_unique<Resources>(context, scene, settings, lights_, perObjectLists_, gridLayout_);
+    resources_ = std::make_unique<Resources>(context, scene, settings, lights_, perObjectLists_, gridLayout_, shadowPlan_);
+    if (!shadowPlan_.views.empty()) {
+        std::vector<gpu::GpuShadowView> views;
+        for (const ShadowView& view : shadowPlan_.views) views.push_back(view.gpu);
+        resources_->shadowViews.write(views.data(), views.size() * sizeof(gpu::GpuShadowView));
+    }
 
     const gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_, gridLayout_);
     resources_->frameUniform.write(&frame, sizeof(frame));
@@ -232,6 +265,13 @@ void Renderer::recordFrame(VkCommandBuffer cmd, bool withStats) {
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
     if (r.cullingPass) timed("culling", [&] { r.cullingPass->record(cmd, r.bindings, r.grid); });
+    // With no shadowed light the stage only moves the placeholder maps into their layout: not
+    // a pass worth timing ("shadows" stays 0, as for a pass not run).
+    if (shadowPlan_.views.empty()) {
+        r.shadowPass->record(cmd, r.scene, r.bindings);
+    } else {
+        timed("shadows", [&] { r.shadowPass->record(cmd, r.scene, r.bindings); });
+    }
 
     if (withStats) {
         vkCmdFillBuffer(cmd, r.lightStats.handle(), 0, VK_WHOLE_SIZE, 0u);
@@ -357,6 +397,8 @@ LightStatsImage Renderer::readLightStats() {
     }
     return stats;
 }
+
+uint64_t Renderer::shadowMemoryBytes() const { return resources_->shadowMaps.allocatedBytes(); }
 
 std::vector<float> Renderer::readDepth() {
     Resources& r = *resources_;

@@ -13,6 +13,7 @@
 #include "gpu_types.h"
 #include "lights/light_setup.h"
 #include "lights/per_object_lights.h"
+#include "lights/shadow_setup.h"
 #include "metrics/culling_stats.h"
 #include "render/light_culling_pass.h"
 #include "render/light_list_method.h"
@@ -35,6 +36,7 @@ struct RenderSettings {
     uint32_t tileSize = 16;       // pixels, tiled and clustered
     uint32_t clusterSlices = 16;  // depth slices, clustered only
     bool collectLightStats = false;  // allocate what readLightStats() needs
+    ShadowSettings shadows;
 };
 
 
@@ -77,6 +79,8 @@ public:
 
     const LightGridLayout& gridLayout() const { return gridLayout_; }
     const PerObjectLightLists& perObjectLists() const { return perObjectLists_; }
+    const ShadowPlan& shadowPlan() const { return shadowPlan_; }
+    uint64_t shadowMemoryBytes() const;
     const FrameLights& lights() const { return lights_; }
     const glm::mat4& view() const { return view_; }
     const glm::mat4& projection() const { return projection_; }
@@ -95,6 +99,7 @@ private:
     glm::mat4 projection_{1.0f};
     FrameLights lights_;
     PerObjectLightLists perObjectLists_;
+    ShadowPlan shadowPlan_;
     LightGridLayout gridLayout_;
     std::unique_ptr<Resources> resources_;
 };

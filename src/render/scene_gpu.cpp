@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "gpu_types.h"
+#include "vk/check.h"
 #include "vk/descriptors.h"
 #include "vk/context.h"
 
@@ -85,22 +86,69 @@ SceneGpu::SceneGpu(vk::Context& context, const Scene& scene, const std::vector<u
     for (const Texture& texture : scene.textures) {
         textures_.push_back(uploadTexture(context, texture.width, texture.height, texture.rgba.data(), texture.name));
     }
-    if (textures_.empty()) {
-        const uint8_t white[4] = {255, 255, 255, 255};
-        textures_.push_back(uploadTexture(context, 1, 1, white, "placeholder"));
-    }
+    const uint8_t white[4] = {255, 255, 255, 255};
+    textures_.push_back(uploadTexture(context, 1, 1, white, "untextured"));
 
     // glTF samplers are not read: every texture is filtered bilinearly and repeats (README).
     sampler_ = vk::createSampler(context.device(), VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT);
+
+    // One descriptor set per texture; each object binds the set of its material's texture.
+    const VkDevice device = context.device();
+    const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                                               VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    materialSetLayout_ = vk::createDescriptorSetLayout(device, {&binding, 1});
+    const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(textures_.size())};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = uint32_t(textures_.size());
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &poolSize;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    vk::check(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
+    materialPool_ = vk::Handle<VkDescriptorPool>(device, pool, vkDestroyDescriptorPool);
+    const std::vector<VkDescriptorSetLayout> layouts(textures_.size(), materialSetLayout_.get());
+    VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocInfo.descriptorPool = pool;
+    allocInfo.descriptorSetCount = uint32_t(layouts.size());
+    allocInfo.pSetLayouts = layouts.data();
+    textureSets_.resize(textures_.size());
+    vk::check(vkAllocateDescriptorSets(device, &allocInfo, textureSets_.data()), "vkAllocateDescriptorSets");
+    for (size_t i = 0; i < textures_.size(); ++i) {
+        const VkDescriptorImageInfo imageInfo{sampler_, textures_[i].view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        const VkWriteDescriptorSet write = vk::imageWrite(textureSets_[i], 0, &imageInfo);
+        vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+    }
+    const uint32_t untextured = uint32_t(textures_.size() - 1);
+    for (const Object& object : scene.objects) {
+        const int texture = scene.materials.at(scene.meshes.at(object.mesh).material).baseColorTexture;
+        drawTextureSet_.push_back(texture >= 0 ? uint32_t(texture) : untextured);
+    }
 }
 
-void SceneGpu::drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout) const {
+void SceneGpu::drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, bool withTextures) const {
     const VkBuffer vertexBuffer = vertices_.handle();
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
     vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+    uint32_t boundSet = UINT32_MAX;
     for (uint32_t i = 0; i < draws_.size(); ++i) {
+        if (withTextures && drawTextureSet_[i] != boundSet) {
+            boundSet = drawTextureSet_[i];
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &textureSets_[boundSet], 0,
+                                    nullptr);
+        }
         vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(uint32_t), &i);
+        vkCmdDrawIndexed(cmd, draws_[i].indexCount, 1, draws_[i].firstIndex, draws_[i].vertexOffset, 0);
+    }
+}
+
+void SceneGpu::drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<const uint32_t> objects,
+                           uint32_t pushOffset, VkShaderStageFlags stages) const {
+    const VkBuffer vertexBuffer = vertices_.handle();
+    const VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+    vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+    for (const uint32_t i : objects) {
+        vkCmdPushConstants(cmd, layout, stages, pushOffset, sizeof(uint32_t), &i);
         vkCmdDrawIndexed(cmd, draws_[i].indexCount, 1, draws_[i].firstIndex, draws_[i].vertexOffset, 0);
     }
 }

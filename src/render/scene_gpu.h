@@ -3,6 +3,7 @@
 // per-material storage buffers, and the base-colour textures (sRGB, one sampler). Built once per
 // scene; every raster pass draws through drawObjects().
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -25,15 +26,17 @@ public:
 
     const vk::Buffer& objectBuffer() const { return objects_; }
     const vk::Buffer& materialBuffer() const { return materials_; }
-    // At least one texture: a 1x1 white placeholder when the scene has none, so the texture
-    // array binding is never empty.
-    const std::vector<vk::Image>& textures() const { return textures_; }
-    VkSampler sampler() const { return sampler_; }
+    // Set 1 of the forward pass: one combined image sampler, the material's base-colour texture.
+    VkDescriptorSetLayout materialSetLayout() const { return materialSetLayout_; }
     uint32_t objectCount() const { return uint32_t(draws_.size()); }
 
     // Binds the geometry and issues one indexed draw per object, passing the object index as a
-    // push constant (stage flags: vertex | fragment).
-    void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout) const;
+    // push constant (stage flags: vertex | fragment). `withTextures` also binds each object's
+    // material texture set (set 1) for pipelines that read it.
+    void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, bool withTextures) const;
+    // The listed objects only, with the index pushed at `pushOffset` for `stages`; no textures.
+    void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<const uint32_t> objects,
+                     uint32_t pushOffset, VkShaderStageFlags stages) const;
 
     static std::vector<VkVertexInputAttributeDescription> vertexAttributes();
     static uint32_t vertexStride() { return sizeof(Vertex); }
@@ -48,9 +51,13 @@ private:
     vk::Buffer indices_;
     vk::Buffer objects_;
     vk::Buffer materials_;
-    std::vector<vk::Image> textures_;
+    std::vector<vk::Image> textures_;  // the scene's, then a 1x1 white one for untextured materials
     vk::Handle<VkSampler> sampler_;
+    vk::Handle<VkDescriptorSetLayout> materialSetLayout_;
+    vk::Handle<VkDescriptorPool> materialPool_;
+    std::vector<VkDescriptorSet> textureSets_;  // one per texture (freed with the pool)
     std::vector<Draw> draws_;
+    std::vector<uint32_t> drawTextureSet_;      // per object: index into textureSets_
 };
 
 }  // namespace punctual::render

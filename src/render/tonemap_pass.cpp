@@ -32,7 +32,7 @@ TonemapPass::TonemapPass(const vk::Context& context, const vk::Image& radiance, 
     }};
     setLayout_ = vk::createDescriptorSetLayout(device, bindings);
     pipelineLayout_ =
-        vk::createPipelineLayout(device, setLayout_, {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(ToneMapConstants)});
+        vk::createPipelineLayout(device, {setLayout_.get()}, {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(ToneMapConstants)});
     descriptors_ = vk::allocateDescriptorSet(device, setLayout_, bindings);
 
     const VkDescriptorImageInfo imageInfo{sampler_, radiance.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};

@@ -84,6 +84,7 @@ struct Light {
     float innerConeAngle = 0.0f;        // radians from the axis (spot)
     float outerConeAngle = 0.785398163f;  // radians from the axis (spot), glTF default pi/4
     bool castsShadow = true;
+    float shadowStrength = 1.0f;        // 0: no shadow, 1: full (blends the shadow factor towards 1)
 };
 
 struct Camera {

@@ -17,11 +17,11 @@ Handle<VkDescriptorSetLayout> createDescriptorSetLayout(VkDevice device,
     return {device, layout, vkDestroyDescriptorSetLayout};
 }
 
-Handle<VkPipelineLayout> createPipelineLayout(VkDevice device, VkDescriptorSetLayout setLayout,
+Handle<VkPipelineLayout> createPipelineLayout(VkDevice device, std::initializer_list<VkDescriptorSetLayout> setLayouts,
                                               VkPushConstantRange pushConstants) {
     VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    info.setLayoutCount = 1;
-    info.pSetLayouts = &setLayout;
+    info.setLayoutCount = uint32_t(setLayouts.size());
+    info.pSetLayouts = setLayouts.begin();
     info.pushConstantRangeCount = pushConstants.size > 0 ? 1 : 0;
     info.pPushConstantRanges = &pushConstants;
     VkPipelineLayout layout = VK_NULL_HANDLE;

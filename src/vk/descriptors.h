@@ -1,6 +1,7 @@
 #pragma once
 // Descriptor set layouts, pipeline layouts and single-set pools: the setup every pass with its
 // own bindings repeats, in one place.
+#include <initializer_list>
 #include <span>
 
 #include <vulkan/vulkan.h>
@@ -11,8 +12,8 @@ namespace punctual::vk {
 
 Handle<VkDescriptorSetLayout> createDescriptorSetLayout(VkDevice device,
                                                         std::span<const VkDescriptorSetLayoutBinding> bindings);
-// One set layout and at most one push-constant range (size 0: none).
-Handle<VkPipelineLayout> createPipelineLayout(VkDevice device, VkDescriptorSetLayout setLayout,
+// Set layouts 0, 1, ... and at most one push-constant range (size 0: none).
+Handle<VkPipelineLayout> createPipelineLayout(VkDevice device, std::initializer_list<VkDescriptorSetLayout> setLayouts,
                                               VkPushConstantRange pushConstants);
 
 // A pool sized for exactly one set of `bindings`, and that set (freed with the pool).

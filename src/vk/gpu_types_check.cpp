@@ -26,7 +26,12 @@ static_assert(offsetof(GpuFrame, sun) == 320);
 static_assert(offsetof(GpuFrame, lightGrid) == 352);
 static_assert(offsetof(GpuFrame, depthToView) == 368);
 static_assert(offsetof(GpuFrame, ndcToView) == 384);
-static_assert(sizeof(GpuFrame) == 400);
+static_assert(offsetof(GpuFrame, shadowBias) == 400);
+static_assert(offsetof(GpuFrame, shadowMap) == 416);
+static_assert(sizeof(GpuFrame) == 432);
+
+static_assert(sizeof(GpuShadowView) == 80);
+static_assert(offsetof(GpuShadowView, params) == 64);
 
 static_assert(sizeof(GpuDepthRange) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES);
 static_assert(offsetof(GpuDepthRange, sliceStartDepth) == 16);

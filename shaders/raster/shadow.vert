@@ -1,0 +1,18 @@
+#version 450
+// Shadow casters into one shadow view (a spot frustum or a point-light face). Depth only; no
+// depth clamp, so casters in front of the near plane are clipped rather than flattened onto it
+// ("no pancaking": for spot and point lights pancaking would leak light).
+#extension GL_GOOGLE_include_directive : require
+#include "gpu_types.h"
+
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_OBJECTS) readonly buffer ObjectBlock { GpuObject objects[]; };
+layout(push_constant) uniform ShadowDraw {
+    mat4 viewProjection;
+    uint objectIndex;
+} draw;
+
+layout(location = 0) in vec3 inPosition;
+
+void main() {
+    gl_Position = draw.viewProjection * (objects[draw.objectIndex].model * vec4(inPosition, 1.0));
+}

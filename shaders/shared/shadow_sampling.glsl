@@ -1,0 +1,112 @@
+// Shadow lookups of the forward shader (GLSL only; included by forward.frag after its bindings
+// and specialization constants). The geometry (faces, depth mapping, bias) is in shadows.h,
+// shared with the C++ shadow setup.
+
+// A per-pixel random angle for the disk filter: a hash of the position's bits (PCG), so the
+// pattern is fixed in the world and identical run to run.
+float hashToUnit(vec3 p) {
+    uvec3 v = floatBitsToUint(p);
+    uint h = v.x * 747796405u + v.y * 2891336453u + v.z * 277803737u + 2246822519u;
+    h = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;
+    h = (h >> 22u) ^ h;
+    return float(h >> 8u) * (1.0 / 16777216.0);
+}
+
+// Tent filters: (N - 1) x (N - 1) hardware bilinear compare taps one texel apart, weighted
+// 1, 2, ..., 2, 1 along each axis. Each tap already filters 2 x 2 texels, so the footprint is
+// N x N texels and the weights fall off linearly towards its edge.
+const uint kTentTaps = SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_TENT3 ? 2u
+                     : SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_TENT5 ? 4u
+                     : 6u;
+
+float tentWeight(uint i) { return float(min(i + 1u, kTentTaps - i)); }
+
+// The filter's sample offsets in shadow-map UV units, one at a time: `count` samples with
+// weights, so 2D layers and cube faces share one loop.
+uint filterSampleCount() {
+    if (SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_HW) return 1u;
+    if (SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_DISK) return SHADOW_SAMPLES;
+    return kTentTaps * kTentTaps;
+}
+
+// Offset (xy, UV units) and weight (z) of sample i. `angle` rotates the disk per pixel.
+vec3 filterSample(uint i, float angle) {
+    if (SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_HW) return vec3(0.0, 0.0, 1.0);
+    if (SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_DISK) {
+        // Vogel disk: radius sqrt((i + 0.5) / N) of the full radius, golden-angle steps, so
+        // samples cover the disk evenly for any N.
+        float r = sqrt((float(i) + 0.5) / float(SHADOW_SAMPLES)) * frame.shadowMap.z;
+        float a = float(i) * 2.39996323 + angle;
+        return vec3(r * cos(a), r * sin(a), 1.0);
+    }
+    uint x = i % kTentTaps;
+    uint y = i / kTentTaps;
+    vec2 offset = (vec2(x, y) - 0.5 * float(kTentTaps - 1u)) * frame.shadowMap.y;
+    return vec3(offset, tentWeight(x) * tentWeight(y));
+}
+
+float filterLayer(sampler2DArrayShadow map, vec2 uv, float layer, float reference, float angle) {
+    float sum = 0.0;
+    float weights = 0.0;
+    for (uint i = 0u; i < filterSampleCount(); ++i) {
+        vec3 s = filterSample(i, angle);
+        sum += s.z * texture(map, vec4(uv + s.xy, layer, reference));
+        weights += s.z;
+    }
+    return sum / weights;
+}
+
+// Cube faces: a UV offset d on face f moves the lookup direction by 2 d |ma| along the face's
+// U or V axis (the face spans [-1, 1] in sc / |ma| over UV [0, 1]).
+float filterCube(vec3 direction, uint face, float cube, float reference, float angle) {
+    vec3 u = cubeFaceU(face) * (2.0 * abs(dot(direction, cubeFaceAxis(face))));
+    vec3 v = cubeFaceV(face) * (2.0 * abs(dot(direction, cubeFaceAxis(face))));
+    float sum = 0.0;
+    float weights = 0.0;
+    for (uint i = 0u; i < filterSampleCount(); ++i) {
+        vec3 s = filterSample(i, angle);
+        sum += s.z * texture(pointShadows, vec4(direction + u * s.x + v * s.y, cube), reference);
+        weights += s.z;
+    }
+    return sum / weights;
+}
+
+// Fraction of `light` reaching `position` past the shadow casters (1 = lit), blended by the
+// light's shadow strength. Called only where the light's attenuation is non-zero.
+float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3 normal) {
+    uint first = uint(light.angleOffsetShadow.y);
+    vec3 lightPosition = light.positionInvRangeSq.xyz;
+    float angle = SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_DISK ? hashToUnit(position) * 6.28318531 : 0.0;
+    float visibility = 1.0;
+    if (light.angleOffsetShadow.z > -1.0) {
+        // Spot: one view. Linear depth along the spot axis sizes the texel (design notes).
+        GpuShadowView view = shadowViews[first];
+        if (view.params.x < 0.0) return 1.0;  // no caster in its frustum
+        float linearDepth = abs(dot(lightPosition - position, light.directionAngleScale.xyz));
+        float texel = view.params.y * linearDepth * frame.shadowMap.y;
+        vec3 biased = applyShadowBias(position, normal, toLight, texel, frame.shadowMap.w, frame.shadowBias);
+        vec4 clip = view.viewProjection * vec4(biased, 1.0);
+        if (clip.w <= 0.0) return 1.0;
+        vec3 ndc = clip.xyz / clip.w;  // perspective: divide by w
+        visibility = filterLayer(spotShadows, ndc.xy * 0.5 + 0.5, view.params.x, ndc.z, angle);
+    } else {
+        // Point: the face is the major axis of the light-to-point direction.
+        vec3 direction = position - lightPosition;
+        uint face = cubeFaceOfDirection(direction);
+        float linearDepth = abs(dot(direction, cubeFaceAxis(face)));
+        float texel = shadowViews[first + face].params.y * linearDepth * frame.shadowMap.y;
+        vec3 biased = applyShadowBias(position, normal, toLight, texel, frame.shadowMap.w, frame.shadowBias);
+        vec3 biasedDirection = biased - lightPosition;
+        face = cubeFaceOfDirection(biasedDirection);
+        GpuShadowView view = shadowViews[first + face];
+        if (POINT_SHADOW_LAYOUT == PUNCTUAL_POINT_SHADOW_CUBE) {
+            float reference = perspectiveDepth(abs(dot(biasedDirection, cubeFaceAxis(face))), view.params.z, view.params.w);
+            visibility = filterCube(biasedDirection, face, floor(view.params.x / 6.0), reference, angle);
+        } else {
+            vec4 clip = view.viewProjection * vec4(biased, 1.0);
+            vec3 ndc = clip.xyz / clip.w;
+            visibility = filterLayer(pointSlices, ndc.xy * 0.5 + 0.5, view.params.x, ndc.z, angle);
+        }
+    }
+    return mix(1.0, visibility, light.angleOffsetShadow.w);
+}

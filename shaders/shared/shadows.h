@@ -1,0 +1,75 @@
+// Shadow-map geometry shared by the C++ shadow setup and the forward shader: cube-face selection
+// and orientation, depth mapping along a face's axis, and the receiver bias of the design notes.
+#ifndef PUNCTUAL_SHADOWS_H
+#define PUNCTUAL_SHADOWS_H
+
+#include "glsl_cpp.h"
+
+PUNCTUAL_NAMESPACE_BEGIN
+
+// The cube face a direction falls on, in Vulkan's order +X -X +Y -Y +Z -Z: the axis of the
+// largest component (ties go to X, then Y, as the hardware does).
+PUNCTUAL_FN uint cubeFaceOfDirection(vec3 d) {
+    vec3 a = abs(d);
+    if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0f ? 0u : 1u;
+    if (a.y >= a.z) return d.y >= 0.0f ? 2u : 3u;
+    return d.z >= 0.0f ? 4u : 5u;
+}
+
+// A face's unit axis (the direction its centre looks along).
+PUNCTUAL_FN vec3 cubeFaceAxis(uint face) {
+    float s = (face & 1u) == 0u ? 1.0f : -1.0f;
+    if (face < 2u) return vec3(s, 0.0f, 0.0f);
+    if (face < 4u) return vec3(0.0f, s, 0.0f);
+    return vec3(0.0f, 0.0f, s);
+}
+
+// The face's texture axes as Vulkan defines cube sampling (spec, "Cube Map Face Selection"):
+// for a direction r on face f, s = (sc / |ma| + 1) / 2 and t = (tc / |ma| + 1) / 2 with
+//   +X: sc = -rz, tc = -ry   -X: sc = +rz, tc = -ry
+//   +Y: sc = +rx, tc = +rz   -Y: sc = +rx, tc = -rz
+//   +Z: sc = +rx, tc = -ry   -Z: sc = -rx, tc = -ry
+// cubeFaceU/V return the world directions along which s and t grow. Rendering a face with
+// clip.x = dot(r, U), clip.y = dot(r, V), clip.w = dot(r, axis) writes texels exactly where the
+// hardware will later read them, with no per-face flips to remember.
+PUNCTUAL_FN vec3 cubeFaceU(uint face) {
+    if (face == 0u) return vec3(0.0f, 0.0f, -1.0f);
+    if (face == 1u) return vec3(0.0f, 0.0f, 1.0f);
+    if (face == 5u) return vec3(-1.0f, 0.0f, 0.0f);
+    return vec3(1.0f, 0.0f, 0.0f);
+}
+
+PUNCTUAL_FN vec3 cubeFaceV(uint face) {
+    if (face == 2u) return vec3(0.0f, 0.0f, 1.0f);
+    if (face == 3u) return vec3(0.0f, 0.0f, -1.0f);
+    return vec3(0.0f, -1.0f, 0.0f);
+}
+
+// Perspective depth (0 at near, 1 at far) of a point at distance `linearDepth` along a view's
+// axis: depth = f (d - n) / (d (f - n)) = A + B / d with A = f / (f - n), B = -f n / (f - n),
+// the same mapping a Vulkan perspective projection (depth 0..1) gives.
+PUNCTUAL_FN float perspectiveDepth(float linearDepth, float nearPlane, float farPlane) {
+    return farPlane * (linearDepth - nearPlane) / (linearDepth * (farPlane - nearPlane));
+}
+
+// ApplyShadowBias (custom SRP, "Shadow Bias and PCF"): moves the receiver towards the light (L)
+// and along its normal (N) by multiples of the shadow-map texel's world size at the receiver,
+// widened by the filter's penumbra (in texels):
+//   depth bias        texel (1 + p) bias.x L
+//   slope-scaled      texel (1 + p) tan(theta) bias.y L     (tan clamped to 50)
+//   normal offset     texel (1 + p) bias.z N
+//   sin-scaled normal texel (1 + p) sin(theta) bias.w N
+// where theta is the angle between N and L. Grazing receivers (large tan) move further, which is
+// what keeps acne away at up to 80 degrees.
+PUNCTUAL_FN vec3 applyShadowBias(vec3 position, vec3 normal, vec3 toLight, float texelSize, float penumbraTexels,
+                                 vec4 bias) {
+    float cosTheta = clamp(dot(normal, toLight), 0.0f, 1.0f);
+    float sinTheta = sqrt(max(1.0f - cosTheta * cosTheta, 0.0f));
+    float tanTheta = clamp(sinTheta / max(cosTheta, 1e-4f), 0.0f, 50.0f);
+    float scale = texelSize * (1.0f + penumbraTexels);
+    return position + toLight * (scale * (bias.x + tanTheta * bias.y)) + normal * (scale * (bias.z + sinTheta * bias.w));
+}
+
+PUNCTUAL_NAMESPACE_END
+
+#endif

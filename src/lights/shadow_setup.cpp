@@ -1,0 +1,242 @@
+#include "lights/shadow_setup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+#include "shadows.h"
+
+namespace punctual {
+namespace {
+
+// Spots wider than this are shadowed with a frustum of this half-angle: a perspective frustum
+// cannot reach 90 degrees (tan -> infinity) and texels stretch without bound on the way. The
+// rim between 80 and 90 degrees then stays unshadowed (README, "Shadows").
+constexpr float kMaxSpotShadowHalfAngle = 1.3962634f;  // 80 degrees
+
+// True when the box may meet the frustum (each plane tested against the box corner furthest
+// along its normal).
+bool boxMeetsFrustum(const Frustum& frustum, const Bounds& box) {
+    for (const glm::vec4& plane : frustum.planes) {
+        const glm::vec3 n(plane);
+        const glm::vec3 corner(n.x >= 0.0f ? box.max.x : box.min.x, n.y >= 0.0f ? box.max.y : box.min.y,
+                               n.z >= 0.0f ? box.max.z : box.min.z);
+        if (glm::dot(n, corner) + plane.w < 0.0f) return false;
+    }
+    return true;
+}
+
+float distanceToBox(const glm::vec3& p, const Bounds& box) {
+    return glm::length(p - glm::clamp(p, box.min, box.max));
+}
+
+// Objects meeting the frustum of `viewProjection`, and the nearest of them to `position`.
+std::vector<uint32_t> findCasters(const Scene& scene, const glm::mat4& viewProjection, const glm::vec3& position,
+                                  float& nearestDistance) {
+    const Frustum frustum = extractFrustum(viewProjection);
+    std::vector<uint32_t> casters;
+    nearestDistance = std::numeric_limits<float>::max();
+    for (uint32_t i = 0; i < scene.objects.size(); ++i) {
+        if (!boxMeetsFrustum(frustum, scene.objects[i].worldBounds)) continue;
+        casters.push_back(i);
+        nearestDistance = std::min(nearestDistance, distanceToBox(position, scene.objects[i].worldBounds));
+    }
+    return casters;
+}
+
+// Near plane from the casters: just short of the nearest one, never closer than 1/1000 of the
+// range (depth precision) nor beyond the range. Nothing lies between the light and the nearest
+// caster, so receivers there (depth < 0) compare as lit, which they are.
+float nearPlaneFor(float nearestCaster, float range) {
+    return std::clamp(nearestCaster * 0.9f, range * 1e-3f, range * 0.5f);
+}
+
+glm::mat4 spotViewProjection(const glm::vec3& position, const glm::vec3& direction, float halfAngle, float nearPlane,
+                             float farPlane) {
+    const glm::vec3 up = std::abs(direction.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    const glm::mat4 view = glm::lookAtRH(position, position + direction, up);
+    return glm::perspectiveRH_ZO(2.0f * halfAngle, 1.0f, nearPlane, farPlane) * view;
+}
+
+}  // namespace
+
+float ShadowSettings::penumbraTexels() const {
+    switch (filter) {
+        case ShadowFilter::Hardware: return 0.5f;
+        case ShadowFilter::Tent3: return 1.5f;
+        case ShadowFilter::Tent5: return 2.5f;
+        case ShadowFilter::Tent7: return 3.5f;
+        case ShadowFilter::Disk: return diskRadius * float(resolution);
+    }
+    return 0.5f;
+}
+
+const char* shadowFilterName(ShadowFilter filter) {
+    switch (filter) {
+        case ShadowFilter::Hardware: return "hw";
+        case ShadowFilter::Tent3: return "tent3";
+        case ShadowFilter::Tent5: return "tent5";
+        case ShadowFilter::Tent7: return "tent7";
+        case ShadowFilter::Disk: return "disk";
+    }
+    return "unknown";
+}
+
+ShadowFilter parseShadowFilter(const std::string& name) {
+    for (ShadowFilter f : {ShadowFilter::Hardware, ShadowFilter::Tent3, ShadowFilter::Tent5, ShadowFilter::Tent7,
+                           ShadowFilter::Disk}) {
+        if (name == shadowFilterName(f)) return f;
+    }
+    throw Error("--shadow-filter", "expected hw, tent3, tent5, tent7 or disk, got '" + name + "'");
+}
+
+const char* pointShadowLayoutName(PointShadowLayout layout) {
+    return layout == PointShadowLayout::Cube ? "cube" : "slices";
+}
+
+PointShadowLayout parsePointShadowLayout(const std::string& name) {
+    if (name == "cube") return PointShadowLayout::Cube;
+    if (name == "slices") return PointShadowLayout::Slices;
+    throw Error("--point-shadow-layout", "expected cube or slices, got '" + name + "'");
+}
+
+void validateShadowSettings(const ShadowSettings& settings) {
+    if (settings.resolution < 16 || settings.resolution > 8192 || (settings.resolution & (settings.resolution - 1)) != 0) {
+        throw Error("--shadow-res", "must be a power of two from 16 to 8192");
+    }
+    if (settings.diskSamples < 1 || settings.diskSamples > 64) throw Error("--shadow-samples", "must be from 1 to 64");
+    for (int i = 0; i < 4; ++i) {
+        if (!std::isfinite(settings.bias[i]) || settings.bias[i] < 0.0f || settings.bias[i] > 100.0f) {
+            throw Error("--shadow-bias", "each of the four biases must be from 0 to 100");
+        }
+    }
+    if (!std::isfinite(settings.diskRadius) || settings.diskRadius < 0.0f || settings.diskRadius > 0.1f) {
+        throw Error("--shadow-penumbra", "must be from 0 to 0.1 (shadow-map UV units)");
+    }
+    if (!std::isfinite(settings.strength) || settings.strength < 0.0f || settings.strength > 1.0f) {
+        throw Error("--shadow-strength", "must be from 0 to 1");
+    }
+}
+
+glm::mat4 cubeFaceViewProjection(const glm::vec3& position, uint32_t face, float nearPlane, float farPlane,
+                                 float scale) {
+    const glm::vec3 u = gpu::cubeFaceU(face) / scale;
+    const glm::vec3 v = gpu::cubeFaceV(face) / scale;
+    const glm::vec3 axis = gpu::cubeFaceAxis(face);
+    // depth = A + B / ma with A = f / (f - n), B = -f n / (f - n): clip.z = A ma + B, clip.w = ma.
+    const float a = farPlane / (farPlane - nearPlane);
+    const float b = -farPlane * nearPlane / (farPlane - nearPlane);
+    glm::mat4 m(0.0f);  // column-major: m[column][row]
+    for (int c = 0; c < 3; ++c) {
+        m[c][0] = u[c];
+        m[c][1] = v[c];
+        m[c][2] = a * axis[c];
+        m[c][3] = axis[c];
+    }
+    m[3][0] = -glm::dot(u, position);
+    m[3][1] = -glm::dot(v, position);
+    m[3][2] = -a * glm::dot(axis, position) + b;
+    m[3][3] = -glm::dot(axis, position);
+    return m;
+}
+
+ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3& cameraPosition,
+                       const ShadowSettings& settings) {
+    ShadowPlan plan;
+    for (gpu::GpuPunctualLight& light : lights.packed) {
+        light.angleOffsetShadow.y = -1.0f;
+        light.angleOffsetShadow.w = 0.0f;
+    }
+    if (!settings.enabled) return plan;
+
+    // Rank the shadow casters of each type; the most important keep their shadows.
+    auto rankedCasters = [&](uint32_t first, uint32_t count, uint32_t cap) {
+        std::vector<uint32_t> order;
+        for (uint32_t i = first; i < first + count; ++i) {
+            if (scene.lights[lights.sceneLightIndex[i]].castsShadow) order.push_back(i);
+        }
+        std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+            return lightImportance(scene.lights[lights.sceneLightIndex[a]], cameraPosition) >
+                   lightImportance(scene.lights[lights.sceneLightIndex[b]], cameraPosition);
+        });
+        if (order.size() > cap) {
+            plan.droppedByCap += uint32_t(order.size() - cap);
+            order.resize(cap);
+        }
+        std::sort(order.begin(), order.end());  // packed order: stable layer assignment
+        return order;
+    };
+    const std::vector<uint32_t> spots = rankedCasters(0, lights.spotCount, PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS);
+    const std::vector<uint32_t> points =
+        rankedCasters(lights.spotCount, lights.pointCount, PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS);
+
+    for (uint32_t index : spots) {
+        const Light& source = scene.lights[lights.sceneLightIndex[index]];
+        gpu::GpuPunctualLight& light = lights.packed[index];
+        const glm::vec3 position(light.positionInvRangeSq);
+        const glm::vec3 direction(light.directionAngleScale);
+        const float range = light.radiantColor.w;
+        const float halfAngle = std::min(std::acos(std::clamp(light.angleOffsetShadow.z, -1.0f, 1.0f)), kMaxSpotShadowHalfAngle);
+        // Casters are found with the widest frustum (near at 1/1000 of the range), then the near
+        // plane moves out to just short of the nearest one.
+        float nearest = 0.0f;
+        ShadowView view;
+        view.casters = findCasters(scene, spotViewProjection(position, direction, halfAngle, range * 1e-3f, range),
+                                   position, nearest);
+        const float nearPlane = nearPlaneFor(nearest, range);
+        view.gpu.viewProjection = spotViewProjection(position, direction, halfAngle, nearPlane, range);
+        view.layer = plan.shadowedSpots++;
+        view.packedLight = index;
+        view.gpu.params = glm::vec4(view.casters.empty() ? -1.0f : float(view.layer), 2.0f * std::tan(halfAngle),
+                                    nearPlane, range);
+        (view.casters.empty() ? plan.viewsSkipped : plan.viewsRendered)++;
+        light.angleOffsetShadow.y = float(plan.views.size());
+        light.angleOffsetShadow.w = settings.strength * source.shadowStrength;
+        plan.views.push_back(std::move(view));
+    }
+
+    // Slices: widen each face so that a filter reaching `penumbraTexels` (plus one for the
+    // bilinear footprint) past the face edge still reads the same slice (URP's guard angle).
+    plan.sliceScale = settings.pointLayout == PointShadowLayout::Slices
+                          ? 1.0f + 2.0f * (settings.penumbraTexels() + 1.0f) / float(settings.resolution)
+                          : 1.0f;
+    for (uint32_t index : points) {
+        const Light& source = scene.lights[lights.sceneLightIndex[index]];
+        gpu::GpuPunctualLight& light = lights.packed[index];
+        const glm::vec3 position(light.positionInvRangeSq);
+        const float range = light.radiantColor.w;
+        const uint32_t cube = plan.shadowedPoints++;
+        light.angleOffsetShadow.y = float(plan.views.size());
+        light.angleOffsetShadow.w = settings.strength * source.shadowStrength;
+        // One near plane for the whole cube: the hardware filters across face edges (seamless
+        // cube sampling), so every face must map depth the same way.
+        std::vector<ShadowView> faces(6);
+        float nearestOfAll = std::numeric_limits<float>::max();
+        for (uint32_t face = 0; face < 6; ++face) {
+            float nearest = 0.0f;
+            faces[face].casters = findCasters(
+                scene, cubeFaceViewProjection(position, face, range * 1e-3f, range, plan.sliceScale), position, nearest);
+            nearestOfAll = std::min(nearestOfAll, nearest);
+        }
+        const float nearPlane = nearPlaneFor(nearestOfAll, range);
+        for (uint32_t face = 0; face < 6; ++face) {
+            ShadowView& view = faces[face];
+            view.gpu.viewProjection = cubeFaceViewProjection(position, face, nearPlane, range, plan.sliceScale);
+            view.layer = cube * 6 + face;
+            view.packedLight = index;
+            view.face = face;
+            view.isPoint = true;
+            // Point faces without casters are still cleared (to "far"): filters and the cube's
+            // seamless sampling may read across a face edge.
+            view.gpu.params = glm::vec4(float(view.layer), 2.0f * plan.sliceScale, nearPlane, range);
+            (view.casters.empty() ? plan.viewsSkipped : plan.viewsRendered)++;
+            plan.views.push_back(std::move(view));
+        }
+    }
+    return plan;
+}
+
+}  // namespace punctual

@@ -1,0 +1,86 @@
+#pragma once
+// Which lights cast shadows this frame, and the views the shadow stage renders for them.
+//
+// Spots take one view each (a perspective frustum of field of view 2 x outer angle) and one
+// layer of a 2D depth array; points take six views (+X -X +Y -Y +Z -Z) and one cube of a cube
+// depth array, or six layers of a 2D array with a widened field of view (URP's "slices"). At
+// most 32 spots and 8 points are shadowed, chosen by rank. Every view lists the objects whose
+// bounds meet its frustum; a view with none is not rendered.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gpu_types.h"
+#include "lights/light_setup.h"
+#include "scene/scene.h"
+
+namespace punctual {
+
+enum class ShadowFilter : uint32_t {
+    Hardware = PUNCTUAL_SHADOW_FILTER_HW,
+    Tent3 = PUNCTUAL_SHADOW_FILTER_TENT3,
+    Tent5 = PUNCTUAL_SHADOW_FILTER_TENT5,
+    Tent7 = PUNCTUAL_SHADOW_FILTER_TENT7,
+    Disk = PUNCTUAL_SHADOW_FILTER_DISK,
+};
+enum class PointShadowLayout : uint32_t { Cube = PUNCTUAL_POINT_SHADOW_CUBE, Slices = PUNCTUAL_POINT_SHADOW_SLICES };
+
+const char* shadowFilterName(ShadowFilter filter);  // "hw", "tent3", "tent5", "tent7", "disk"
+ShadowFilter parseShadowFilter(const std::string& name);  // throws Error("--shadow-filter", ...)
+const char* pointShadowLayoutName(PointShadowLayout layout);  // "cube", "slices"
+PointShadowLayout parsePointShadowLayout(const std::string& name);
+
+struct ShadowSettings {
+    bool enabled = true;
+    uint32_t resolution = 1024;  // texels a side, every layer
+    ShadowFilter filter = ShadowFilter::Tent5;
+    uint32_t diskSamples = 16;
+    // Disk radius in shadow-map UV units: a fixed share of the map, so the penumbra does not
+    // change with the resolution (the design notes' "penumbra independent of map size").
+    float diskRadius = 2.5f / 1024.0f;
+    glm::vec4 bias{1.0f, 1.0f, 1.0f, 0.0f};  // depth, slope-scaled, normal, sin-scaled normal
+    PointShadowLayout pointLayout = PointShadowLayout::Cube;
+    float strength = 1.0f;  // multiplies every light's own shadow strength
+
+    // The filter's reach in texels, which widens the bias (the design notes' penumbra).
+    float penumbraTexels() const;
+};
+
+// Throws Error naming the option for out-of-range settings.
+void validateShadowSettings(const ShadowSettings& settings);
+
+struct ShadowView {
+    gpu::GpuShadowView gpu;
+    std::vector<uint32_t> casters;  // object indices whose bounds meet the view's frustum
+    uint32_t packedLight = 0;       // index into FrameLights::packed
+    uint32_t face = 0;              // 0 for spots; the cube face for points
+    uint32_t layer = 0;             // in the spot array, or in the point cube / slice array
+    bool isPoint = false;
+};
+
+struct ShadowPlan {
+    std::vector<ShadowView> views;  // spots first (one each), then points (six each)
+    uint32_t shadowedSpots = 0;     // layers of the spot array
+    uint32_t shadowedPoints = 0;    // cubes of the point array (or groups of six slices)
+    uint32_t droppedByCap = 0;      // shadow-casting lights over the caps (they stay unshadowed)
+    uint32_t viewsRendered = 0;     // views with at least one caster
+    uint32_t viewsSkipped = 0;      // views with none (spots: not even cleared; points: cleared)
+    float sliceScale = 1.0f;        // slices layout: tan of half the widened field of view
+};
+
+// Chooses the shadowed lights (by lightImportance, see light_setup.h), builds their views and
+// writes each shadowed light's first view index and strength into `lights.packed`
+// (angleOffsetShadow.y and .w). Lights without a shadow keep y = -1.
+ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3& cameraPosition,
+                       const ShadowSettings& settings);
+
+// The matrix of cube face `face` of a light at `position`: clip.x = dot(r, U) / scale,
+// clip.y = dot(r, V) / scale, clip.w = dot(r, axis) for r = p - position (see shadows.h), and a
+// depth of 0 at `nearPlane`, 1 at `farPlane` along the axis. scale = 1 for a cube face, > 1 for a
+// widened slice.
+glm::mat4 cubeFaceViewProjection(const glm::vec3& position, uint32_t face, float nearPlane, float farPlane,
+                                 float scale = 1.0f);
+
+}  // namespace punctual
