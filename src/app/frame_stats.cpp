@@ -52,6 +52,27 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
     return json;
 }
 
+nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
+    const ShadowSettings& settings = renderer.settings().shadows;
+    const ShadowPlan& plan = renderer.shadowPlan();
+    return {
+        {"enabled", settings.enabled},
+        {"resolution", settings.resolution},
+        {"filter", shadowFilterName(settings.filter)},
+        {"samples", settings.diskSamples},
+        {"penumbra", settings.diskRadius},
+        {"bias", {settings.bias.x, settings.bias.y, settings.bias.z, settings.bias.w}},
+        {"strength", settings.strength},
+        {"point_layout", pointShadowLayoutName(settings.pointLayout)},
+        {"shadowed_spots", plan.shadowedSpots},
+        {"shadowed_points", plan.shadowedPoints},
+        {"dropped_by_cap", plan.droppedByCap},
+        {"views_rendered", plan.viewsRendered},
+        {"views_skipped", plan.viewsSkipped},
+        {"memory_bytes", renderer.shadowMemoryBytes()},
+    };
+}
+
 std::string timingTable(const render::PassTimings& ms) {
     std::string table = "pass        GPU ms\n";
     auto row = [&](const char* name, double value) {

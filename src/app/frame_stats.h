@@ -18,6 +18,11 @@ nlohmann::json frameStatsJson(const render::FrameResult& result, const render::R
 //  "per_object": {"objects_over_cap", "max_candidates"}}
 nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Renderer& renderer);
 
+// {"enabled", "resolution", "filter", "samples", "penumbra", "bias", "strength", "point_layout",
+//  "shadowed_spots", "shadowed_points", "dropped_by_cap", "views_rendered", "views_skipped",
+//  "memory_bytes"}
+nlohmann::json shadowStatsJson(const render::Renderer& renderer);
+
 std::string timingTable(const render::PassTimings& ms);
 
 }  // namespace punctual::app

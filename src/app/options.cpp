@@ -25,6 +25,29 @@ uint32_t parseCount(const std::string& option, const std::string& text, uint32_t
     return value;
 }
 
+float parseFloat(const std::string& option, const std::string& text) {
+    float value = 0.0f;
+    if (!parseNumber(text, value) || !std::isfinite(value)) {
+        throw Error(option, "expected a number, got '" + text + "'");
+    }
+    return value;
+}
+
+// "1,1,1,0" -> the four shadow biases.
+glm::vec4 parseBias(const std::string& text) {
+    glm::vec4 bias(0.0f);
+    size_t start = 0;
+    for (int i = 0; i < 4; ++i) {
+        const size_t comma = text.find(',', start);
+        if ((i < 3) != (comma != std::string::npos)) {
+            throw Error("--shadow-bias", "expected four numbers DEPTH,SLOPE,NORMAL,SIN_NORMAL, got '" + text + "'");
+        }
+        bias[i] = parseFloat("--shadow-bias", text.substr(start, comma - start));
+        start = comma + 1;
+    }
+    return bias;
+}
+
 }  // namespace
 
 void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
@@ -71,6 +94,24 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             options.slices = parseCount(arg, value(), 1, PUNCTUAL_MAX_CLUSTER_SLICES);
         } else if (arg == "--heatmap") {
             options.heatmapPath = value();
+        } else if (arg == "--shadows") {
+            const std::string& text = value();
+            if (text != "on" && text != "off") throw Error(arg, "expected on or off, got '" + text + "'");
+            options.shadows.enabled = text == "on";
+        } else if (arg == "--shadow-res") {
+            options.shadows.resolution = parseCount(arg, value(), 16, 8192);
+        } else if (arg == "--shadow-filter") {
+            options.shadows.filter = parseShadowFilter(value());
+        } else if (arg == "--shadow-samples") {
+            options.shadows.diskSamples = parseCount(arg, value(), 1, 64);
+        } else if (arg == "--shadow-bias") {
+            options.shadows.bias = parseBias(value());
+        } else if (arg == "--shadow-penumbra") {
+            options.shadows.diskRadius = parseFloat(arg, value());
+        } else if (arg == "--shadow-strength") {
+            options.shadows.strength = parseFloat(arg, value());
+        } else if (arg == "--point-shadow-layout") {
+            options.shadows.pointLayout = parsePointShadowLayout(value());
         } else if (arg == "--exposure") {
             const std::string& text = value();
             float exposure = 0.0f;
@@ -86,6 +127,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             throw Error(arg, "unexpected argument: only one scene file can be given");
         }
     }
+    validateShadowSettings(options.shadows);
     return options;
 }
 
@@ -105,6 +147,15 @@ options:
   --tile-size N        tile size in pixels for tiled and clustered culling (default 16)
   --slices N           depth slices for clustered culling, 1 to 32 (default 16)
   --heatmap FILE.png   draw the lights tested per pixel as a colour map with a legend
+  --shadows on|off     spot and point shadows (default on: up to 32 spots, 8 points)
+  --shadow-res N       shadow-map resolution, a power of two (default 1024)
+  --shadow-filter F    hw (2x2), tent3, tent5 (default), tent7, or disk
+  --shadow-samples N   disk filter samples, 1 to 64 (default 16)
+  --shadow-penumbra W  disk radius in shadow-map UV units (default 0.00244 = 2.5/1024)
+  --shadow-bias D,S,N,SN  depth, slope-scaled, normal and sin-scaled normal bias, in texels
+                       at the receiver (default 1,1,1,0)
+  --shadow-strength S  0 (no shadow) to 1 (default 1), times each light's own strength
+  --point-shadow-layout cube|slices  cube map array (default) or six widened 2D slices
   --exposure X         linear exposure before tone mapping (default 1)
   --frames N           render N frames and report the median GPU times (default 1)
   --device N           use Vulkan device N (see `punctual devices`); default: the best one

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "lights/shadow_setup.h"
 #include "render/light_list_method.h"
 #include "scene/light_generator.h"
 
@@ -25,6 +26,7 @@ struct RenderOptions {
     uint32_t tileSize = 16;                // --tile-size N
     uint32_t slices = 16;                  // --slices N (clustered)
     std::optional<std::string> heatmapPath;  // --heatmap FILE.png
+    ShadowSettings shadows;                // --shadows, --shadow-res, --shadow-filter, ...
 };
 
 // Parses the arguments after the command name. Throws punctual::Error naming the option.

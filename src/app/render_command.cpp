@@ -58,6 +58,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
     settings.tileSize = options.tileSize;
     settings.clusterSlices = options.slices;
     settings.collectLightStats = options.statsPath.has_value() || options.heatmapPath.has_value();
+    settings.shadows = options.shadows;
     render::Renderer renderer(context, scene, settings);
     const render::FrameResult result = renderer.render(options.frames);
     std::optional<LightStatsImage> lightStats;
@@ -76,6 +77,13 @@ int runRenderCommand(const std::vector<std::string>& args) {
     std::printf("lights: %u spot, %u point, %u directional (%u outside the view, %u over the caps)\n",
                 lights.spotCount, lights.pointCount, lights.directionalCount, lights.culledByFrustum,
                 lights.droppedByCap);
+    const ShadowPlan& shadows = renderer.shadowPlan();
+    if (settings.shadows.enabled) {
+        std::printf("shadows: %u spot, %u point (%s), %u views rendered, %u skipped, %.1f MiB, %s filter, %u texels\n",
+                    shadows.shadowedSpots, shadows.shadowedPoints, pointShadowLayoutName(settings.shadows.pointLayout),
+                    shadows.viewsRendered, shadows.viewsSkipped, double(renderer.shadowMemoryBytes()) / 1048576.0,
+                    shadowFilterName(settings.shadows.filter), settings.shadows.resolution);
+    }
     std::fputs(timingTable(result.medianMs).c_str(), stdout);
 
     OutputFiles outputs;
@@ -88,6 +96,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
         if (options.statsPath) {
             nlohmann::json stats = frameStatsJson(result, renderer, scene, context.deviceName(), options.frames);
             stats["culling"] = cullingStatsJson(culling, renderer);
+            stats["shadows"] = shadowStatsJson(renderer);
             outputs.add(*options.statsPath, stats.dump(2) + "\n");
         }
         if (options.heatmapPath) {

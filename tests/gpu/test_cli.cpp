@@ -81,7 +81,11 @@ TEST(Cli, RenderWritesImageAndStats) {
     }
     EXPECT_GT(stats["gpu_ms"]["forward"].get<double>(), 0.0);
     EXPECT_GT(stats["gpu_ms"]["culling"].get<double>(), 0.0);  // tiled culling is the default
-    EXPECT_EQ(stats["gpu_ms"]["shadows"].get<double>(), 0.0);  // not run
+    EXPECT_GT(stats["gpu_ms"]["shadows"].get<double>(), 0.0);  // shadows are on by default
+    EXPECT_EQ(stats["shadows"]["shadowed_spots"].get<int>(), 32);
+    EXPECT_EQ(stats["shadows"]["shadowed_points"].get<int>(), 8);
+    EXPECT_EQ(stats["shadows"]["views_rendered"].get<int>() + stats["shadows"]["views_skipped"].get<int>(), 32 + 6 * 8);
+    EXPECT_GT(stats["shadows"]["memory_bytes"].get<double>(), 0.0);
     EXPECT_EQ(stats["culling"]["method"].get<std::string>(), "tiled");
     for (const char* key : {"tested_per_pixel", "affecting_per_pixel", "max_tested", "missed_energy"}) {
         EXPECT_TRUE(stats["culling"].contains(key)) << key;
@@ -110,6 +114,17 @@ TEST(Cli, BruteForceRunsNoCullingPass) {
     const nlohmann::json stats = nlohmann::json::parse(readText(json));
     EXPECT_EQ(stats["gpu_ms"]["culling"].get<double>(), 0.0);
     EXPECT_EQ(stats["culling"]["tested_per_pixel"].get<double>(), 96.0);
+}
+
+TEST(Cli, ShadowsOffRunsNoShadowPassAndAllocatesPlaceholdersOnly) {
+    testing::TempFolder folder;
+    const std::string json = folder.file("stats.json");
+    const RunResult run = runPunctual(folder, "render --validate --size 64x36 --shadows off --stats '" + json + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json stats = nlohmann::json::parse(readText(json));
+    EXPECT_EQ(stats["gpu_ms"]["shadows"].get<double>(), 0.0);
+    EXPECT_EQ(stats["shadows"]["views_rendered"].get<int>(), 0);
+    EXPECT_LT(stats["shadows"]["memory_bytes"].get<double>(), 65536.0);  // three 1x1 placeholders
 }
 
 TEST(Cli, GeneratedLightsReplaceTheScenes) {
@@ -143,6 +158,15 @@ TEST(Cli, BadOptionsFailCleanly) {
     expectCleanFailure(folder, "render --tile-size 2", "--tile-size");
     expectCleanFailure(folder, "render --slices 33", "--slices");
     expectCleanFailure(folder, "render --heatmap", "--heatmap");
+    expectCleanFailure(folder, "render --shadows maybe", "--shadows");
+    expectCleanFailure(folder, "render --shadow-res 1000", "--shadow-res");
+    expectCleanFailure(folder, "render --shadow-filter box", "--shadow-filter");
+    expectCleanFailure(folder, "render --shadow-samples 0", "--shadow-samples");
+    expectCleanFailure(folder, "render --shadow-bias 1,2,3", "--shadow-bias");
+    expectCleanFailure(folder, "render --shadow-bias 1,-2,3,0", "--shadow-bias");
+    expectCleanFailure(folder, "render --shadow-penumbra x", "--shadow-penumbra");
+    expectCleanFailure(folder, "render --shadow-strength 2", "--shadow-strength");
+    expectCleanFailure(folder, "render --point-shadow-layout sphere", "--point-shadow-layout");
     expectCleanFailure(folder, "render --no-such-option", "--no-such-option");
 }
 
