@@ -7,6 +7,7 @@ packages=(
   mesa-vulkan-drivers libvulkan-dev vulkan-validationlayers  # Vulkan: lavapipe, headers/loader, validation
   glslang-tools                                              # GLSL -> SPIR-V at build time
   libglm-dev libembree-dev libtbb-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libgtest-dev
+  libtinyexr-dev                                             # OpenEXR output of `punctual validate --export-exr`
   python3-matplotlib                                         # charts in bench/
 )
 

@@ -28,6 +28,9 @@ layout(constant_id = PUNCTUAL_SPEC_SHADOWS) const bool SHADOWS = false;
 layout(constant_id = PUNCTUAL_SPEC_SHADOW_FILTER) const uint SHADOW_FILTER = PUNCTUAL_SHADOW_FILTER_TENT5;
 layout(constant_id = PUNCTUAL_SPEC_SHADOW_SAMPLES) const uint SHADOW_SAMPLES = 16u;
 layout(constant_id = PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT) const uint POINT_SHADOW_LAYOUT = PUNCTUAL_POINT_SHADOW_CUBE;
+// Validation variant: also writes this pixel's surface and every shadowed light's shadow factor
+// into shadowDebug, for comparison with ray-traced visibility. Never used for timing.
+layout(constant_id = PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS) const bool WRITE_SHADOW_FACTORS = false;
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHTS) readonly buffer LightBlock { GpuPunctualLight lights[]; };
@@ -46,7 +49,11 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_VIEWS) readonly buffer
 layout(set = 0, binding = PUNCTUAL_BINDING_SPOT_SHADOWS) uniform sampler2DArrayShadow spotShadows;
 layout(set = 0, binding = PUNCTUAL_BINDING_POINT_SHADOWS) uniform samplerCubeArrayShadow pointShadows;
 layout(set = 0, binding = PUNCTUAL_BINDING_POINT_SLICES) uniform sampler2DArrayShadow pointSlices;
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_DEBUG) writeonly buffer ShadowDebugBlock { uint shadowDebug[]; };
 layout(push_constant) uniform DrawConstants { uint objectIndex; } draw;
+
+// Validation variant: the bytes of this pixel's shadow factors, all "not reached" to start.
+uint shadowFactorWords[PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS];
 
 layout(location = 0) in vec3 inWorldPosition;
 layout(location = 1) in vec3 inWorldNormal;
@@ -82,6 +89,15 @@ vec3 shadeLight(Surface surface, GpuPunctualLight light) {
     float shadow = 1.0;
     if (SHADOWS && arrival.attenuation > 0.0 && light.angleOffsetShadow.y >= 0.0) {
         shadow = shadowVisibility(light, arrival.toLight, surface.position, surface.normal);
+        if (WRITE_SHADOW_FACTORS) {
+            // The light's slot: its view index for spots; shadowed spots + cube index for points.
+            uint first = uint(light.angleOffsetShadow.y);
+            uint spots = frame.shadowCounts.x;
+            uint slot = first < spots ? first : spots + (first - spots) / 6u;
+            uint shift = (slot & 3u) * 8u;
+            uint quantised = uint(round(clamp(shadow, 0.0, 1.0) * 254.0));
+            shadowFactorWords[slot >> 2u] = (shadowFactorWords[slot >> 2u] & ~(0xFFu << shift)) | (quantised << shift);
+        }
     }
     return shadeLightSample(surface, light, arrival, shadow);
 }
@@ -89,6 +105,9 @@ vec3 shadeLight(Surface surface, GpuPunctualLight light) {
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 void main() {
+    if (WRITE_SHADOW_FACTORS) {
+        for (uint i = 0u; i < PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS; ++i) shadowFactorWords[i] = 0xFFFFFFFFu;
+    }
     GpuObject object = objects[draw.objectIndex];
     GpuMaterial material = materials[object.material.x];
     vec4 baseColor = material.baseColorFactor;
@@ -151,6 +170,23 @@ void main() {
         }
     }
     outRadiance = vec4(radiance, 1.0);
+
+    if (WRITE_SHADOW_FACTORS) {
+        uvec2 pixel = uvec2(gl_FragCoord.xy);
+        uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
+        uint base = index * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS;
+        shadowDebug[base + 0u] = floatBitsToUint(inWorldPosition.x);
+        shadowDebug[base + 1u] = floatBitsToUint(inWorldPosition.y);
+        shadowDebug[base + 2u] = floatBitsToUint(inWorldPosition.z);
+        shadowDebug[base + 3u] = 1u;
+        shadowDebug[base + 4u] = floatBitsToUint(normal.x);
+        shadowDebug[base + 5u] = floatBitsToUint(normal.y);
+        shadowDebug[base + 6u] = floatBitsToUint(normal.z);
+        shadowDebug[base + 7u] = 0u;
+        uint factorBase = uint(frame.viewport.x * frame.viewport.y) * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS +
+                          index * PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS;
+        for (uint i = 0u; i < PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS; ++i) shadowDebug[factorBase + i] = shadowFactorWords[i];
+    }
 
     if (WRITE_LIGHT_STATS) {
         uint affecting = 0u;

@@ -34,6 +34,17 @@
 #define PUNCTUAL_BINDING_SPOT_SHADOWS 12  // sampler2DArrayShadow: one layer per shadowed spot
 #define PUNCTUAL_BINDING_POINT_SHADOWS 13 // samplerCubeArrayShadow: one cube per shadowed point (cube layout)
 #define PUNCTUAL_BINDING_POINT_SLICES 14  // sampler2DArrayShadow: six layers per shadowed point (slices layout)
+#define PUNCTUAL_BINDING_SHADOW_DEBUG 15  // validation: per-pixel surface and shadow factors (see below)
+
+// Shadow validation buffer (forward shader's WRITE_SHADOW_FACTORS variant), in 32-bit words:
+// per pixel PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS words (world position xyz, 1 if covered, shading
+// normal xyz, 0), then per pixel PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS words holding one byte per
+// shadowed light (slot order: spots, then points): the GPU shadow factor x 254, or 255 where the
+// light does not reach the pixel.
+#define PUNCTUAL_MAX_SHADOWED_LIGHTS (PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS + PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS)
+#define PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS 8
+#define PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS ((PUNCTUAL_MAX_SHADOWED_LIGHTS + 3) / 4)
+#define PUNCTUAL_SHADOW_FACTOR_NOT_REACHED 255u
 
 // Shadow filters (specialization constant PUNCTUAL_SPEC_SHADOW_FILTER).
 #define PUNCTUAL_SHADOW_FILTER_HW 0u     // one hardware 2x2 compare sample
@@ -65,6 +76,7 @@
 #define PUNCTUAL_SPEC_SHADOW_SAMPLES 6
 #define PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT 7
 #define PUNCTUAL_SPEC_SHADOWS 8
+#define PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS 9
 
 PUNCTUAL_NAMESPACE_BEGIN
 
@@ -98,6 +110,7 @@ struct GpuFrame {
     vec4 ndcToView;       // (1/P00, 1/P11, P20, P21): view ray through an NDC point (see culling.h)
     vec4 shadowBias;      // depth, slope-scaled depth, normal, sin-scaled normal offsets (x texel size x (1 + penumbra))
     vec4 shadowMap;       // x: resolution, y: 1 / resolution, z: disk radius (shadow-map UV), w: penumbra (texels)
+    uvec4 shadowCounts;   // x: shadowed spots (their views come first), y: shadowed points
 };
 
 // One rendered shadow view: a spot light's frustum, or one face of a point light (+X -X +Y -Y +Z

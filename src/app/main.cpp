@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "app/options.h"
+#include "app/reference_command.h"
 #include "app/render_command.h"
+#include "app/validate_command.h"
 #include "core/error.h"
 #include "vk/context.h"
 
@@ -16,6 +18,9 @@ constexpr const char* kUsage = R"(usage: punctual <command> [options]
 
 commands:
   render [SCENE] [options]   render a frame on the GPU and print per-pass GPU times
+  reference [SCENE] [opts]   ray trace the CPU reference image with Embree (see --help)
+  validate [SCENE] [options] --out-dir DIR
+                             compare the GPU's shadows with Embree's ray-cast visibility
   devices                    list the Vulkan devices (index, name, type)
   help                       this text; `punctual render --help` for the render options
 )";
@@ -39,6 +44,8 @@ int main(int argc, char** argv) {
         }
         const std::vector<std::string> rest(args.begin() + 1, args.end());
         if (args[0] == "render") return punctual::app::runRenderCommand(rest);
+        if (args[0] == "reference") return punctual::app::runReferenceCommand(rest);
+        if (args[0] == "validate") return punctual::app::runValidateCommand(rest);
         if (args[0] == "devices") return listDevices();
         std::fprintf(stderr, "punctual: error: unknown command '%s' (try punctual help)\n", args[0].c_str());
         return 2;

@@ -40,11 +40,13 @@ ForwardPass::ForwardPass(const vk::Context& context, const FrameBindings& bindin
         uint32_t shadowFilter;
         uint32_t shadowSamples;
         uint32_t pointShadowLayout;
+        VkBool32 writeShadowFactors;
     };
     const Constants constants{variant.lightList, variant.tileSize, variant.slices,
                               variant.writeLightStats ? VK_TRUE : VK_FALSE, variant.shadows ? VK_TRUE : VK_FALSE,
-                              variant.shadowFilter, variant.shadowSamples, variant.pointShadowLayout};
-    const std::array<VkSpecializationMapEntry, 8> entries = {{
+                              variant.shadowFilter, variant.shadowSamples, variant.pointShadowLayout,
+                              variant.writeShadowFactors ? VK_TRUE : VK_FALSE};
+    const std::array<VkSpecializationMapEntry, 9> entries = {{
         {PUNCTUAL_SPEC_LIGHT_LIST, offsetof(Constants, lightList), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_TILE_SIZE, offsetof(Constants, tileSize), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, offsetof(Constants, slices), sizeof(uint32_t)},
@@ -53,6 +55,7 @@ ForwardPass::ForwardPass(const vk::Context& context, const FrameBindings& bindin
         {PUNCTUAL_SPEC_SHADOW_FILTER, offsetof(Constants, shadowFilter), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SHADOW_SAMPLES, offsetof(Constants, shadowSamples), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT, offsetof(Constants, pointShadowLayout), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS, offsetof(Constants, writeShadowFactors), sizeof(VkBool32)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(constants), &constants};
 

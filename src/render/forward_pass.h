@@ -25,6 +25,7 @@ struct ForwardVariant {
     uint32_t shadowFilter = 0;     // PUNCTUAL_SHADOW_FILTER_*
     uint32_t shadowSamples = 16;   // disk filter
     uint32_t pointShadowLayout = 0;  // PUNCTUAL_POINT_SHADOW_*
+    bool writeShadowFactors = false;  // validation variant: per-pixel shadow factors
 };
 
 class ForwardPass {

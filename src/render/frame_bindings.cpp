@@ -30,6 +30,7 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
         {PUNCTUAL_BINDING_SPOT_SHADOWS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
         {PUNCTUAL_BINDING_POINT_SHADOWS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
         {PUNCTUAL_BINDING_POINT_SLICES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {PUNCTUAL_BINDING_SHADOW_DEBUG, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
     };
     setLayout_ = vk::createDescriptorSetLayout(device, bindings);
     pipelineLayout_ = vk::createPipelineLayout(device, {setLayout_.get(), scene.materialSetLayout()},
@@ -44,6 +45,7 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
     const VkDescriptorBufferInfo statsInfo{resources.lightStats.handle(), 0, VK_WHOLE_SIZE};
     const VkDescriptorBufferInfo cullLightsInfo{resources.cullLights.handle(), 0, VK_WHOLE_SIZE};
     const VkDescriptorBufferInfo shadowViewsInfo{resources.shadowViews.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo shadowDebugInfo{resources.shadowDebug.handle(), 0, VK_WHOLE_SIZE};
     const VkImageLayout readOnly = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     const VkDescriptorImageInfo spotShadowsInfo{resources.shadowSampler, resources.spotShadows, readOnly};
     const VkDescriptorImageInfo pointShadowsInfo{resources.shadowSampler, resources.pointShadows, readOnly};
@@ -70,6 +72,7 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
         {PUNCTUAL_BINDING_LIGHT_STATS, &statsInfo},
         {PUNCTUAL_BINDING_CULL_LIGHTS, &cullLightsInfo},
         {PUNCTUAL_BINDING_SHADOW_VIEWS, &shadowViewsInfo},
+        {PUNCTUAL_BINDING_SHADOW_DEBUG, &shadowDebugInfo},
     };
     for (const auto& [binding, info] : storage) {
         writes.push_back(vk::bufferWrite(set, binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, info));

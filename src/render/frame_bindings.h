@@ -33,6 +33,7 @@ struct FrameBindingResources {
     VkImageView pointShadows;    // cube array
     VkImageView pointSlices;     // 2D array
     VkSampler shadowSampler;     // compare sampler
+    const vk::Buffer& shadowDebug;  // validation variant output
 };
 
 class FrameBindings {

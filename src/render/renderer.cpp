@@ -32,7 +32,7 @@ struct Renderer::Resources {
     LightGridBuffers grid;
     vk::Buffer objectLights;
     vk::Buffer lightStats;
-    vk::Buffer cullLights;
+    vk::Buffer shadowDebug;    vk::Buffer cullLights;
     vk::Buffer shadowViews;
     ShadowMaps shadowMaps;
     FrameBindings bindings;
@@ -40,12 +40,18 @@ struct Renderer::Resources {
     std::unique_ptr<LightCullingPass> cullingPass;  // tiled and clustered only
     std::unique_ptr<ShadowPass> shadowPass;         // always: it also puts unused placeholders in their layout
     ForwardPass forwardPass;
-    std::unique_ptr<ForwardPass> statsForwardPass;  // only with collectLightStats
+    // Debug variants of the forward pass, each with its own command buffer; never timed.
+    struct DebugVariant {
+        std::unique_ptr<ForwardPass> pass;
+        const vk::Buffer* output = nullptr;  // cleared before the pass
+        VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
+    };
+    DebugVariant lightStatsVariant;     // with collectLightStats
+    DebugVariant shadowFactorsVariant;  // with collectShadowFactors
     TonemapPass tonemapPass;
     vk::Buffer readback;
     vk::GpuTimer timer;
     VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
-    VkCommandBuffer statsCommandBuffer = VK_NULL_HANDLE;
     vk::Handle<VkFence> fence;
 
     static vk::Image makeImage(const vk::Context& context, VkFormat format, VkImageUsageFlags usage,
@@ -70,7 +76,8 @@ struct Renderer::Resources {
         return buffer;
     }
 
-    static ForwardVariant forwardVariant(const RenderSettings& settings, const LightGridLayout& grid, bool stats) {
+    static ForwardVariant forwardVariant(const RenderSettings& settings, const LightGridLayout& grid, bool stats,
+                                         bool shadowFactors = false) {
         ForwardVariant variant;
         variant.lightList = uint32_t(settings.method);
         variant.tileSize = grid.tileSize;
@@ -80,6 +87,7 @@ struct Renderer::Resources {
         variant.shadowFilter = uint32_t(settings.shadows.filter);
         variant.shadowSamples = settings.shadows.diskSamples;
         variant.pointShadowLayout = uint32_t(settings.shadows.pointLayout);
+        variant.writeShadowFactors = shadowFactors;
         return variant;
     }
 
@@ -106,6 +114,14 @@ struct Renderer::Resources {
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                          VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                      vk::MemoryUse::DeviceLocal, "light stats"),
+          shadowDebug(context,
+                      settings.collectShadowFactors
+                          ? VkDeviceSize(settings.width) * settings.height *
+                                (PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS + PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS) * 4
+                          : 16,
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                          VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      vk::MemoryUse::DeviceLocal, "shadow debug"),
           cullLights(context, std::max<size_t>(frameLights.packed.size(), 1) * sizeof(gpu::CullLight),
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "cull lights"),
           shadowViews(context, std::max<size_t>(shadowPlan.views.size(), 1) * sizeof(gpu::GpuShadowView),
@@ -115,7 +131,7 @@ struct Renderer::Resources {
                    FrameBindingResources{frameUniform, lights, depth.view(), depthSampler, grid.grid, grid.depthRange,
                                          objectLights, lightStats, cullLights, shadowViews, shadowMaps.spots().view(),
                                          shadowMaps.pointCubes().view(), shadowMaps.pointSlices().view(),
-                                         shadowMaps.sampler()}),
+                                         shadowMaps.sampler(), shadowDebug}),
           depthPrepass(context, bindings, depth),
           forwardPass(context, bindings, radiance, depth, forwardVariant(settings, gridLayout, false)),
           tonemapPass(context, radiance, settings.exposure),
@@ -126,8 +142,14 @@ struct Renderer::Resources {
             cullingPass = std::make_unique<LightCullingPass>(context, bindings, gridLayout, settings.width, settings.height);
         }
         if (settings.collectLightStats) {
-            statsForwardPass = std::make_unique<ForwardPass>(context, bindings, radiance, depth,
-                                                             forwardVariant(settings, gridLayout, true));
+            lightStatsVariant.pass = std::make_unique<ForwardPass>(context, bindings, radiance, depth,
+                                                                   forwardVariant(settings, gridLayout, true));
+            lightStatsVariant.output = &lightStats;
+        }
+        if (settings.collectShadowFactors) {
+            shadowFactorsVariant.pass = std::make_unique<ForwardPass>(context, bindings, radiance, depth,
+                                                                      forwardVariant(settings, gridLayout, false, true));
+            shadowFactorsVariant.output = &shadowDebug;
         }
         shadowPass = std::make_unique<ShadowPass>(context, bindings, shadowMaps, shadowPlan, settings.shadows);
     }
@@ -151,7 +173,8 @@ void validateSettings(const RenderSettings& settings) {
 }
 
 gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, const glm::mat4& view,
-                        const glm::mat4& projection, const FrameLights& lights, const LightGridLayout& grid) {
+                        const glm::mat4& projection, const FrameLights& lights, const LightGridLayout& grid,
+                        const ShadowPlan& shadowPlan) {
     gpu::GpuFrame frame{};
     frame.view = view;
     frame.projection = projection;
@@ -172,6 +195,7 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     frame.shadowBias = shadows.bias;
     frame.shadowMap = glm::vec4(float(shadows.resolution), 1.0f / float(shadows.resolution), shadows.diskRadius,
                                 shadows.penumbraTexels());
+    frame.shadowCounts = glm::uvec4(shadowPlan.shadowedSpots, shadowPlan.shadowedPoints, 0u, 0u);
     return frame;
 }
 
@@ -202,7 +226,7 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
         resources_->shadowViews.write(views.data(), views.size() * sizeof(gpu::GpuShadowView));
     }
 
-    const gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_, gridLayout_);
+    const gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_, gridLayout_, shadowPlan_);
     resources_->frameUniform.write(&frame, sizeof(frame));
     if (!lights_.packed.empty()) {
         resources_->lights.write(lights_.packed.data(), lights_.packed.size() * sizeof(gpu::GpuPunctualLight));
@@ -219,24 +243,27 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     allocInfo.commandBufferCount = 1;
     vk::check(vkAllocateCommandBuffers(context.device(), &allocInfo, &resources_->commandBuffer),
               "vkAllocateCommandBuffers");
-    if (settings.collectLightStats) {
-        vk::check(vkAllocateCommandBuffers(context.device(), &allocInfo, &resources_->statsCommandBuffer),
+    for (Resources::DebugVariant* variant : {&resources_->lightStatsVariant, &resources_->shadowFactorsVariant}) {
+        if (!variant->pass) continue;
+        vk::check(vkAllocateCommandBuffers(context.device(), &allocInfo, &variant->commandBuffer),
                   "vkAllocateCommandBuffers");
     }
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence fence = VK_NULL_HANDLE;
     vk::check(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence), "vkCreateFence");
     resources_->fence = vk::Handle<VkFence>(context.device(), fence, vkDestroyFence);
-    recordFrame(resources_->commandBuffer, false);
-    if (settings.collectLightStats) recordFrame(resources_->statsCommandBuffer, true);
+    recordFrame(resources_->commandBuffer, nullptr);
+    for (Resources::DebugVariant* variant : {&resources_->lightStatsVariant, &resources_->shadowFactorsVariant}) {
+        if (variant->pass) recordFrame(variant->commandBuffer, variant);
+    }
 }
 
 Renderer::~Renderer() {
     if (resources_) {
         vkDeviceWaitIdle(context_.device());
         vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &resources_->commandBuffer);
-        if (resources_->statsCommandBuffer) {
-            vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &resources_->statsCommandBuffer);
+        for (Resources::DebugVariant* variant : {&resources_->lightStatsVariant, &resources_->shadowFactorsVariant}) {
+            if (variant->commandBuffer) vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &variant->commandBuffer);
         }
     }
 }
@@ -244,7 +271,9 @@ Renderer::~Renderer() {
 // One frame: depth prepass, light culling (tiled, clustered), forward, tone mapping, readback.
 // The statistics variant swaps in the forward shader that also writes per-pixel light counts
 // and skips tone mapping; it is never timed.
-void Renderer::recordFrame(VkCommandBuffer cmd, bool withStats) {
+void Renderer::recordFrame(VkCommandBuffer cmd, const void* debugVariant) {
+    const auto* debug = static_cast<const Resources::DebugVariant*>(debugVariant);
+    const bool withStats = debug != nullptr;
     Resources& r = *resources_;
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     vk::check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
@@ -273,11 +302,11 @@ void Renderer::recordFrame(VkCommandBuffer cmd, bool withStats) {
         timed("shadows", [&] { r.shadowPass->record(cmd, r.scene, r.bindings); });
     }
 
-    if (withStats) {
-        vkCmdFillBuffer(cmd, r.lightStats.handle(), 0, VK_WHOLE_SIZE, 0u);
+    if (debug) {
+        vkCmdFillBuffer(cmd, debug->output->handle(), 0, VK_WHOLE_SIZE, 0u);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
-        r.statsForwardPass->record(cmd, r.scene, r.bindings);
+        debug->pass->record(cmd, r.scene, r.bindings);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
         vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
@@ -374,7 +403,7 @@ gpu::GpuDepthRange Renderer::readDepthRange() {
 
 LightStatsImage Renderer::readLightStats() {
     if (!settings_.collectLightStats) throw Error("renderer", "light statistics were not requested");
-    submitAndWait(resources_->statsCommandBuffer);
+    submitAndWait(resources_->lightStatsVariant.commandBuffer);
     const std::vector<uint8_t> bytes = readBuffer(resources_->lightStats);
     const size_t pixels = size_t(settings_.width) * settings_.height;
     std::vector<uint32_t> words(pixels * 4);
@@ -396,6 +425,35 @@ LightStatsImage Renderer::readLightStats() {
         std::memcpy(&stats.bruteLuminance[i], &w[3], sizeof(float));
     }
     return stats;
+}
+
+ShadowFactorImage Renderer::readShadowFactors() {
+    if (!settings_.collectShadowFactors) throw Error("renderer", "shadow factors were not requested");
+    submitAndWait(resources_->shadowFactorsVariant.commandBuffer);
+    const std::vector<uint8_t> bytes = readBuffer(resources_->shadowDebug);
+    const size_t pixels = size_t(settings_.width) * settings_.height;
+    ShadowFactorImage image;
+    image.width = settings_.width;
+    image.height = settings_.height;
+    image.slots = shadowPlan_.shadowedSpots + shadowPlan_.shadowedPoints;
+    image.positions.resize(pixels);
+    image.normals.resize(pixels);
+    image.covered.resize(pixels);
+    image.factors.resize(pixels * image.slots);
+    const auto* words = reinterpret_cast<const uint32_t*>(bytes.data());
+    for (size_t i = 0; i < pixels; ++i) {
+        const uint32_t* surface = words + i * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS;
+        std::memcpy(&image.positions[i], surface, sizeof(glm::vec3));
+        std::memcpy(&image.normals[i], surface + 4, sizeof(glm::vec3));
+        image.covered[i] = surface[3] != 0 ? uint8_t{1} : uint8_t{0};
+        const auto* factors = reinterpret_cast<const uint8_t*>(words + pixels * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS +
+                                                               i * PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS);
+        // Uncovered pixels were cleared to 0: report them as not reached.
+        for (uint32_t slot = 0; slot < image.slots; ++slot) {
+            image.factors[i * image.slots + slot] = image.covered[i] ? factors[slot] : uint8_t{255};
+        }
+    }
+    return image;
 }
 
 uint64_t Renderer::shadowMemoryBytes() const { return resources_->shadowMaps.allocatedBytes(); }

@@ -36,9 +36,22 @@ struct RenderSettings {
     uint32_t tileSize = 16;       // pixels, tiled and clustered
     uint32_t clusterSlices = 16;  // depth slices, clustered only
     bool collectLightStats = false;  // allocate what readLightStats() needs
+    bool collectShadowFactors = false;  // allocate what readShadowFactors() needs
     ShadowSettings shadows;
 };
 
+
+// Per pixel, from the forward shader's validation variant (rows top to bottom): the surface it
+// shaded and each shadowed light's shadow factor there.
+struct ShadowFactorImage {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    uint32_t slots = 0;                // shadowed lights: spots first, then points (ShadowPlan order)
+    std::vector<glm::vec3> positions;  // world space
+    std::vector<glm::vec3> normals;    // unit shading normal, facing the viewer
+    std::vector<uint8_t> covered;      // 1 where geometry is
+    std::vector<uint8_t> factors;      // [pixel * slots + slot]: factor x 254, 255 = light does not reach
+};
 
 // GPU milliseconds per pass, by the names the stats JSON uses. A pass not run is 0.
 struct PassTimings {
@@ -76,6 +89,8 @@ public:
     gpu::GpuDepthRange readDepthRange();
     // Runs the statistics variant of the forward pass (needs settings.collectLightStats).
     LightStatsImage readLightStats();
+    // Runs the shadow-validation variant of the forward pass (needs settings.collectShadowFactors).
+    ShadowFactorImage readShadowFactors();
 
     const LightGridLayout& gridLayout() const { return gridLayout_; }
     const PerObjectLightLists& perObjectLists() const { return perObjectLists_; }
@@ -88,7 +103,8 @@ public:
 
 private:
     struct Resources;
-    void recordFrame(VkCommandBuffer cmd, bool withStats);
+    // `debugVariant`: null for the timed frame, else the Resources::DebugVariant to record.
+    void recordFrame(VkCommandBuffer cmd, const void* debugVariant);
     void submitAndWait(VkCommandBuffer cmd);
     std::vector<uint8_t> readBuffer(const vk::Buffer& buffer);
 

@@ -28,7 +28,8 @@ static_assert(offsetof(GpuFrame, depthToView) == 368);
 static_assert(offsetof(GpuFrame, ndcToView) == 384);
 static_assert(offsetof(GpuFrame, shadowBias) == 400);
 static_assert(offsetof(GpuFrame, shadowMap) == 416);
-static_assert(sizeof(GpuFrame) == 432);
+static_assert(offsetof(GpuFrame, shadowCounts) == 432);
+static_assert(sizeof(GpuFrame) == 448);
 
 static_assert(sizeof(GpuShadowView) == 80);
 static_assert(offsetof(GpuShadowView, params) == 64);

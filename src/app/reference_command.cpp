@@ -1,0 +1,120 @@
+#include "app/reference_command.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+
+#include <tbb/task_arena.h>
+
+#include "app/options.h"
+#include "app/output_paths.h"
+#include "app/scene_source.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/output_files.h"
+#include "reference/reference_renderer.h"
+
+namespace punctual::app {
+namespace {
+
+// Options of `render` that mean nothing for the ray-traced image: rejected rather than silently
+// ignored, so nobody believes they changed the reference (or waits for a stats file that never
+// comes). The shadow-map options tune an approximation the reference has no need of: its shadows
+// are exact visibility.
+constexpr std::array<const char*, 15> kRenderOnlyOptions = {
+    "--stats", "--heatmap", "--culling", "--tile-size", "--slices", "--frames", "--device", "--validate",
+    "--shadow-res", "--shadow-filter", "--shadow-samples", "--shadow-bias", "--shadow-penumbra",
+    "--shadow-strength", "--point-shadow-layout"};
+
+}  // namespace
+
+std::string referenceUsage() {
+    return R"(usage: punctual reference [SCENE.gltf|SCENE.glb] [options] --out FILE.png
+
+Ray traces SCENE (or the built-in default scene) on the CPU with Embree: one ray per pixel
+centre from the GPU's camera, the GPU's lights and shading code, and one shadow ray per light
+reaching each point. The ground truth the GPU image is compared with.
+
+options:
+  --out FILE.png       the tone-mapped reference image (required)
+  --shadows on|off     shadow rays to every light reaching a point (default on)
+  --no-shadows         the same as --shadows off: every light unoccluded
+  --lights S,P[,SEED]  replace the scene's lights with S spot (<= 64) and P point (<= 32)
+                       lights generated inside its bounds (same seed, same lights; seed 1)
+  --size WxH           output size in pixels (default 1280x720)
+  --exposure X         linear exposure before tone mapping (default 1)
+)";
+}
+
+int runReferenceCommand(const std::vector<std::string>& args) {
+    std::vector<std::string> renderArgs;
+    bool shadows = true;
+    for (const std::string& arg : args) {
+        if (arg == "--help" || arg == "-h") {
+            std::fputs(referenceUsage().c_str(), stdout);
+            return 0;
+        }
+    }
+    // The shadow switches are the reference's own (shadow rays, not maps); the rest is parsed
+    // as for `render`.
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "--no-shadows") {
+            shadows = false;
+        } else if (args[i] == "--shadows") {
+            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--shadows", "needs a value");
+            const std::string& value = args[++i];
+            if (value != "on" && value != "off") throw Error("--shadows", "expected on or off, got '" + value + "'");
+            shadows = value == "on";
+        } else {
+            renderArgs.push_back(args[i]);
+        }
+    }
+    RenderOptions options;
+    try {
+        options = parseRenderOptions(renderArgs);
+    } catch (const Error& error) {
+        if (error.problem().rfind("unknown option", 0) != 0) throw;
+        throw Error(error.subject(), "unknown option (see punctual reference --help)");
+    }
+    for (const std::string& arg : renderArgs) {
+        if (std::find(kRenderOnlyOptions.begin(), kRenderOnlyOptions.end(), arg) != kRenderOnlyOptions.end()) {
+            throw Error(arg, "applies to `punctual render` only, not to the CPU reference (see punctual reference --help)");
+        }
+    }
+    if (!options.outPath) throw Error("--out", "required: the file to write the reference image to");
+    checkOutputPath(options.outPath);
+    const Scene scene = loadSceneForOptions(options);
+
+    reference::ReferenceSettings settings;
+    settings.width = options.width;
+    settings.height = options.height;
+    settings.exposure = options.exposure;
+    settings.shadows = shadows;
+    settings.showProgress = isatty(STDERR_FILENO) != 0;
+    const reference::ReferenceRenderer renderer(scene, settings);
+    reference::ReferenceStats stats;
+    const ImageRgba8 image = renderer.render(&stats);
+
+    OutputFiles outputs;
+    outputs.add(*options.outPath, encodePng(image));
+
+    const FrameLights& lights = renderer.lights();
+    std::printf("scene: %s (%zu triangles, %zu objects)\n", scene.source.c_str(), scene.triangleCount(),
+                scene.objects.size());
+    std::printf("lights: %u spot, %u point, %u directional (%u outside the view, %u over the caps)\n",
+                lights.spotCount, lights.pointCount, lights.directionalCount, lights.culledByFrustum,
+                lights.droppedByCap);
+    std::printf("reference: %ux%u, shadows %s, %d threads, BVH build %.3f s\n", settings.width, settings.height,
+                shadows ? "on" : "off", tbb::this_task_arena::max_concurrency(), stats.buildSeconds);
+    std::printf("rays: %llu (%llu primary + %llu shadow) in %.3f s: %.2f M rays/s\n",
+                static_cast<unsigned long long>(stats.rays()), static_cast<unsigned long long>(stats.primaryRays),
+                static_cast<unsigned long long>(stats.shadowRays), stats.seconds, stats.raysPerSecond() * 1e-6);
+    const auto written = outputs.pending();
+    outputs.commit();
+    for (const auto& file : written) std::printf("wrote %s\n", file.first.c_str());
+    return 0;
+}
+
+}  // namespace punctual::app

@@ -1,0 +1,129 @@
+#include "app/validate_command.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "app/options.h"
+#include "app/scene_source.h"
+#include "app/validation_report.h"
+#include "core/error.h"
+#include "core/output_files.h"
+#include "reference/reference_renderer.h"
+#include "reference/shadow_validation.h"
+#include "render/renderer.h"
+#include "vk/context.h"
+
+namespace punctual::app {
+namespace {
+
+constexpr const char* kUsage = R"(usage: punctual validate [SCENE] [render options] --out-dir DIR [--export-exr]
+
+Compares the GPU's shadow factor at every pixel, for every shadowed light, with Embree's ray-cast
+visibility from the same surface point, and writes:
+  DIR/report.json   per light and overall: pixels compared, false_shadow (GPU dark, ray lit),
+                    false_lit (GPU lit, ray blocked), each also outside the +-1 texel edge band
+  DIR/report.html   the GPU image, the reference and per-light mismatch maps
+  DIR/*.exr         with --export-exr: world positions (NaN for background) and each light's
+                    GPU shadow factor (NaN where the light does not reach)
+DIR is created if missing (its parent must exist). All render options apply (see
+`punctual render --help`): --shadow-filter, --shadow-res, --shadow-bias, --point-shadow-layout...
+)";
+
+}  // namespace
+
+int runValidateCommand(const std::vector<std::string>& args) {
+    std::vector<std::string> renderArgs;
+    std::optional<std::string> outDir;
+    bool exportExr = false;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "--help" || args[i] == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        } else if (args[i] == "--out-dir") {
+            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--out-dir", "needs a value");
+            outDir = args[++i];
+        } else if (args[i] == "--export-exr") {
+            exportExr = true;
+        } else if (args[i] == "--out" || args[i] == "--stats" || args[i] == "--heatmap") {
+            throw Error(args[i], "not an option of validate (it writes into --out-dir)");
+        } else {
+            renderArgs.push_back(args[i]);
+        }
+    }
+    if (!outDir) throw Error("--out-dir", "validate needs an output folder (--out-dir DIR)");
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::exists(*outDir, ec) && !fs::is_directory(*outDir, ec)) throw Error(*outDir, "exists and is not a folder");
+    const fs::path parent = fs::path(*outDir).has_parent_path() ? fs::path(*outDir).parent_path() : fs::path(".");
+    if (!fs::is_directory(parent, ec)) throw Error(*outDir, "folder '" + parent.string() + "' does not exist");
+
+    const RenderOptions options = parseRenderOptions(renderArgs);
+    if (!options.shadows.enabled) throw Error("--shadows", "validate compares shadows: they must be on");
+    const Scene scene = loadSceneForOptions(options);
+
+    vk::ContextOptions contextOptions;
+    contextOptions.validation = options.validate;
+    contextOptions.deviceIndex = options.deviceIndex;
+    vk::Context context(contextOptions);
+    render::RenderSettings settings;
+    settings.width = options.width;
+    settings.height = options.height;
+    settings.exposure = options.exposure;
+    settings.method = options.culling;
+    settings.tileSize = options.tileSize;
+    settings.clusterSlices = options.slices;
+    settings.shadows = options.shadows;
+    settings.collectShadowFactors = true;
+    render::Renderer renderer(context, scene, settings);
+    const ImageRgba8 gpuImage = renderer.render(1, 0).image;
+    const render::ShadowFactorImage factors = renderer.readShadowFactors();
+    if (context.validationMessageCount() > 0) {
+        throw Error("vulkan", std::to_string(context.validationMessageCount()) +
+                                  " validation message(s) (printed above); no output written");
+    }
+
+    reference::ReferenceSettings referenceSettings;
+    referenceSettings.width = options.width;
+    referenceSettings.height = options.height;
+    referenceSettings.exposure = options.exposure;
+    referenceSettings.shadows = true;
+    const reference::ReferenceRenderer referenceRenderer(scene, referenceSettings);
+    const ImageRgba8 referenceImage = referenceRenderer.render();
+    const reference::ShadowValidation validation = reference::validateShadows(
+        referenceRenderer.embree(), factors, renderer.lights(), renderer.shadowPlan(), settings.shadows);
+
+    const nlohmann::json report = validationJson(validation, scene, renderer);
+    OutputFiles outputs;
+    const std::string dir = *outDir;
+    outputs.add(dir + "/report.json", report.dump(2) + "\n");
+    outputs.add(dir + "/report.html", validationHtml(report));
+    outputs.add(dir + "/gpu.png", encodePng(gpuImage));
+    outputs.add(dir + "/reference.png", encodePng(referenceImage));
+    for (const reference::LightShadowValidation& light : validation.lights) {
+        outputs.add(dir + "/mismatch-" + std::to_string(light.slot) + ".png",
+                    encodePng(mismatchMap(light, validation.width, validation.height)));
+    }
+    if (exportExr) addExrImages(outputs, dir, factors);
+    fs::create_directories(dir, ec);
+    if (ec) throw Error(dir, "cannot create the folder: " + ec.message());
+    outputs.commit();
+
+    auto line = [](const char* name, const reference::ShadowCounts& c) {
+        std::printf("%-7s compared %10llu  false shadow %8llu  false lit %8llu  edge band %8llu  misclassified outside "
+                    "band %.3f%%\n",
+                    name, static_cast<unsigned long long>(c.compared), static_cast<unsigned long long>(c.falseShadow),
+                    static_cast<unsigned long long>(c.falseLit), static_cast<unsigned long long>(c.edgeBand),
+                    100.0 * c.misclassifiedOutsideBand());
+    };
+    std::printf("shadow validation: %s, %ux%u, %zu shadowed lights, %s filter, %u texels, %s point layout\n",
+                scene.source.c_str(), options.width, options.height, validation.lights.size(),
+                shadowFilterName(settings.shadows.filter), settings.shadows.resolution,
+                pointShadowLayoutName(settings.shadows.pointLayout));
+    line("spots", validation.spots);
+    line("points", validation.points);
+    line("all", validation.overall);
+    std::printf("wrote %s/report.json and report.html\n", dir.c_str());
+    return 0;
+}
+
+}  // namespace punctual::app

@@ -1,0 +1,166 @@
+#include "app/validation_report.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <tinyexr.h>
+
+#include "core/error.h"
+
+namespace punctual::app {
+namespace {
+
+nlohmann::json countsJson(const reference::ShadowCounts& c) {
+    return {
+        {"compared", c.compared},
+        {"false_shadow", c.falseShadow},
+        {"false_lit", c.falseLit},
+        {"edge_band", c.edgeBand},
+        {"outside_edge_band",
+         {{"compared", c.comparedOutsideBand},
+          {"false_shadow", c.falseShadowOutsideBand},
+          {"false_lit", c.falseLitOutsideBand},
+          {"misclassified_fraction", c.misclassifiedOutsideBand()}}},
+    };
+}
+
+std::string exrBytes(const std::vector<float>& data, uint32_t width, uint32_t height, int components,
+                     const std::string& name) {
+    // tinyexr writes to a file; write to a temporary one and read its bytes, so the EXR goes
+    // through OutputFiles like every other output (all or nothing).
+    const std::string temporary = (std::filesystem::temp_directory_path() / ("punctual-" + name)).string();
+    const char* error = nullptr;
+    if (SaveEXR(data.data(), int(width), int(height), components, 0, temporary.c_str(), &error) != TINYEXR_SUCCESS) {
+        const std::string message = error ? error : "unknown error";
+        if (error) FreeEXRErrorMessage(error);
+        throw Error(name, "cannot encode OpenEXR: " + message);
+    }
+    std::ifstream in(temporary, std::ios::binary);
+    std::stringstream bytes;
+    bytes << in.rdbuf();
+    std::filesystem::remove(temporary);
+    return bytes.str();
+}
+
+}  // namespace
+
+nlohmann::json validationJson(const reference::ShadowValidation& validation, const Scene& scene,
+                              const render::Renderer& renderer) {
+    const ShadowSettings& s = renderer.settings().shadows;
+    nlohmann::json report;
+    report["scene"] = scene.source;
+    report["size"] = {{"width", validation.width}, {"height", validation.height}};
+    report["settings"] = {{"resolution", s.resolution},
+                          {"filter", shadowFilterName(s.filter)},
+                          {"samples", s.diskSamples},
+                          {"penumbra", s.diskRadius},
+                          {"bias", {s.bias.x, s.bias.y, s.bias.z, s.bias.w}},
+                          {"point_layout", pointShadowLayoutName(s.pointLayout)},
+                          {"culling", render::methodName(renderer.settings().method)}};
+    report["rule"] = "GPU dark when its filtered factor < 0.5; edge band: ray visibility changes within one shadow "
+                     "texel of the point (4 probe rays)";
+    report["overall"] = countsJson(validation.overall);
+    report["spot"] = countsJson(validation.spots);
+    report["point"] = countsJson(validation.points);
+    nlohmann::json lights = nlohmann::json::array();
+    for (const reference::LightShadowValidation& light : validation.lights) {
+        nlohmann::json entry = countsJson(light.counts);
+        entry["slot"] = light.slot;
+        entry["type"] = light.isPoint ? "point" : "spot";
+        entry["scene_light"] = light.sceneLight;
+        entry["name"] = scene.lights.at(light.sceneLight).name;
+        entry["mismatch_map"] = "mismatch-" + std::to_string(light.slot) + ".png";
+        lights.push_back(entry);
+    }
+    report["lights"] = lights;
+    return report;
+}
+
+ImageRgba8 mismatchMap(const reference::LightShadowValidation& light, uint32_t width, uint32_t height) {
+    ImageRgba8 image;
+    image.width = width;
+    image.height = height;
+    image.pixels.assign(size_t(width) * height * 4, 0);
+    for (size_t i = 0; i < light.verdicts.size(); ++i) {
+        glm::u8vec3 colour(0);
+        switch (light.verdicts[i]) {
+            case reference::PixelVerdict::NotCompared: colour = {0, 0, 0}; break;
+            case reference::PixelVerdict::AgreeLit: colour = {70, 70, 70}; break;
+            case reference::PixelVerdict::AgreeShadow: colour = {150, 150, 150}; break;
+            case reference::PixelVerdict::FalseShadow: colour = {255, 40, 40}; break;
+            case reference::PixelVerdict::FalseLit: colour = {40, 90, 255}; break;
+        }
+        if (light.inBand[i]) colour /= uint8_t(2);
+        image.pixels[i * 4 + 0] = colour.r;
+        image.pixels[i * 4 + 1] = colour.g;
+        image.pixels[i * 4 + 2] = colour.b;
+        image.pixels[i * 4 + 3] = 255;
+    }
+    return image;
+}
+
+std::string validationHtml(const nlohmann::json& report) {
+    std::ostringstream html;
+    auto percent = [](const nlohmann::json& counts) {
+        std::ostringstream s;
+        s.precision(3);
+        s << 100.0 * counts["outside_edge_band"]["misclassified_fraction"].get<double>() << "%";
+        return s.str();
+    };
+    html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>punctual shadow validation</title>\n"
+         << "<style>body{font-family:sans-serif;background:#111;color:#ddd} img{max-width:48%;margin:4px}"
+         << " table{border-collapse:collapse} td,th{border:1px solid #444;padding:2px 8px;text-align:right}"
+         << " .maps img{max-width:31%}</style></head><body>\n"
+         << "<h1>Shadows: GPU against Embree</h1>\n<p>Scene: " << report["scene"].get<std::string>() << ". Settings: "
+         << report["settings"].dump() << ".<br>Rule: " << report["rule"].get<std::string>() << ".</p>\n"
+         << "<p><img src=\"gpu.png\" alt=\"GPU\"><img src=\"reference.png\" alt=\"Embree reference\"><br>"
+         << "Left: GPU. Right: Embree reference (ray-traced shadows).</p>\n"
+         << "<table><tr><th>light</th><th>type</th><th>compared</th><th>false shadow</th><th>false lit</th>"
+         << "<th>edge band</th><th>misclassified outside band</th></tr>\n";
+    auto row = [&](const std::string& name, const std::string& type, const nlohmann::json& c) {
+        html << "<tr><td>" << name << "</td><td>" << type << "</td><td>" << c["compared"] << "</td><td>"
+             << c["false_shadow"] << "</td><td>" << c["false_lit"] << "</td><td>" << c["edge_band"] << "</td><td>"
+             << percent(c) << "</td></tr>\n";
+    };
+    row("all", "", report["overall"]);
+    row("spots", "spot", report["spot"]);
+    row("points", "point", report["point"]);
+    for (const auto& light : report["lights"]) {
+        row(std::to_string(light["slot"].get<int>()) + " " + light["name"].get<std::string>(),
+            light["type"].get<std::string>(), light);
+    }
+    html << "</table>\n<h2>Mismatch maps</h2>\n<p>Red: false shadow (GPU dark, ray lit). Blue: false lit (GPU lit, "
+         << "ray blocked). Grey: agreement (dark: lit, light: shadowed). Half brightness: edge band. Black: the light "
+         << "does not reach the pixel.</p>\n<div class=\"maps\">\n";
+    for (const auto& light : report["lights"]) {
+        html << "<figure style=\"display:inline-block;width:31%\"><img style=\"max-width:100%\" src=\""
+             << light["mismatch_map"].get<std::string>() << "\"><figcaption>" << light["slot"] << " ("
+             << light["type"].get<std::string>() << ")</figcaption></figure>\n";
+    }
+    html << "</div></body></html>\n";
+    return html.str();
+}
+
+void addExrImages(OutputFiles& outputs, const std::string& folder, const render::ShadowFactorImage& factors) {
+    const size_t pixels = size_t(factors.width) * factors.height;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::vector<float> positions(pixels * 3);
+    for (size_t i = 0; i < pixels; ++i) {
+        for (int c = 0; c < 3; ++c) positions[i * 3 + c] = factors.covered[i] ? factors.positions[i][c] : nan;
+    }
+    outputs.add(folder + "/positions.exr", exrBytes(positions, factors.width, factors.height, 3, "positions.exr"));
+    for (uint32_t slot = 0; slot < factors.slots; ++slot) {
+        std::vector<float> values(pixels);
+        for (size_t i = 0; i < pixels; ++i) {
+            const uint8_t f = factors.factors[i * factors.slots + slot];
+            values[i] = f == PUNCTUAL_SHADOW_FACTOR_NOT_REACHED ? nan : float(f) / 254.0f;
+        }
+        const std::string name = "shadow-factor-" + std::to_string(slot) + ".exr";
+        outputs.add(folder + "/" + name, exrBytes(values, factors.width, factors.height, 1, name));
+    }
+}
+
+}  // namespace punctual::app

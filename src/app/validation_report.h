@@ -1,0 +1,29 @@
+#pragma once
+// The files of `punctual validate`: report.json, report.html, per-light mismatch maps and, on
+// request, OpenEXR images of the surface positions and the GPU shadow factors.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image.h"
+#include "core/output_files.h"
+#include "reference/shadow_validation.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace punctual::app {
+
+nlohmann::json validationJson(const reference::ShadowValidation& validation, const Scene& scene,
+                              const render::Renderer& renderer);
+
+// Red: false shadow, blue: false lit, greys: agreement (dark grey lit, light grey shadowed),
+// black: not compared; pixels of the edge band are drawn at half brightness.
+ImageRgba8 mismatchMap(const reference::LightShadowValidation& light, uint32_t width, uint32_t height);
+
+std::string validationHtml(const nlohmann::json& report);
+
+// Adds positions.exr (RGB = world position, NaN where no geometry) and shadow-factor-<slot>.exr
+// (the GPU factor, NaN where the light does not reach) to `outputs` under `folder`.
+void addExrImages(OutputFiles& outputs, const std::string& folder, const render::ShadowFactorImage& factors);
+
+}  // namespace punctual::app

@@ -1,0 +1,141 @@
+#include "reference/embree_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+
+#include "core/error.h"
+
+namespace punctual::reference {
+
+// What the device's one error callback saw. Embree may call it from any thread (its builders run
+// on TBB workers), hence the mutex. Only the first message is kept: later ones are usually
+// consequences of it.
+struct EmbreeScene::ErrorLog {
+    std::mutex mutex;
+    std::string firstMessage;
+    bool any = false;
+
+    static void onError(void* user, RTCError code, const char* message) {
+        auto* log = static_cast<ErrorLog*>(user);
+        const std::lock_guard<std::mutex> lock(log->mutex);
+        if (log->any) return;
+        log->any = true;
+        log->firstMessage = std::string(message ? message : "no message") + " (code " +
+                            std::to_string(static_cast<int>(code)) + ")";
+    }
+};
+
+namespace {
+
+const char* errorName(RTCError code) {
+    switch (code) {
+        case RTC_ERROR_NONE: return "no error";
+        case RTC_ERROR_UNKNOWN: return "unknown error";
+        case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+        case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+        case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+        case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+        case RTC_ERROR_CANCELLED: return "cancelled";
+    }
+    return "unrecognised error code";
+}
+
+// Rounding of a float hit point is about 6e-8 x its largest coordinate, so the ray epsilon must
+// scale with where the scene sits as well as with its size.
+float sceneEpsilon(const Bounds& bounds) {
+    if (bounds.empty()) return 1e-4f;
+    const glm::vec3 extent = glm::max(glm::abs(bounds.min), glm::abs(bounds.max));
+    const float scale = std::max({bounds.radius(), extent.x, extent.y, extent.z});
+    return scale > 0.0f && std::isfinite(scale) ? 1e-4f * scale : 1e-4f;
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const Scene& scene) : errors_(std::make_unique<ErrorLog>()) {
+    // rtcNewDevice reports its own failure only through rtcGetDeviceError(nullptr): there is no
+    // device yet to hang a callback on.
+    RTCDevice device = rtcNewDevice(nullptr);
+    if (!device) throw Error("embree", std::string("cannot create a device: ") + errorName(rtcGetDeviceError(nullptr)));
+    device_.reset(device);
+    rtcSetDeviceErrorFunction(device, &ErrorLog::onError, errors_.get());
+
+    scene_.reset(rtcNewScene(device));
+    throwIfError("creating the scene");
+    // ROBUST: watertight intersection. Without it a ray through the shared edge of two triangles
+    // (the two halves of every box face) can slip between them: a black pixel, or light leaking
+    // through a closed occluder, which a ground truth must never show.
+    rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene_.get(), RTC_BUILD_QUALITY_HIGH);
+
+    Bounds bounds;
+    for (const Object& object : scene.objects) {
+        bounds.extend(scene.meshes.at(object.mesh).localBounds.transformed(object.model));
+    }
+    rayEpsilon_ = sceneEpsilon(bounds);
+
+    for (uint32_t i = 0; i < scene.objects.size(); ++i) addObject(scene, i);
+    rtcCommitScene(scene_.get());
+    throwIfError("building the scene");
+}
+
+EmbreeScene::~EmbreeScene() = default;
+
+void EmbreeScene::addObject(const Scene& scene, uint32_t objectIndex) {
+    const Object& object = scene.objects[objectIndex];
+    const Mesh& mesh = scene.meshes.at(object.mesh);
+    if (size_t(mesh.vertexOffset) + mesh.vertexCount > scene.vertices.size() ||
+        size_t(mesh.firstIndex) + mesh.indexCount > scene.indices.size() || mesh.indexCount % 3 != 0) {
+        throw Error(scene.source, "mesh '" + mesh.name + "' lies outside the scene's vertex or index arrays");
+    }
+    if (mesh.indexCount == 0 || mesh.vertexCount == 0) return;  // nothing to hit; its geomID stays unused
+    RTCGeometry geometry = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    throwIfError("creating a triangle geometry");
+    // Embree copies into buffers it allocates (and pads for its SIMD loads), so nothing here has
+    // to outlive the commit.
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertexCount));
+    auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.indexCount / 3));
+    if (!vertices || !indices) {
+        rtcReleaseGeometry(geometry);
+        throwIfError("allocating geometry buffers");
+        throw Error("embree", "cannot allocate geometry buffers");
+    }
+    // World space, exactly as the vertex shader computes it: model * vec4(position, 1).
+    for (uint32_t v = 0; v < mesh.vertexCount; ++v) {
+        const glm::vec4 world = object.model * glm::vec4(scene.vertices[mesh.vertexOffset + v].position, 1.0f);
+        vertices[3 * v + 0] = world.x;
+        vertices[3 * v + 1] = world.y;
+        vertices[3 * v + 2] = world.z;
+    }
+    for (uint32_t k = 0; k < mesh.indexCount; ++k) {
+        const uint32_t index = scene.indices[mesh.firstIndex + k];
+        if (index >= mesh.vertexCount) {
+            rtcReleaseGeometry(geometry);
+            throw Error(scene.source, "mesh '" + mesh.name + "' has an index past its vertices");
+        }
+        indices[k] = index;
+    }
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometryByID(scene_.get(), geometry, objectIndex);  // geomID == object index
+    rtcReleaseGeometry(geometry);  // the scene holds its own reference
+    throwIfError("adding object '" + object.name + "'");
+    ++geometryCount_;
+}
+
+void EmbreeScene::throwIfError(const std::string& what) const {
+    // rtcGetDeviceError also clears the code, so a reported error is not reported twice.
+    const RTCError code = rtcGetDeviceError(device_.get());
+    std::string message;
+    {
+        const std::lock_guard<std::mutex> lock(errors_->mutex);
+        if (errors_->any) message = errors_->firstMessage;
+        errors_->any = false;
+        errors_->firstMessage.clear();
+    }
+    if (message.empty() && code != RTC_ERROR_NONE) message = errorName(code);
+    if (!message.empty()) throw Error("embree", what + ": " + message);
+}
+
+}  // namespace punctual::reference

@@ -1,0 +1,64 @@
+#pragma once
+// The Embree 3 side of the CPU reference: one device and one scene holding the same triangles
+// the GPU draws, in world space. It is built from punctual::Scene alone (never from anything the
+// GPU path computes), so the reference stays an independent ruler.
+//
+// Mapping: object i of the Scene is Embree geometry i (attached by ID), one
+// RTC_GEOMETRY_TYPE_TRIANGLE each with its vertices transformed by Object::model, so a hit's
+// geomID is the object index and its primID the triangle within the object's mesh.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <embree3/rtcore.h>
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace punctual::reference {
+
+class EmbreeScene {
+public:
+    // Throws punctual::Error("embree", ...) when Embree reports an error (device creation,
+    // geometry setup, commit).
+    explicit EmbreeScene(const Scene& scene);
+    ~EmbreeScene();
+    EmbreeScene(const EmbreeScene&) = delete;
+    EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+    RTCScene handle() const { return scene_.get(); }
+    RTCDevice device() const { return device_.get(); }
+
+    // The offset that lifts a shadow ray's origin off its surface: 1e-4 x the scene's bounding
+    // radius (a relative epsilon; an absolute one would be too small for a city and too large for
+    // a teapot). Float rounding of a hit point is ~1e-7 x its distance from the origin, so three
+    // orders of magnitude of margin remain, while the offset stays far below anything visible.
+    float rayEpsilon() const { return rayEpsilon_; }
+    uint32_t geometryCount() const { return geometryCount_; }  // objects with triangles
+
+    // Embree's geometric normal Ng is (v1 - v0) x (v2 - v0) of the world-space triangle: it points
+    // to the side from which the vertices are seen counter-clockwise (glTF's and our GPU
+    // pipeline's front face). Verified by the test ReferenceEmbree.GeometricNormalIsCounterClockwiseFront.
+    static glm::vec3 geometricNormal(const RTCHit& hit) { return {hit.Ng_x, hit.Ng_y, hit.Ng_z}; }
+
+    // Throws punctual::Error("embree", <what>: <message>) if the device recorded an error since
+    // the last check (the error callback's message, or rtcGetDeviceError's code).
+    void throwIfError(const std::string& what) const;
+
+private:
+    struct ErrorLog;  // filled by the device's error callback; stable address for the user pointer
+    struct DeviceRelease { void operator()(RTCDevice device) const { rtcReleaseDevice(device); } };
+    struct SceneRelease { void operator()(RTCScene scene) const { rtcReleaseScene(scene); } };
+
+    void addObject(const Scene& scene, uint32_t objectIndex);
+
+    std::unique_ptr<ErrorLog> errors_;
+    // Declared after errors_ and before scene_: the scene is released first, then the device,
+    // then the log the device's callback may still write to while releasing.
+    std::unique_ptr<RTCDeviceTy, DeviceRelease> device_;
+    std::unique_ptr<RTCSceneTy, SceneRelease> scene_;
+    float rayEpsilon_ = 1e-4f;
+    uint32_t geometryCount_ = 0;
+};
+
+}  // namespace punctual::reference

@@ -1,0 +1,131 @@
+#include "reference/shadow_validation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "reference/reference_renderer.h"
+#include "shadows.h"
+
+namespace punctual::reference {
+
+void ShadowCounts::add(const ShadowCounts& other) {
+    compared += other.compared;
+    falseShadow += other.falseShadow;
+    falseLit += other.falseLit;
+    edgeBand += other.edgeBand;
+    comparedOutsideBand += other.comparedOutsideBand;
+    falseShadowOutsideBand += other.falseShadowOutsideBand;
+    falseLitOutsideBand += other.falseLitOutsideBand;
+}
+
+double ShadowCounts::misclassifiedOutsideBand() const {
+    return comparedOutsideBand > 0 ? double(falseShadowOutsideBand + falseLitOutsideBand) / double(comparedOutsideBand)
+                                   : 0.0;
+}
+
+namespace {
+
+// The world size of one shadow-map texel at `position` for the light's view there: the spot's
+// frustum, or the point face the position falls on (linear depth along the view's axis).
+float texelWorldSize(const gpu::GpuPunctualLight& light, const ShadowPlan& plan, uint32_t firstView,
+                     const glm::vec3& position, float resolution) {
+    const glm::vec3 lightPosition(light.positionInvRangeSq);
+    if (light.angleOffsetShadow.z > -1.0f) {
+        const float depth = std::abs(glm::dot(lightPosition - position, glm::vec3(light.directionAngleScale)));
+        return plan.views[firstView].gpu.params.y * depth / resolution;
+    }
+    const glm::vec3 direction = position - lightPosition;
+    const uint32_t face = gpu::cubeFaceOfDirection(direction);
+    const float depth = std::abs(glm::dot(direction, gpu::cubeFaceAxis(face)));
+    return plan.views[firstView + face].gpu.params.y * depth / resolution;
+}
+
+}  // namespace
+
+ShadowValidation validateShadows(const EmbreeScene& embree, const render::ShadowFactorImage& factors,
+                                 const FrameLights& lights, const ShadowPlan& plan, const ShadowSettings& settings) {
+    ShadowValidation result;
+    result.width = factors.width;
+    result.height = factors.height;
+    const size_t pixels = size_t(factors.width) * factors.height;
+
+    // The slot of each shadowed light, in the order the GPU numbers them.
+    for (uint32_t viewIndex = 0; viewIndex < plan.views.size(); ++viewIndex) {
+        const ShadowView& view = plan.views[viewIndex];
+        if (view.isPoint && view.face != 0) continue;
+        LightShadowValidation light;
+        light.slot = uint32_t(result.lights.size());
+        light.packedLight = view.packedLight;
+        light.sceneLight = lights.sceneLightIndex[view.packedLight];
+        light.isPoint = view.isPoint;
+        light.verdicts.assign(pixels, PixelVerdict::NotCompared);
+        light.inBand.assign(pixels, 0);
+        result.lights.push_back(std::move(light));
+    }
+
+    for (LightShadowValidation& validation : result.lights) {
+        const gpu::GpuPunctualLight& light = lights.packed[validation.packedLight];
+        const uint32_t firstView = uint32_t(light.angleOffsetShadow.y);
+        const glm::vec3 lightPosition(light.positionInvRangeSq);
+        tbb::parallel_for(size_t(0), size_t(factors.height), [&](size_t y) {
+            for (size_t x = 0; x < factors.width; ++x) {
+                const size_t i = y * factors.width + x;
+                const uint8_t factor = factors.factors[i * factors.slots + validation.slot];
+                if (factor == PUNCTUAL_SHADOW_FACTOR_NOT_REACHED) continue;
+                const glm::vec3 p = factors.positions[i];
+                const glm::vec3 n = factors.normals[i];
+                // A surface facing away from the light receives none of it (N.L <= 0 shades to
+                // zero), whatever the shadow says: the light does not reach it.
+                if (glm::dot(n, lightPosition - p) <= 0.0f) continue;
+                const bool rayLit = visibility(embree, p, n, light) > 0.5f;
+                const bool gpuLit = factor >= 127;  // factor x 254 >= 0.5
+
+                // Edge band: four probes one texel away in the surface's plane, across and along
+                // the light's direction (stretched by 1 / cos theta along it, as a texel's
+                // footprint is), each its own shadow ray.
+                const glm::vec3 toLight = glm::normalize(lightPosition - p);
+                glm::vec3 across = glm::cross(n, toLight);
+                if (glm::dot(across, across) < 1e-8f) across = glm::cross(n, std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
+                across = glm::normalize(across);
+                const glm::vec3 along = glm::normalize(glm::cross(n, across));
+                const float texel = texelWorldSize(light, plan, firstView, p, float(settings.resolution));
+                const float cosTheta = std::max(glm::dot(n, toLight), 0.2f);
+                bool band = false;
+                for (const glm::vec3 offset : {across * texel, -across * texel, along * (texel / cosTheta),
+                                               -along * (texel / cosTheta)}) {
+                    if ((visibility(embree, p + offset, n, light) > 0.5f) != rayLit) {
+                        band = true;
+                        break;
+                    }
+                }
+                validation.inBand[i] = band ? 1 : 0;
+                validation.verdicts[i] = gpuLit == rayLit ? (rayLit ? PixelVerdict::AgreeLit : PixelVerdict::AgreeShadow)
+                                                          : (gpuLit ? PixelVerdict::FalseLit : PixelVerdict::FalseShadow);
+            }
+        });
+        ShadowCounts& counts = validation.counts;
+        for (size_t i = 0; i < pixels; ++i) {
+            const PixelVerdict verdict = validation.verdicts[i];
+            if (verdict == PixelVerdict::NotCompared) continue;
+            ++counts.compared;
+            const bool falseShadow = verdict == PixelVerdict::FalseShadow;
+            const bool falseLit = verdict == PixelVerdict::FalseLit;
+            counts.falseShadow += falseShadow;
+            counts.falseLit += falseLit;
+            if (validation.inBand[i]) {
+                ++counts.edgeBand;
+            } else {
+                ++counts.comparedOutsideBand;
+                counts.falseShadowOutsideBand += falseShadow;
+                counts.falseLitOutsideBand += falseLit;
+            }
+        }
+        (validation.isPoint ? result.points : result.spots).add(counts);
+        result.overall.add(counts);
+    }
+    return result;
+}
+
+}  // namespace punctual::reference

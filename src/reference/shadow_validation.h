@@ -1,0 +1,64 @@
+#pragma once
+// Shadow validation: the GPU's shadow factor at every pixel, for every shadowed light, against
+// Embree's ray-cast visibility from the same surface point.
+//
+// A pixel counts for a light only where the light reaches it: attenuation > 0 and the surface
+// faces the light (N.L > 0; facing away it receives nothing, shadow or not). The GPU says
+// "dark" when its filtered factor is below 0.5. Two kinds of disagreement:
+//   false_shadow: GPU dark, ray lit (acne, over-darkening);
+//   false_lit:    GPU lit, ray blocked (light leaks, peter-panning).
+// Near a shadow's edge a shadow map cannot be exact: its texels are finite and its filters blur.
+// A pixel is in the edge band when the ray-traced visibility changes within one shadow texel
+// (its world size at the pixel, as the bias computes it) of the point, probed by four more rays;
+// every count is also given with that band excluded.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "lights/shadow_setup.h"
+#include "reference/embree_scene.h"
+#include "render/renderer.h"
+
+namespace punctual::reference {
+
+struct ShadowCounts {
+    uint64_t compared = 0;
+    uint64_t falseShadow = 0;
+    uint64_t falseLit = 0;
+    uint64_t edgeBand = 0;  // compared pixels inside the edge band
+    uint64_t comparedOutsideBand = 0;
+    uint64_t falseShadowOutsideBand = 0;
+    uint64_t falseLitOutsideBand = 0;
+
+    void add(const ShadowCounts& other);
+    // Misclassified share of the compared pixels outside the edge band.
+    double misclassifiedOutsideBand() const;
+};
+
+// Per pixel, what the comparison found for one light.
+enum class PixelVerdict : uint8_t { NotCompared, AgreeLit, AgreeShadow, FalseShadow, FalseLit };
+
+struct LightShadowValidation {
+    uint32_t slot = 0;         // shadowed-light order: spots, then points
+    uint32_t packedLight = 0;  // index into FrameLights::packed
+    uint32_t sceneLight = 0;   // index into Scene::lights
+    bool isPoint = false;
+    ShadowCounts counts;
+    std::vector<PixelVerdict> verdicts;  // per pixel
+    std::vector<uint8_t> inBand;         // per pixel: 1 in the edge band
+};
+
+struct ShadowValidation {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<LightShadowValidation> lights;
+    ShadowCounts spots;
+    ShadowCounts points;
+    ShadowCounts overall;
+};
+
+// Casts the rays in parallel (TBB); deterministic.
+ShadowValidation validateShadows(const EmbreeScene& embree, const render::ShadowFactorImage& factors,
+                                 const FrameLights& lights, const ShadowPlan& plan, const ShadowSettings& settings);
+
+}  // namespace punctual::reference
