@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
             settings.method = method;
             settings.collectLightStats = true;
             settings.clusterSlices = slices;
+            settings.shadows.enabled = false;  // light lists only: shadows cost the same for every method
             if (method == LightListMethod::Clustered) settings.tileSize = clusteredTile;
             MethodRun run{method, std::make_unique<punctual::render::Renderer>(context, scene, settings), {}, {}, {}, {}};
             run.renderer->render(1, 1);  // warm up
