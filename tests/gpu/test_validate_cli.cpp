@@ -1,0 +1,80 @@
+// `punctual validate` as users run it: the report, the HTML page, the mismatch maps and the
+// OpenEXR images are all written, and say what they should.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+#include <tinyexr.h>
+
+#include "core/image.h"
+#include "gpu_test_support.h"
+
+namespace punctual {
+namespace {
+
+std::string readAll(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+TEST(ValidateCli, WritesReportHtmlMapsAndExr) {
+    testing::TempFolder folder;
+    const std::string dir = folder.file("validation");
+    const std::string command = std::string("'") + PUNCTUAL_BINARY + "' validate --validate --size 96x54 --shadow-res 256 " +
+                                "--out-dir '" + dir + "' --export-exr > '" + folder.file("out.txt") + "' 2> '" +
+                                folder.file("err.txt") + "'";
+    ASSERT_EQ(std::system(command.c_str()), 0) << readAll(folder.file("err.txt"));
+    EXPECT_EQ(readAll(folder.file("err.txt")), "");  // validation layers printed nothing
+
+    const nlohmann::json report = nlohmann::json::parse(readAll(dir + "/report.json"));
+    ASSERT_EQ(report["lights"].size(), 40u);  // 32 spots + 8 points shadowed
+    for (const char* part : {"overall", "spot", "point"}) {
+        const auto& counts = report[part];
+        EXPECT_GT(counts["compared"].get<int>(), 0) << part;
+        EXPECT_LE(counts["false_shadow"].get<int>() + counts["false_lit"].get<int>(), counts["compared"].get<int>());
+        EXPECT_TRUE(counts["outside_edge_band"].contains("misclassified_fraction")) << part;
+    }
+    const std::string html = readAll(dir + "/report.html");
+    EXPECT_NE(html.find("gpu.png"), std::string::npos);
+    EXPECT_NE(html.find("reference.png"), std::string::npos);
+    EXPECT_NE(html.find("mismatch-39.png"), std::string::npos);
+    EXPECT_EQ(readPng(dir + "/mismatch-0.png").width, 96u);
+    EXPECT_EQ(readPng(dir + "/reference.png").height, 54u);
+
+    // Positions: NaN on background pixels, finite on geometry.
+    float* rgba = nullptr;
+    int width = 0, height = 0;
+    const char* error = nullptr;
+    ASSERT_EQ(LoadEXR(&rgba, &width, &height, (dir + "/positions.exr").c_str(), &error), TINYEXR_SUCCESS)
+        << (error ? error : "");
+    EXPECT_EQ(width, 96);
+    EXPECT_EQ(height, 54);
+    int background = 0, geometry = 0;
+    for (int i = 0; i < width * height; ++i) (std::isnan(rgba[i * 4]) ? background : geometry)++;
+    EXPECT_GT(background, 0);  // the default view shows a little sky in its top corners
+    EXPECT_GT(geometry, width * height / 2);
+    std::free(rgba);
+    // One shadow-factor image per shadowed light, values in [0, 1] where the light reaches.
+    ASSERT_EQ(LoadEXR(&rgba, &width, &height, (dir + "/shadow-factor-0.exr").c_str(), &error), TINYEXR_SUCCESS);
+    int reached = 0;
+    for (int i = 0; i < width * height; ++i) {
+        const float f = rgba[i * 4];
+        if (std::isnan(f)) continue;
+        ++reached;
+        EXPECT_GE(f, 0.0f);
+        EXPECT_LE(f, 1.0f);
+    }
+    EXPECT_GT(reached, 0);
+    std::free(rgba);
+    EXPECT_TRUE(std::filesystem::exists(dir + "/shadow-factor-39.exr"));
+}
+
+}  // namespace
+}  // namespace punctual
