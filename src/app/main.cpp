@@ -7,6 +7,7 @@
 
 #include "app/options.h"
 #include "app/reference_command.h"
+#include "app/bench_command.h"
 #include "app/render_command.h"
 #include "app/validate_command.h"
 #include "core/error.h"
@@ -21,6 +22,8 @@ commands:
   reference [SCENE] [opts]   ray trace the CPU reference image with Embree (see --help)
   validate [SCENE] [options] --out-dir DIR
                              compare the GPU's shadows with Embree's ray-cast visibility
+  bench [SCENE] [--quick] --out-dir DIR
+                             sweep light counts, methods and shadow settings into results.csv
   devices                    list the Vulkan devices (index, name, type)
   help                       this text; `punctual render --help` for the render options
 )";
@@ -46,6 +49,7 @@ int main(int argc, char** argv) {
         if (args[0] == "render") return punctual::app::runRenderCommand(rest);
         if (args[0] == "reference") return punctual::app::runReferenceCommand(rest);
         if (args[0] == "validate") return punctual::app::runValidateCommand(rest);
+        if (args[0] == "bench") return punctual::app::runBenchCommand(rest);
         if (args[0] == "devices") return listDevices();
         std::fprintf(stderr, "punctual: error: unknown command '%s' (try punctual help)\n", args[0].c_str());
         return 2;

@@ -1,0 +1,314 @@
+#include "app/bench_command.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/options.h"
+#include "app/output_paths.h"
+#include "app/scene_source.h"
+#include "app/validation_report.h"
+#include "core/error.h"
+#include "core/output_files.h"
+#include "metrics/heatmap.h"
+#include "reference/embree_scene.h"
+#include "reference/shadow_validation.h"
+#include "render/renderer.h"
+#include "scene/light_generator.h"
+#include "vk/context.h"
+
+namespace punctual::app {
+namespace {
+
+constexpr const char* kUsage = R"(usage: punctual bench [SCENE] [--quick] --out-dir DIR [--size WxH] [--frames N]
+
+Sweeps, on SCENE (default: the built-in scene) with generated lights:
+  light counts 0 .. 64 spot + 32 point (2:1 mix, spot-only and point-only series)
+  x the methods brute, per-object, tiled, clustered (shadows off);
+  shadows off and on at the largest count, per method;
+  shadow resolutions 256..2048 x the filters hw, tent3, tent5, tent7, disk (tiled),
+  each validated against Embree.
+Every configuration renders one warm-up frame and N timed frames (default 5, quick 3) and keeps
+the median and spread of each pass. Writes DIR/results.csv, DIR/results.json and DIR/images/.
+--quick: 320x180, fewer counts, resolutions 256 and 1024, filters hw and tent5 (under 3 minutes
+on 2 CPU cores). Default size: 1280x720 (quick: 320x180).
+Charts: /usr/bin/python3 bench/plot_results.py DIR
+)";
+
+const std::vector<std::string> kColumns = {
+    "config", "series", "method", "spot", "point", "shadows", "shadow_res", "shadow_filter", "point_layout", "frames",
+    "depth_ms", "culling_ms", "shadows_ms", "forward_ms", "total_ms", "forward_spread_ms", "total_spread_ms",
+    "tested_per_pixel", "affecting_per_pixel", "efficiency", "missed_energy", "image_error", "pixels_off",
+    "shadow_misclassified", "shadow_false_shadow", "shadow_false_lit"};
+
+struct Config {
+    std::string series;
+    render::LightListMethod method = render::LightListMethod::Tiled;
+    uint32_t spot = 0;
+    uint32_t point = 0;
+    ShadowSettings shadows;
+    bool validateShadows = false;
+};
+
+using Row = std::map<std::string, std::string>;
+
+std::string number(double value) {
+    std::ostringstream s;
+    s.precision(6);
+    s << value;
+    return s.str();
+}
+
+// Mean absolute channel difference (0..1) and the share of pixels off by more than 2/255.
+std::pair<double, double> imageError(const ImageRgba8& a, const ImageRgba8& b) {
+    double sum = 0.0;
+    size_t off = 0;
+    const size_t pixels = size_t(a.width) * a.height;
+    for (size_t i = 0; i < pixels; ++i) {
+        int worst = 0;
+        for (int c = 0; c < 3; ++c) {
+            const int d = std::abs(int(a.pixels[i * 4 + c]) - int(b.pixels[i * 4 + c]));
+            sum += d;
+            worst = std::max(worst, d);
+        }
+        off += worst > 2;
+    }
+    return {sum / (3.0 * 255.0 * double(pixels)), double(off) / double(pixels)};
+}
+
+class ProgressBar {
+public:
+    explicit ProgressBar(size_t total) : total_(total), terminal_(isatty(2) != 0) {}
+    void step(const std::string& what) {
+        ++done_;
+        if (!terminal_) return;
+        const int width = 30;
+        const int filled = int(double(done_) / double(total_) * width);
+        std::fprintf(stderr, "\r[%s%s] %zu/%zu %-40.40s", std::string(size_t(filled), '#').c_str(),
+                     std::string(size_t(width - filled), '.').c_str(), done_, total_, what.c_str());
+        if (done_ == total_) std::fputc('\n', stderr);
+    }
+
+private:
+    size_t total_;
+    size_t done_ = 0;
+    bool terminal_;
+};
+
+std::string configName(const Config& c) {
+    std::ostringstream s;
+    s << c.series << "-" << render::methodName(c.method) << "-" << c.spot << "s" << c.point << "p";
+    if (c.shadows.enabled) {
+        s << "-shadows-" << c.shadows.resolution << "-" << shadowFilterName(c.shadows.filter) << "-"
+          << pointShadowLayoutName(c.shadows.pointLayout);
+    }
+    return s.str();
+}
+
+std::vector<Config> plan(bool quick) {
+    const std::vector<uint32_t> counts = quick ? std::vector<uint32_t>{0, 16, 64} : std::vector<uint32_t>{0, 8, 16, 32, 48, 64};
+    const std::vector<render::LightListMethod> methods = {render::LightListMethod::Brute, render::LightListMethod::PerObject,
+                                                          render::LightListMethod::Tiled, render::LightListMethod::Clustered};
+    std::vector<Config> configs;
+    ShadowSettings off;
+    off.enabled = false;
+    for (uint32_t spots : counts) {
+        for (const auto& [series, s, p] : {std::tuple<const char*, uint32_t, uint32_t>{"mix", spots, spots / 2},
+                                           {"spot-only", spots, 0u}, {"point-only", 0u, spots / 2}}) {
+            if (std::string(series) != "mix" && spots == 0) continue;  // the same empty frame as mix
+            for (render::LightListMethod method : methods) configs.push_back({series, method, s, p, off, false});
+        }
+    }
+    for (render::LightListMethod method : methods) {
+        configs.push_back({"shadows", method, 64, 32, off, false});
+        configs.push_back({"shadows", method, 64, 32, ShadowSettings{}, false});
+    }
+    const std::vector<uint32_t> resolutions = quick ? std::vector<uint32_t>{256, 1024} : std::vector<uint32_t>{256, 512, 1024, 2048};
+    const std::vector<ShadowFilter> filters =
+        quick ? std::vector<ShadowFilter>{ShadowFilter::Hardware, ShadowFilter::Tent5}
+              : std::vector<ShadowFilter>{ShadowFilter::Hardware, ShadowFilter::Tent3, ShadowFilter::Tent5,
+                                          ShadowFilter::Tent7, ShadowFilter::Disk};
+    for (uint32_t resolution : resolutions) {
+        for (ShadowFilter filter : filters) {
+            ShadowSettings shadows;
+            shadows.resolution = resolution;
+            shadows.filter = filter;
+            configs.push_back({"shadow-quality", render::LightListMethod::Tiled, 64, 32, shadows, true});
+        }
+    }
+    return configs;
+}
+
+}  // namespace
+
+int runBenchCommand(const std::vector<std::string>& args) {
+    std::vector<std::string> renderArgs;
+    std::optional<std::string> outDir;
+    bool quick = false;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "--help" || args[i] == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        } else if (args[i] == "--quick") {
+            quick = true;
+        } else if (args[i] == "--out-dir") {
+            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--out-dir", "needs a value");
+            outDir = args[++i];
+        } else if (args[i] == "--size" || args[i] == "--frames" || args[i] == "--device" || args[i] == "--validate" ||
+                   args[i] == "--exposure" || args[i].rfind("--", 0) != 0) {
+            renderArgs.push_back(args[i]);
+            if (args[i] != "--validate" && args[i].rfind("--", 0) == 0 && i + 1 < args.size()) renderArgs.push_back(args[++i]);
+        } else {
+            throw Error(args[i], "not an option of bench (see punctual bench --help)");
+        }
+    }
+    if (!outDir) throw Error("--out-dir", "bench needs an output folder (--out-dir DIR)");
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path parent = fs::path(*outDir).has_parent_path() ? fs::path(*outDir).parent_path() : fs::path(".");
+    if (!fs::is_directory(parent, ec)) throw Error(*outDir, "folder '" + parent.string() + "' does not exist");
+    if (fs::exists(*outDir, ec) && !fs::is_directory(*outDir, ec)) throw Error(*outDir, "exists and is not a folder");
+
+    RenderOptions options = parseRenderOptions(renderArgs);
+    const bool sizeGiven = std::find(renderArgs.begin(), renderArgs.end(), "--size") != renderArgs.end();
+    if (quick && !sizeGiven) {
+        options.width = 320;
+        options.height = 180;
+    }
+    const uint32_t timedFrames = std::find(renderArgs.begin(), renderArgs.end(), "--frames") != renderArgs.end()
+                                     ? options.frames
+                                     : (quick ? 3u : 5u);
+    const Scene baseScene = loadSceneForOptions(options);
+    vk::ContextOptions contextOptions;
+    contextOptions.validation = options.validate;
+    contextOptions.deviceIndex = options.deviceIndex;
+    vk::Context context(contextOptions);
+    const reference::EmbreeScene embree(baseScene);  // geometry only: shared by every configuration
+
+    const std::vector<Config> configs = plan(quick);
+    ProgressBar progress(configs.size());
+    OutputFiles outputs;
+    std::vector<Row> rows;
+    std::map<std::string, ImageRgba8> bruteImages;  // by series + counts
+    for (const Config& config : configs) {
+        Scene scene = baseScene;
+        replaceLights(scene, config.spot, config.point, 1);
+        render::RenderSettings settings;
+        settings.width = options.width;
+        settings.height = options.height;
+        settings.exposure = options.exposure;
+        settings.method = config.method;
+        settings.shadows = config.shadows;
+        settings.collectLightStats = !config.validateShadows;
+        settings.collectShadowFactors = config.validateShadows;
+        render::Renderer renderer(context, scene, settings);
+        const render::FrameResult result = renderer.render(timedFrames, 1);
+        auto spread = [&](double render::PassTimings::*field) {
+            double lo = 1e300, hi = 0.0;
+            for (const render::PassTimings& t : result.framesMs) {
+                lo = std::min(lo, t.*field);
+                hi = std::max(hi, t.*field);
+            }
+            return hi - lo;
+        };
+        const std::string name = configName(config);
+        Row row = {{"config", name},
+                   {"series", config.series},
+                   {"method", render::methodName(config.method)},
+                   {"spot", std::to_string(config.spot)},
+                   {"point", std::to_string(config.point)},
+                   {"shadows", config.shadows.enabled ? "1" : "0"},
+                   {"shadow_res", std::to_string(config.shadows.resolution)},
+                   {"shadow_filter", shadowFilterName(config.shadows.filter)},
+                   {"point_layout", pointShadowLayoutName(config.shadows.pointLayout)},
+                   {"frames", std::to_string(timedFrames)},
+                   {"depth_ms", number(result.medianMs.depth)},
+                   {"culling_ms", number(result.medianMs.culling)},
+                   {"shadows_ms", number(result.medianMs.shadows)},
+                   {"forward_ms", number(result.medianMs.forward)},
+                   {"total_ms", number(result.medianMs.total)},
+                   {"forward_spread_ms", number(spread(&render::PassTimings::forward))},
+                   {"total_spread_ms", number(spread(&render::PassTimings::total))}};
+        if (settings.collectLightStats) {
+            const LightStatsImage stats = renderer.readLightStats();
+            const CullingStats culling = computeCullingStats(stats);
+            row["tested_per_pixel"] = number(culling.testedPerPixel);
+            row["affecting_per_pixel"] = number(culling.affectingPerPixel);
+            row["efficiency"] = number(culling.efficiency);
+            row["missed_energy"] = number(culling.missedEnergy);
+            // Sample heat maps: every method at the largest mixed count.
+            if (config.series == "mix" && config.spot == 64) {
+                std::vector<uint8_t> background(stats.covered.size());
+                for (size_t i = 0; i < background.size(); ++i) background[i] = stats.covered[i] ? 0 : 1;
+                HeatmapOptions heatmap;
+                heatmap.title = std::string("lights tested per pixel: ") + render::methodName(config.method);
+                heatmap.maxValue = 32;
+                outputs.add(*outDir + "/images/heatmap-" + render::methodName(config.method) + ".png",
+                            encodePng(renderHeatmap(stats.tested, background, settings.width, settings.height, heatmap)));
+            }
+        }
+        const std::string bruteKey = config.series + std::to_string(config.spot) + "," + std::to_string(config.point) +
+                                     (config.shadows.enabled ? "s" : "");
+        if (config.method == render::LightListMethod::Brute && !config.validateShadows) {
+            bruteImages[bruteKey] = result.image;
+        } else if (bruteImages.count(bruteKey)) {
+            const auto [error, off] = imageError(result.image, bruteImages[bruteKey]);
+            row["image_error"] = number(error);
+            row["pixels_off"] = number(off);
+        }
+        if (config.validateShadows) {
+            const render::ShadowFactorImage factors = renderer.readShadowFactors();
+            const reference::ShadowValidation validation =
+                reference::validateShadows(embree, factors, renderer.lights(), renderer.shadowPlan(), settings.shadows);
+            row["shadow_misclassified"] = number(validation.overall.misclassifiedOutsideBand());
+            row["shadow_false_shadow"] = std::to_string(validation.overall.falseShadow);
+            row["shadow_false_lit"] = std::to_string(validation.overall.falseLit);
+            if (!validation.lights.empty()) {
+                outputs.add(*outDir + "/images/mismatch-" + name + "-light0.png",
+                            encodePng(mismatchMap(validation.lights.front(), validation.width, validation.height)));
+            }
+        }
+        rows.push_back(row);
+        progress.step(name);
+    }
+    if (context.validationMessageCount() > 0) {
+        throw Error("vulkan", std::to_string(context.validationMessageCount()) + " validation message(s); no output written");
+    }
+
+    std::ostringstream csv;
+    for (size_t i = 0; i < kColumns.size(); ++i) csv << (i ? "," : "") << kColumns[i];
+    csv << "\n";
+    nlohmann::json json = nlohmann::json::array();
+    for (const Row& row : rows) {
+        nlohmann::json entry;
+        for (size_t i = 0; i < kColumns.size(); ++i) {
+            const auto it = row.find(kColumns[i]);
+            const std::string value = it == row.end() ? "" : it->second;
+            csv << (i ? "," : "") << value;
+            entry[kColumns[i]] = value;
+        }
+        csv << "\n";
+        json.push_back(entry);
+    }
+    nlohmann::json document = {{"scene", baseScene.source}, {"device", context.deviceName()},
+                               {"size", {{"width", options.width}, {"height", options.height}}},
+                               {"quick", quick}, {"configurations", json}};
+    outputs.add(*outDir + "/results.csv", csv.str());
+    outputs.add(*outDir + "/results.json", document.dump(2) + "\n");
+    fs::create_directories(fs::path(*outDir) / "images", ec);
+    if (ec) throw Error(*outDir, "cannot create the folder: " + ec.message());
+    outputs.commit();
+    std::printf("bench: %zu configurations on %s at %ux%u, %u timed frames each; wrote %s/results.csv\n", rows.size(),
+                baseScene.source.c_str(), options.width, options.height, timedFrames, outDir->c_str());
+    return 0;
+}
+
+}  // namespace punctual::app
