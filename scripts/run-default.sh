@@ -6,3 +6,6 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/build.sh"
 mkdir -p "$root/out"
 "$root/build/punctual" render --out "$root/out/default.png" --stats "$root/out/default-stats.json" "$@"
+echo
+echo "Every light-list method on the default scene, side by side:"
+"$root/build/punctual" compare

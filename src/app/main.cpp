@@ -8,6 +8,7 @@
 #include "app/options.h"
 #include "app/reference_command.h"
 #include "app/bench_command.h"
+#include "app/compare_command.h"
 #include "app/render_command.h"
 #include "app/validate_command.h"
 #include "core/error.h"
@@ -22,6 +23,8 @@ commands:
   reference [SCENE] [opts]   ray trace the CPU reference image with Embree (see --help)
   validate [SCENE] [options] --out-dir DIR
                              compare the GPU's shadows with Embree's ray-cast visibility
+  compare [SCENE] [options]  every light-list method side by side: time, error against brute
+                             force, shadow accuracy against Embree
   bench [SCENE] [--quick] --out-dir DIR
                              sweep light counts, methods and shadow settings into results.csv
   devices                    list the Vulkan devices (index, name, type)
@@ -50,6 +53,7 @@ int main(int argc, char** argv) {
         if (args[0] == "reference") return punctual::app::runReferenceCommand(rest);
         if (args[0] == "validate") return punctual::app::runValidateCommand(rest);
         if (args[0] == "bench") return punctual::app::runBenchCommand(rest);
+        if (args[0] == "compare") return punctual::app::runCompareCommand(rest);
         if (args[0] == "devices") return listDevices();
         std::fprintf(stderr, "punctual: error: unknown command '%s' (try punctual help)\n", args[0].c_str());
         return 2;

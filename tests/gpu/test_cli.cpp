@@ -138,6 +138,22 @@ TEST(Cli, GeneratedLightsReplaceTheScenes) {
     EXPECT_LE(stats["lights"]["point"].get<int>(), 3);
 }
 
+TEST(Cli, CompareShowsEveryMethodSideBySide) {
+    testing::TempFolder folder;
+    const RunResult run = runPunctual(folder, "compare --validate --size 96x54 --shadow-res 256");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_EQ(run.err, "");
+    for (const char* method : {"brute", "per-object", "tiled", "clustered"}) {
+        EXPECT_NE(run.out.find(std::string("\n") + method + " "), std::string::npos) << method << "\n" << run.out;
+    }
+    // Tiled and clustered are bit-identical to brute force: zero error on their rows.
+    for (const char* method : {"tiled", "clustered"}) {
+        const size_t row = run.out.find(std::string("\n") + method + " ");
+        const std::string line = run.out.substr(row + 1, run.out.find('\n', row + 1) - row - 1);
+        EXPECT_NE(line.find("0.000      0.000%"), std::string::npos) << line;
+    }
+}
+
 TEST(Cli, HelpExitsZero) {
     testing::TempFolder folder;
     const RunResult run = runPunctual(folder, "render --help");
