@@ -5,6 +5,11 @@
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_types.h"
 
+// The failure study's "pancaking" (Unity's ShadowCaster clamp): vertex depth clamped onto the
+// near plane, which distorts the depth interpolated across triangles that cross it. Off for
+// every real render.
+layout(constant_id = 0) const bool PANCAKING = false;
+
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_OBJECTS) readonly buffer ObjectBlock { GpuObject objects[]; };
 layout(push_constant) uniform ShadowDraw {
     mat4 viewProjection;
@@ -15,4 +20,5 @@ layout(location = 0) in vec3 inPosition;
 
 void main() {
     gl_Position = draw.viewProjection * (objects[draw.objectIndex].model * vec4(inPosition, 1.0));
+    if (PANCAKING) gl_Position.z = max(gl_Position.z, 0.0);  // Vulkan depth: the near plane is z = 0
 }

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/bench_failures.h"
 #include "app/options.h"
 #include "app/output_paths.h"
 #include "app/scene_source.h"
@@ -38,6 +39,10 @@ Sweeps, on SCENE (default: the built-in scene) with generated lights:
   each validated against Embree.
 Every configuration renders one warm-up frame and N timed frames (default 5, quick 3) and keeps
 the median and spread of each pass. Writes DIR/results.csv, DIR/results.json and DIR/images/.
+Then the failure study (DIR/failures.csv): acne against bias, peter-panning against bias, cube
+seams against resolution and layout, the pancaking leak, spots widening towards 90 degrees, tile
+depth discontinuities (tiled against clustered), per-object lists on large objects, and light
+counts beyond the caps.
 --quick: 320x180, fewer counts, resolutions 256 and 1024, filters hw and tent5 (under 3 minutes
 on 2 CPU cores). Default size: 1280x720 (quick: 320x180).
 Charts: /usr/bin/python3 bench/plot_results.py DIR
@@ -194,7 +199,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
     const reference::EmbreeScene embree(baseScene);  // geometry only: shared by every configuration
 
     const std::vector<Config> configs = plan(quick);
-    ProgressBar progress(configs.size());
+    ProgressBar progress(configs.size() + failureStudySize(context, quick));
     OutputFiles outputs;
     std::vector<Row> rows;
     std::map<std::string, ImageRgba8> bruteImages;  // by series + counts
@@ -279,6 +284,9 @@ int runBenchCommand(const std::vector<std::string>& args) {
         rows.push_back(row);
         progress.step(name);
     }
+    // Where methods fail: one scene per known failure, error against the provoking parameter.
+    const std::vector<FailureRow> failures =
+        runFailureStudy(context, quick, options.width, options.height, [&](const std::string& what) { progress.step(what); });
     if (context.validationMessageCount() > 0) {
         throw Error("vulkan", std::to_string(context.validationMessageCount()) + " validation message(s); no output written");
     }
@@ -302,6 +310,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
                                {"size", {{"width", options.width}, {"height", options.height}}},
                                {"quick", quick}, {"configurations", json}};
     outputs.add(*outDir + "/results.csv", csv.str());
+    outputs.add(*outDir + "/failures.csv", failuresCsv(failures));
     outputs.add(*outDir + "/results.json", document.dump(2) + "\n");
     fs::create_directories(fs::path(*outDir) / "images", ec);
     if (ec) throw Error(*outDir, "cannot create the folder: " + ec.message());

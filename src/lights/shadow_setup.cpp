@@ -116,6 +116,9 @@ void validateShadowSettings(const ShadowSettings& settings) {
     if (!std::isfinite(settings.diskRadius) || settings.diskRadius < 0.0f || settings.diskRadius > 0.1f) {
         throw Error("--shadow-penumbra", "must be from 0 to 0.1 (shadow-map UV units)");
     }
+    if (!std::isfinite(settings.spotNearFraction) || settings.spotNearFraction < 0.0f || settings.spotNearFraction >= 1.0f) {
+        throw Error("shadows", "the spot near-plane fraction must be from 0 to below 1");
+    }
     if (!std::isfinite(settings.strength) || settings.strength < 0.0f || settings.strength > 1.0f) {
         throw Error("--shadow-strength", "must be from 0 to 1");
     }
@@ -186,7 +189,8 @@ ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3&
         ShadowView view;
         view.casters = findCasters(scene, spotViewProjection(position, direction, halfAngle, range * 1e-3f, range),
                                    position, nearest);
-        const float nearPlane = nearPlaneFor(nearest, range);
+        const float nearPlane = settings.spotNearFraction > 0.0f ? range * settings.spotNearFraction
+                                                                 : nearPlaneFor(nearest, range);
         view.gpu.viewProjection = spotViewProjection(position, direction, halfAngle, nearPlane, range);
         view.layer = plan.shadowedSpots++;
         view.packedLight = index;

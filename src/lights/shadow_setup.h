@@ -43,6 +43,9 @@ struct ShadowSettings {
     glm::vec4 bias{1.0f, 1.0f, 1.0f, 0.0f};  // depth, slope-scaled, normal, sin-scaled normal
     PointShadowLayout pointLayout = PointShadowLayout::Cube;
     float strength = 1.0f;  // multiplies every light's own shadow strength
+    // For the failure study only (bench), never needed to render correctly:
+    bool pancaking = false;         // clamp caster vertices' depth onto the near plane (Unity's pancaking)
+    float spotNearFraction = 0.0f;  // > 0: spot near plane at this fraction of the range, not fitted
 
     // The filter's reach in texels, which widens the bias (the design notes' penumbra).
     float penumbraTexels() const;

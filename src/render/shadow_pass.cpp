@@ -87,6 +87,11 @@ ShadowPass::ShadowPass(const vk::Context& context, const FrameBindings& bindings
     pipelineDesc.vertexStride = SceneGpu::vertexStride();
     pipelineDesc.vertexAttributes = {SceneGpu::vertexAttributes().front()};  // position only
     pipelineDesc.depthCompare = VK_COMPARE_OP_LESS;
+    // Pancaking exists only for the failure study; spot and point shadows never use it.
+    const VkBool32 pancaking = settings.pancaking ? VK_TRUE : VK_FALSE;
+    const VkSpecializationMapEntry pancakingEntry{0, 0, sizeof(VkBool32)};
+    const VkSpecializationInfo vertexSpecialization{1, &pancakingEntry, sizeof(VkBool32), &pancaking};
+    pipelineDesc.vertexSpecialization = &vertexSpecialization;
     pipeline_ = vk::createGraphicsPipeline(device, pipelineDesc);
 
     for (uint32_t i = 0; i < plan.views.size(); ++i) {

@@ -21,6 +21,7 @@ Handle<VkPipeline> createGraphicsPipeline(VkDevice device, const GraphicsPipelin
     stage.stage = VK_SHADER_STAGE_VERTEX_BIT;
     stage.module = vertex;
     stage.pName = "main";
+    stage.pSpecializationInfo = desc.vertexSpecialization;
     stages.push_back(stage);
     if (!desc.fragmentSpirv.empty()) {
         fragment = createShaderModule(device, desc.fragmentSpirv);

@@ -19,6 +19,7 @@ struct GraphicsPipelineDesc {
     std::span<const uint32_t> vertexSpirv;
     std::span<const uint32_t> fragmentSpirv;  // empty: depth-only pipeline
     const VkSpecializationInfo* fragmentSpecialization = nullptr;
+    const VkSpecializationInfo* vertexSpecialization = nullptr;
     uint32_t vertexStride = 0;
     std::vector<VkVertexInputAttributeDescription> vertexAttributes;
     bool hasColorAttachment = false;

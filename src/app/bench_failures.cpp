@@ -1,0 +1,227 @@
+#include "app/bench_failures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "reference/embree_scene.h"
+#include "reference/shadow_validation.h"
+#include "render/renderer.h"
+#include "scene/study_scenes.h"
+#include "shading.h"
+#include "shadows.h"
+
+namespace punctual::app {
+namespace {
+
+constexpr float kDegree = 0.0174532925f;
+
+struct Study {
+    std::string name;
+    std::string parameter;
+    std::string metric;
+    std::vector<double> values;
+    std::vector<std::string> variants;
+    // Renders and measures one (value, variant); returns (error, total ms).
+    std::function<std::pair<double, double>(double value, const std::string& variant)> measure;
+};
+
+struct Frame {
+    render::FrameResult result;
+    render::ShadowFactorImage factors;
+    reference::ShadowValidation validation;
+};
+
+// Renders `scene` with shadow factors and validates them against Embree.
+Frame renderAndValidate(vk::Context& context, const Scene& scene, render::RenderSettings settings) {
+    settings.collectShadowFactors = true;
+    render::Renderer renderer(context, scene, settings);
+    Frame frame;
+    frame.result = renderer.render(1, 1);
+    frame.factors = renderer.readShadowFactors();
+    const reference::EmbreeScene embree(scene);
+    frame.validation =
+        reference::validateShadows(embree, frame.factors, renderer.lights(), renderer.shadowPlan(), settings.shadows);
+    return frame;
+}
+
+double fraction(uint64_t part, uint64_t whole) { return whole > 0 ? double(part) / double(whole) : 0.0; }
+
+// Misclassification among the point light's compared pixels whose direction from the light lies
+// within two texels of a cube-face edge (`seams`) or not (interior).
+double seamError(const Frame& frame, const Scene& scene, uint32_t resolution, bool seams) {
+    uint64_t compared = 0, wrong = 0;
+    const glm::vec3 light = scene.lights.front().position;
+    for (const reference::LightShadowValidation& v : frame.validation.lights) {
+        for (size_t i = 0; i < v.verdicts.size(); ++i) {
+            if (v.verdicts[i] == reference::PixelVerdict::NotCompared) continue;
+            glm::vec3 d = glm::abs(frame.factors.positions[i] - light);
+            std::sort(&d.x, &d.x + 3);  // ascending: d.z is the major axis
+            const bool nearSeam = (d.z - d.y) / d.z < 4.0f / float(resolution);
+            if (nearSeam != seams) continue;
+            ++compared;
+            wrong += v.verdicts[i] == reference::PixelVerdict::FalseLit || v.verdicts[i] == reference::PixelVerdict::FalseShadow;
+        }
+    }
+    return fraction(wrong, compared);
+}
+
+// Light lost to the caps: at the GPU's surface points, the unshadowed light (attenuation x N.L x
+// peak intensity) of the kept lights against that of every light of the scene.
+double lightBeyondCaps(const Frame& frame, const Scene& scene, const FrameLights& kept) {
+    double keptSum = 0.0, allSum = 0.0;
+    std::vector<gpu::GpuPunctualLight> all;
+    for (const Light& light : scene.lights) all.push_back(packPunctualLight(light));
+    auto received = [](const gpu::GpuPunctualLight& light, const glm::vec3& p, const glm::vec3& n) {
+        const gpu::LightSample s = gpu::sampleLight(light, p);
+        const float peak = std::max({light.radiantColor.r, light.radiantColor.g, light.radiantColor.b});
+        return double(s.attenuation * std::max(glm::dot(n, s.toLight), 0.0f) * peak);
+    };
+    for (size_t i = 0; i < frame.factors.covered.size(); ++i) {
+        if (!frame.factors.covered[i]) continue;
+        for (const auto& light : kept.packed) keptSum += received(light, frame.factors.positions[i], frame.factors.normals[i]);
+        for (const auto& light : all) allSum += received(light, frame.factors.positions[i], frame.factors.normals[i]);
+    }
+    return allSum > 0.0 ? 1.0 - keptSum / allSum : 0.0;
+}
+
+std::vector<Study> studies(vk::Context& context, bool quick, uint32_t width, uint32_t height) {
+    auto base = [=](render::LightListMethod method = render::LightListMethod::Brute) {
+        render::RenderSettings settings;
+        settings.width = width;
+        settings.height = height;
+        settings.method = method;
+        settings.shadows.resolution = 512;
+        return settings;
+    };
+    auto filterOf = [](const std::string& variant) { return parseShadowFilter(variant); };
+    std::vector<Study> list;
+    list.push_back({"acne-vs-bias", "bias scale (x 1,1,1,0)", "false_shadow fraction outside the edge band",
+                    quick ? std::vector<double>{0.0, 0.5, 1.0} : std::vector<double>{0.0, 0.25, 0.5, 1.0, 2.0},
+                    quick ? std::vector<std::string>{"hw"} : std::vector<std::string>{"hw", "tent5"},
+                    [&context, base, filterOf](double value, const std::string& variant) {
+                        render::RenderSettings s = base();
+                        s.shadows.filter = filterOf(variant);
+                        s.shadows.bias = float(value) * glm::vec4(1.0f, 1.0f, 1.0f, 0.0f);
+                        const Frame f = renderAndValidate(context, study::grazingLightScene(), s);
+                        return std::pair{fraction(f.validation.overall.falseShadowOutsideBand, f.validation.overall.comparedOutsideBand),
+                                         f.result.medianMs.total};
+                    }});
+    list.push_back({"peter-panning-vs-bias", "bias scale (x 1,1,1,0)", "false_lit fraction outside the edge band",
+                    quick ? std::vector<double>{1.0, 4.0} : std::vector<double>{0.5, 1.0, 2.0, 4.0, 8.0},
+                    quick ? std::vector<std::string>{"tent5"} : std::vector<std::string>{"hw", "tent5"},
+                    [&context, base, filterOf](double value, const std::string& variant) {
+                        render::RenderSettings s = base();
+                        s.shadows.filter = filterOf(variant);
+                        s.shadows.bias = float(value) * glm::vec4(1.0f, 1.0f, 1.0f, 0.0f);
+                        const Frame f = renderAndValidate(context, study::contactCasterScene(), s);
+                        return std::pair{fraction(f.validation.overall.falseLitOutsideBand, f.validation.overall.comparedOutsideBand),
+                                         f.result.medianMs.total};
+                    }});
+    list.push_back({"cube-seams", "shadow resolution", "misclassified fraction",
+                    quick ? std::vector<double>{256.0} : std::vector<double>{256.0, 512.0, 1024.0},
+                    {"cube seams", "cube interior", "slices seams", "slices interior"},
+                    [&context, base](double value, const std::string& variant) {
+                        render::RenderSettings s = base();
+                        s.shadows.resolution = uint32_t(value);
+                        s.shadows.pointLayout = variant.rfind("cube", 0) == 0 ? PointShadowLayout::Cube : PointShadowLayout::Slices;
+                        const Scene scene = study::seamScene();
+                        const Frame f = renderAndValidate(context, scene, s);
+                        return std::pair{seamError(f, scene, s.shadows.resolution, variant.find("seams") != std::string::npos),
+                                         f.result.medianMs.total};
+                    }});
+    list.push_back({"pancaking-leak", "spot near plane (fraction of range; 0 = fitted to casters)",
+                    "false_lit fraction outside the edge band",
+                    quick ? std::vector<double>{0.0, 0.3} : std::vector<double>{0.0, 0.1, 0.2, 0.3, 0.4},
+                    {"clipped (no pancaking)", "pancaking"},
+                    [&context, base](double value, const std::string& variant) {
+                        render::RenderSettings s = base();
+                        s.shadows.spotNearFraction = float(value);
+                        s.shadows.pancaking = variant == "pancaking";
+                        const Frame f = renderAndValidate(context, study::pancakingScene(), s);
+                        return std::pair{fraction(f.validation.overall.falseLitOutsideBand, f.validation.overall.comparedOutsideBand),
+                                         f.result.medianMs.total};
+                    }});
+    list.push_back({"wide-spot", "outer cone angle (degrees)", "misclassified fraction outside the edge band",
+                    quick ? std::vector<double>{45.0, 85.0} : std::vector<double>{30.0, 60.0, 75.0, 80.0, 85.0, 89.0},
+                    {"spot"},
+                    [&context, base](double value, const std::string&) {
+                        const Frame f = renderAndValidate(context, study::wideSpotScene(float(value) * kDegree), base());
+                        return std::pair{f.validation.overall.misclassifiedOutsideBand(), f.result.medianMs.total};
+                    }});
+    list.push_back({"tile-depth-discontinuities", "tile size (pixels)", "lights tested / lights reaching (efficiency)",
+                    quick ? std::vector<double>{16.0, 64.0} : std::vector<double>{8.0, 16.0, 32.0, 64.0},
+                    {"tiled", "clustered"},
+                    [&context, base](double value, const std::string& variant) {
+                        render::RenderSettings s = base(render::parseMethod(variant));
+                        s.tileSize = uint32_t(value);
+                        s.shadows.enabled = false;
+                        s.collectLightStats = true;
+                        render::Renderer renderer(context, study::postsScene(), s);
+                        const double ms = renderer.render(1, 1).medianMs.total;
+                        return std::pair{computeCullingStats(renderer.readLightStats()).efficiency, ms};
+                    }});
+    list.push_back({"per-object-large-objects", "lights on the floor", "missed energy (share of brute-force light)",
+                    quick ? std::vector<double>{8.0, 16.0} : std::vector<double>{4.0, 8.0, 12.0, 16.0, 24.0, 32.0},
+                    {"per-object"},
+                    [&context, base](double value, const std::string&) {
+                        render::RenderSettings s = base(render::LightListMethod::PerObject);
+                        s.shadows.enabled = false;
+                        s.collectLightStats = true;
+                        render::Renderer renderer(context, study::largeFloorScene(int(value)), s);
+                        const double ms = renderer.render(1, 1).medianMs.total;
+                        return std::pair{computeCullingStats(renderer.readLightStats()).missedEnergy, ms};
+                    }});
+    list.push_back({"beyond-the-caps", "spot lights in the scene (half as many points)",
+                    "light lost to the caps (share of all lights' unshadowed light)",
+                    quick ? std::vector<double>{64.0, 128.0} : std::vector<double>{32.0, 64.0, 96.0, 128.0},
+                    {"tiled"},
+                    [&context, base](double value, const std::string&) {
+                        const Scene scene = study::manyLightsScene(int(value), int(value) / 2);
+                        render::RenderSettings s = base(render::LightListMethod::Tiled);
+                        s.collectShadowFactors = true;
+                        render::Renderer renderer(context, scene, s);
+                        Frame frame;
+                        frame.result = renderer.render(1, 1);
+                        frame.factors = renderer.readShadowFactors();
+                        return std::pair{lightBeyondCaps(frame, scene, renderer.lights()), frame.result.medianMs.total};
+                    }});
+    return list;
+}
+
+}  // namespace
+
+size_t failureStudySize(vk::Context& context, bool quick) {
+    size_t count = 0;
+    for (const Study& s : studies(context, quick, 1, 1)) count += s.values.size() * s.variants.size();
+    return count;
+}
+
+std::vector<FailureRow> runFailureStudy(vk::Context& context, bool quick, uint32_t width, uint32_t height,
+                                        const std::function<void(const std::string&)>& onStep) {
+    std::vector<FailureRow> rows;
+    for (const Study& s : studies(context, quick, width, height)) {
+        for (const std::string& variant : s.variants) {
+            for (double value : s.values) {
+                const auto [error, ms] = s.measure(value, variant);
+                rows.push_back({s.name, s.parameter, value, variant, s.metric, error, ms});
+                onStep(s.name + " " + variant);
+            }
+        }
+    }
+    return rows;
+}
+
+std::string failuresCsv(const std::vector<FailureRow>& rows) {
+    auto quoted = [](const std::string& text) { return "\"" + text + "\""; };
+    std::ostringstream csv;
+    csv.precision(6);
+    csv << "study,parameter,value,variant,metric,error,total_ms\n";
+    for (const FailureRow& r : rows) {
+        csv << r.study << "," << quoted(r.parameter) << "," << r.value << "," << quoted(r.variant) << ","
+            << quoted(r.metric) << "," << r.error << "," << r.totalMs << "\n";
+    }
+    return csv.str();
+}
+
+}  // namespace punctual::app

@@ -1,0 +1,152 @@
+#include "scene/study_scenes.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scene/default_scene.h"
+
+namespace punctual::study {
+
+Scene floorScene(const std::string& name) {
+    Scene scene;
+    scene.source = name;
+    Material material;
+    material.name = "grey";
+    material.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
+    material.metallic = 0.0f;
+    material.roughness = 0.6f;
+    scene.materials.push_back(material);
+    addBox(scene, glm::vec3(0.0f, -0.1f, 0.0f), glm::vec3(20.0f, 0.2f, 20.0f));
+    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 3.0f, 10.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    scene.camera.yfov = 1.0f;
+    scene.camera.znear = 0.1f;
+    scene.camera.zfar = 40.0f;
+    scene.cameraFromFile = true;
+    scene.computeBounds();
+    return scene;
+}
+
+void addBox(Scene& scene, const glm::vec3& center, const glm::vec3& size, uint32_t material) {
+    Object object;
+    object.name = "box";
+    object.mesh = appendBoxMesh(scene, "box", size, material);
+    object.model = glm::translate(glm::mat4(1.0f), center);
+    scene.objects.push_back(object);
+}
+
+Light pointLight(const glm::vec3& position, float range, float intensity) {
+    Light light;
+    light.type = LightType::Point;
+    light.position = position;
+    light.range = range;
+    light.intensity = intensity;
+    return light;
+}
+
+Light spotLight(const glm::vec3& position, const glm::vec3& direction, float range, float intensity, float innerAngle,
+                float outerAngle) {
+    Light light = pointLight(position, range, intensity);
+    light.type = LightType::Spot;
+    light.direction = glm::normalize(direction);
+    light.innerConeAngle = innerAngle;
+    light.outerConeAngle = outerAngle;
+    return light;
+}
+
+Scene grazingLightScene() {
+    Scene scene = floorScene("grazing light");
+    scene.lights.push_back(spotLight({-6.0f, 0.6f, 0.0f}, {1.0f, -0.08f, 0.0f}, 16.0f, 60.0f, 0.6f, 1.2f));
+    scene.lights.push_back(pointLight({5.0f, 0.5f, -2.0f}, 12.0f, 20.0f));
+    scene.computeBounds();
+    return scene;
+}
+
+Scene contactCasterScene() {
+    Scene scene = floorScene("contact casters");
+    addBox(scene, {-2.0f, 0.75f, 0.0f}, {1.5f, 1.5f, 1.5f});  // stands on the floor
+    addBox(scene, {1.5f, 0.03f, 0.5f}, {2.0f, 0.02f, 1.0f});  // thin slab 2 cm above the floor
+    addBox(scene, {0.0f, 0.2f, 3.0f}, {3.0f, 0.05f, 0.3f});   // thin plank on edge-height
+    scene.lights.push_back(spotLight({-1.0f, 5.0f, 4.0f}, {0.2f, -1.0f, -0.6f}, 14.0f, 60.0f, 0.5f, 0.8f));
+    scene.lights.push_back(pointLight({3.0f, 3.0f, 3.0f}, 10.0f, 25.0f));
+    scene.computeBounds();
+    return scene;
+}
+
+Scene seamScene() {
+    Scene scene = floorScene("cube seams");
+    for (int i = 0; i < 12; ++i) {
+        const float angle = 6.2831853f * (float(i) + 0.5f) / 12.0f;
+        addBox(scene, {2.2f * std::cos(angle), 1.0f, 2.2f * std::sin(angle)}, {0.3f, 2.0f, 0.3f});
+    }
+    scene.lights.push_back(pointLight({0.0f, 1.5f, 0.0f}, 9.0f, 30.0f));
+    scene.computeBounds();
+    return scene;
+}
+
+Scene pancakingScene() {
+    Scene scene = floorScene("pancaking");
+    // A long wall slanting from under the spot down to the floor: with the near plane pushed out,
+    // its upper end lies in front of it.
+    Object wall;
+    wall.name = "slanted wall";
+    wall.mesh = appendBoxMesh(scene, "wall", {0.2f, 4.0f, 3.0f}, 0);
+    wall.model = glm::rotate(glm::translate(glm::mat4(1.0f), {0.0f, 1.9f, 0.0f}), 0.5f, glm::vec3(0.0f, 0.0f, 1.0f));
+    scene.objects.push_back(wall);
+    scene.lights.push_back(spotLight({-1.5f, 4.5f, 0.0f}, {0.3f, -1.0f, 0.0f}, 10.0f, 60.0f, 0.5f, 0.75f));
+    scene.computeBounds();
+    return scene;
+}
+
+Scene wideSpotScene(float outerAngle) {
+    Scene scene = floorScene("wide spot");
+    addBox(scene, {1.5f, 0.5f, 0.0f}, {1.0f, 1.0f, 1.0f});
+    addBox(scene, {-4.0f, 0.5f, 1.0f}, {1.0f, 1.0f, 1.0f});
+    scene.lights.push_back(spotLight({0.0f, 2.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, 12.0f, 40.0f, outerAngle * 0.8f, outerAngle));
+    scene.computeBounds();
+    return scene;
+}
+
+Scene postsScene() {
+    Scene scene = floorScene("tile depth discontinuities");
+    for (int i = 0; i < 7; ++i) {
+        const float x = -3.6f + 1.2f * float(i);
+        addBox(scene, {x, 1.5f, 6.0f}, {0.35f, 3.0f, 0.2f});
+        scene.lights.push_back(pointLight({x, 1.0f + 0.4f * float(i % 3), 6.4f}, 0.7f, 1.0f));
+    }
+    for (int i = 0; i < 10; ++i) {
+        scene.lights.push_back(pointLight({-9.0f + 2.0f * float(i), 0.8f, -5.0f + 0.6f * float(i % 4)}, 3.0f, 12.0f));
+    }
+    scene.computeBounds();
+    return scene;
+}
+
+Scene largeFloorScene(int lightCount) {
+    Scene scene = floorScene("large floor");
+    for (int i = 0; i < lightCount; ++i) {
+        const float angle = 6.2831853f * float(i) / float(lightCount);
+        scene.lights.push_back(pointLight({4.0f * std::cos(angle), 1.5f, 4.0f * std::sin(angle)}, 9.0f, 4.0f));
+    }
+    scene.computeBounds();
+    return scene;
+}
+
+Scene manyLightsScene(int spotCount, int pointCount) {
+    Scene scene = floorScene("many lights");
+    // Deterministic placement on two spirals over the visible floor.
+    for (int i = 0; i < spotCount; ++i) {
+        const float t = float(i) / float(std::max(spotCount, 1));
+        const float angle = 37.0f * t;
+        const glm::vec3 position(6.0f * t * std::cos(angle), 3.0f, 6.0f * t * std::sin(angle) - 1.0f);
+        scene.lights.push_back(spotLight(position, {0.0f, -1.0f, 0.0f}, 5.0f, 3.0f + 2.0f * t, 0.3f, 0.6f));
+    }
+    for (int i = 0; i < pointCount; ++i) {
+        const float t = float(i) / float(std::max(pointCount, 1));
+        const float angle = 23.0f * t + 1.0f;
+        scene.lights.push_back(pointLight({5.5f * t * std::cos(angle), 1.2f, 5.5f * t * std::sin(angle)}, 3.5f, 1.0f + t));
+    }
+    scene.computeBounds();
+    return scene;
+}
+
+}  // namespace punctual::study

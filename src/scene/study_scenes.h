@@ -1,0 +1,41 @@
+#pragma once
+// Small scenes built in code, each provoking one known failure of a light-culling or shadow
+// method (the bench's failure study). All share a 20 x 20 m grey floor at y = 0 seen from
+// (0, 3, 10) looking at the origin, unless a scene says otherwise.
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace punctual::study {
+
+Scene floorScene(const std::string& name);
+// A box of `size` centred at `center` (mesh + object); call scene.computeBounds() when done.
+void addBox(Scene& scene, const glm::vec3& center, const glm::vec3& size, uint32_t material = 0);
+Light pointLight(const glm::vec3& position, float range, float intensity);
+Light spotLight(const glm::vec3& position, const glm::vec3& direction, float range, float intensity, float innerAngle,
+                float outerAngle);
+
+// A spot and a point light low over an empty floor: light arrives at up to ~85 degrees from the
+// normal (acne).
+Scene grazingLightScene();
+// Thin slabs lying just above the floor and a box standing on it, lit from above at an angle:
+// the shadows start at the contact (peter-panning).
+Scene contactCasterScene();
+// A point light in a ring of pillars whose shadows cross its cube's face edges (seams).
+Scene seamScene();
+// A spot light above a long wall that crosses the light's near plane when it is pushed out
+// (pancaking).
+Scene pancakingScene();
+// A spot above a floor with a box under it, cone half-angle `outerAngle` (towards 90 degrees).
+Scene wideSpotScene(float outerAngle);
+// A row of thin posts near the camera in front of a far floor, small lights on the posts and on
+// the floor (tile depth discontinuities).
+Scene postsScene();
+// A large floor under `lightCount` overlapping point lights (per-object lists).
+Scene largeFloorScene(int lightCount);
+// The floor under `spotCount` spots and `pointCount` points, all in view (beyond the caps).
+Scene manyLightsScene(int spotCount, int pointCount);
+
+}  // namespace punctual::study
