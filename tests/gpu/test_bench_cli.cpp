@@ -61,6 +61,17 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     EXPECT_EQ(json["configurations"].size(), rows);
     EXPECT_TRUE(json["quick"].get<bool>());
     EXPECT_TRUE(std::filesystem::exists(dir + "/images/heatmap-tiled.png"));
+
+    // The failure study: every known failure measured against its parameter.
+    std::istringstream failures(readAll(dir + "/failures.csv"));
+    std::string failureHeader;
+    std::getline(failures, failureHeader);
+    EXPECT_EQ(failureHeader, "study,parameter,value,variant,metric,error,total_ms");
+    std::set<std::string> studies;
+    for (std::string line; std::getline(failures, line);) studies.insert(line.substr(0, line.find(',')));
+    EXPECT_EQ(studies, (std::set<std::string>{"acne-vs-bias", "peter-panning-vs-bias", "cube-seams", "pancaking-leak",
+                                              "wide-spot", "tile-depth-discontinuities", "per-object-large-objects",
+                                              "beyond-the-caps"}));
 }
 
 TEST(BenchCli, BadOptionsFailCleanly) {
