@@ -29,27 +29,39 @@ bool boxMeetsFrustum(const Frustum& frustum, const Bounds& box) {
     return true;
 }
 
-float distanceToBox(const glm::vec3& p, const Bounds& box) {
-    return glm::length(p - glm::clamp(p, box.min, box.max));
+// The smallest depth along `axis` (from `position`) of any corner of the box. The near plane is
+// a plane across the view's axis, so the casters' depths along that axis, not their distances,
+// decide what it would clip: a caster off the axis can be far from the light yet shallow along
+// it (up to 1.56x at a cube-face corner, 5x at an 80-degree spot edge).
+float nearestDepthAlong(const glm::vec3& position, const glm::vec3& axis, const Bounds& box) {
+    float nearest = std::numeric_limits<float>::max();
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
+                          (corner & 4) ? box.max.z : box.min.z);
+        nearest = std::min(nearest, glm::dot(p - position, axis));
+    }
+    return nearest;
 }
 
-// Objects meeting the frustum of `viewProjection`, and the nearest of them to `position`.
+// Objects meeting the frustum of `viewProjection`, and the smallest depth along `axis` of their
+// bounds (see nearestDepthAlong).
 std::vector<uint32_t> findCasters(const Scene& scene, const glm::mat4& viewProjection, const glm::vec3& position,
-                                  float& nearestDistance) {
+                                  const glm::vec3& axis, float& nearestDepth) {
     const Frustum frustum = extractFrustum(viewProjection);
     std::vector<uint32_t> casters;
-    nearestDistance = std::numeric_limits<float>::max();
+    nearestDepth = std::numeric_limits<float>::max();
     for (uint32_t i = 0; i < scene.objects.size(); ++i) {
         if (!boxMeetsFrustum(frustum, scene.objects[i].worldBounds)) continue;
         casters.push_back(i);
-        nearestDistance = std::min(nearestDistance, distanceToBox(position, scene.objects[i].worldBounds));
+        nearestDepth = std::min(nearestDepth, nearestDepthAlong(position, axis, scene.objects[i].worldBounds));
     }
     return casters;
 }
 
-// Near plane from the casters: just short of the nearest one, never closer than 1/1000 of the
-// range (depth precision) nor beyond the range. Nothing lies between the light and the nearest
-// caster, so receivers there (depth < 0) compare as lit, which they are.
+// Near plane from the casters: just short of the shallowest caster along the view's axis, never
+// closer than 1/1000 of the range (depth precision) nor beyond the range. No caster reaches in
+// front of it, so nothing is clipped, and receivers there (depth < 0) compare as lit, which they
+// are. A caster straddling the light's plane gives a depth <= 0 and the 1/1000 floor.
 float nearPlaneFor(float nearestCaster, float range) {
     return std::clamp(nearestCaster * 0.9f, range * 1e-3f, range * 0.5f);
 }
@@ -184,11 +196,11 @@ ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3&
         const float range = light.radiantColor.w;
         const float halfAngle = std::min(std::acos(std::clamp(light.angleOffsetShadow.z, -1.0f, 1.0f)), kMaxSpotShadowHalfAngle);
         // Casters are found with the widest frustum (near at 1/1000 of the range), then the near
-        // plane moves out to just short of the nearest one.
+        // plane moves out to just short of the shallowest one along the axis.
         float nearest = 0.0f;
         ShadowView view;
         view.casters = findCasters(scene, spotViewProjection(position, direction, halfAngle, range * 1e-3f, range),
-                                   position, nearest);
+                                   position, direction, nearest);
         const float nearPlane = settings.spotNearFraction > 0.0f ? range * settings.spotNearFraction
                                                                  : nearPlaneFor(nearest, range);
         view.gpu.viewProjection = spotViewProjection(position, direction, halfAngle, nearPlane, range);
@@ -221,8 +233,8 @@ ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3&
         float nearestOfAll = std::numeric_limits<float>::max();
         for (uint32_t face = 0; face < 6; ++face) {
             float nearest = 0.0f;
-            faces[face].casters = findCasters(
-                scene, cubeFaceViewProjection(position, face, range * 1e-3f, range, plan.sliceScale), position, nearest);
+            faces[face].casters = findCasters(scene, cubeFaceViewProjection(position, face, range * 1e-3f, range, plan.sliceScale),
+                                              position, gpu::cubeFaceAxis(face), nearest);
             nearestOfAll = std::min(nearestOfAll, nearest);
         }
         const float nearPlane = nearPlaneFor(nearestOfAll, range);

@@ -1,0 +1,792 @@
+// Shadows measured against the Embree ray tracer: the default scene's misclassification, acne on
+// grazing receivers, both point layouts, cube-face seams, very wide spots, the shadow plan's
+// choices and cube conventions, the command line's shadow options, and shadow strength.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "culling_test_scenes.h"
+#include "gpu_test_support.h"
+#include "lights/light_setup.h"
+#include "lights/shadow_setup.h"
+#include "reference/shadow_validation.h"
+#include "render/renderer.h"
+#include "scene/default_scene.h"
+#include "shadow_test_scenes.h"
+#include "shadows.h"
+
+namespace punctual {
+namespace {
+
+using reference::PixelVerdict;
+using testing::countVerdicts;
+using testing::ShadowRun;
+
+constexpr float kDegree = 0.017453292f;
+
+glm::vec3 lightPosition(const ShadowRun& run, const reference::LightShadowValidation& light) {
+    return glm::vec3(run.lights.packed[light.packedLight].positionInvRangeSq);
+}
+
+uint8_t factorAt(const ShadowRun& run, size_t pixel, uint32_t slot) {
+    return run.factors.factors[pixel * run.factors.slots + slot];
+}
+
+std::string describe(const ShadowSettings& settings) {
+    return std::string(shadowFilterName(settings.filter)) + ", " + pointShadowLayoutName(settings.pointLayout) + ", " +
+           std::to_string(settings.resolution) + " texels";
+}
+
+std::string describe(const reference::ShadowCounts& counts) {
+    std::ostringstream s;
+    s << "compared " << counts.compared << ", outside band " << counts.comparedOutsideBand << ", false shadow "
+      << counts.falseShadowOutsideBand << ", false lit " << counts.falseLitOutsideBand << " (outside band), "
+      << 100.0 * counts.misclassifiedOutsideBand() << "% misclassified";
+    return s.str();
+}
+
+// Samples of caster surfaces that lie inside a view's side planes but in front of its near plane
+// (0 > clip.z, clip.w > 0): the shadow pass clips them (no depth clamp), so they cast nothing.
+// Each triangle of each caster is sampled on a barycentric grid.
+size_t clippedCasterSamples(const Scene& scene, const ShadowPlan& plan, std::string& firstExample) {
+    size_t clipped = 0;
+    constexpr int kSteps = 8;
+    for (size_t v = 0; v < plan.views.size(); ++v) {
+        const ShadowView& view = plan.views[v];
+        for (const uint32_t objectIndex : view.casters) {
+            const Object& object = scene.objects[objectIndex];
+            const Mesh& mesh = scene.meshes[object.mesh];
+            for (uint32_t t = 0; t + 2 < mesh.indexCount; t += 3) {
+                glm::vec3 corner[3];
+                for (uint32_t k = 0; k < 3; ++k) {
+                    const uint32_t index = scene.indices[mesh.firstIndex + t + k] + mesh.vertexOffset;
+                    corner[k] = glm::vec3(object.model * glm::vec4(scene.vertices[index].position, 1.0f));
+                }
+                for (int i = 0; i <= kSteps; ++i) {
+                    for (int j = 0; i + j <= kSteps; ++j) {
+                        const float a = float(i) / kSteps;
+                        const float b = float(j) / kSteps;
+                        const glm::vec3 p = corner[0] + (corner[1] - corner[0]) * a + (corner[2] - corner[0]) * b;
+                        const glm::vec4 clip = view.gpu.viewProjection * glm::vec4(p, 1.0f);
+                        if (clip.w <= 0.0f || std::abs(clip.x) > clip.w || std::abs(clip.y) > clip.w || clip.z >= 0.0f) {
+                            continue;
+                        }
+                        if (clipped++ == 0) {
+                            std::ostringstream s;
+                            s << "object " << objectIndex << " at (" << p.x << ", " << p.y << ", " << p.z << ") in view "
+                              << v << (view.isPoint ? " (point face " : " (spot") << (view.isPoint ? std::to_string(view.face) : "")
+                              << "): depth along the axis " << clip.w << " m, near plane " << view.gpu.params.z << " m";
+                            firstExample = s.str();
+                        }
+                    }
+                }
+            }
+        }
+    }
+    return clipped;
+}
+
+// ---- 1. the default scene -----------------------------------------------------------------------
+
+TEST(ShadowValidation, DefaultSceneMisclassifiesAtMostHalfAPercent) {
+    auto context = testing::makeValidatedContext();
+    const Scene scene = makeDefaultScene();
+    const ShadowSettings defaults;  // 1024 texels, tent5, cube layout, default bias
+    const ShadowRun run = testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(320, 180, defaults));
+    testing::saveShadowRun("shadow-default-scene", run);
+    EXPECT_EQ(run.plan.shadowedSpots, uint32_t(PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS));
+    EXPECT_EQ(run.plan.shadowedPoints, uint32_t(PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS));
+
+    for (const bool points : {false, true}) {
+        const reference::ShadowCounts& counts = points ? run.validation.points : run.validation.spots;
+        const char* type = points ? "points" : "spots";
+        EXPECT_GT(counts.comparedOutsideBand, 10000u) << type << ": too few pixels compared to mean anything";
+        EXPECT_LE(counts.misclassifiedOutsideBand(), 0.005) << type << ": " << describe(counts);
+        // Not vacuous: the frame has real shadows of this type, and lit pixels too.
+        EXPECT_GE(countVerdicts(run.validation, points, PixelVerdict::AgreeShadow), 500u) << type;
+        EXPECT_GE(countVerdicts(run.validation, points, PixelVerdict::AgreeLit), 5000u) << type;
+        std::printf("[ shadows  ] default scene %s: %s, agree shadow %zu\n", type, describe(counts).c_str(),
+                    countVerdicts(run.validation, points, PixelVerdict::AgreeShadow));
+    }
+    testing::expectNoValidationMessages(*context);
+}
+
+// ---- 2. acne ------------------------------------------------------------------------------------
+
+struct AcneCount {
+    size_t compared = 0;      // compared pixels at <= 80 degrees
+    size_t nearLimit = 0;     // of which at 75 to 80 degrees
+    size_t dark = 0;          // of which GPU dark (factor < 0.5)
+    uint8_t minFactor = 254;  // lowest GPU factor among them
+    float maxAngle = 0.0f;    // degrees
+};
+
+AcneCount countAcne(const ShadowRun& run) {
+    AcneCount acne;
+    const reference::LightShadowValidation& light = run.validation.lights.at(0);
+    const glm::vec3 lightPos = lightPosition(run, light);
+    for (size_t i = 0; i < light.verdicts.size(); ++i) {
+        if (light.verdicts[i] == PixelVerdict::NotCompared) continue;
+        const float angle = testing::angleToLight(run.factors.positions[i], run.factors.normals[i], lightPos) / kDegree;
+        if (angle > 80.0f) continue;
+        ++acne.compared;
+        acne.nearLimit += angle >= 75.0f;
+        acne.maxAngle = std::max(acne.maxAngle, angle);
+        const uint8_t factor = factorAt(run, i, light.slot);
+        acne.minFactor = std::min(acne.minFactor, factor);
+        acne.dark += factor < 127;  // the validation's threshold: factor x 254 < 0.5
+    }
+    return acne;
+}
+
+// An empty floor under a low light: nothing can shadow it, so any dark pixel is acne. The light is
+// 1 m above the floor, so the frame holds receivers from 0 to beyond 80 degrees; the count below
+// proves the 75-80 degree range is really covered.
+TEST(ShadowAcne, FlatReceiverUpTo80DegreesHasNoAcne) {
+    auto context = testing::makeValidatedContext();
+    const Scene spotScene = testing::grazingFloorScene(true);
+    const Scene pointScene = testing::grazingFloorScene(false);
+    struct Case {
+        const Scene* scene;
+        PointShadowLayout layout;
+        const char* name;
+    };
+    const Case cases[] = {{&spotScene, PointShadowLayout::Cube, "spot"},
+                          {&pointScene, PointShadowLayout::Cube, "point (cube)"},
+                          {&pointScene, PointShadowLayout::Slices, "point (slices)"}};
+    for (const ShadowFilter filter : {ShadowFilter::Hardware, ShadowFilter::Tent3, ShadowFilter::Tent5,
+                                      ShadowFilter::Tent7, ShadowFilter::Disk}) {
+        for (const Case& c : cases) {
+            ShadowSettings shadows;  // default bias
+            shadows.filter = filter;
+            shadows.pointLayout = c.layout;
+            shadows.resolution = 512;
+            const std::string what = std::string(c.name) + ", " + describe(shadows);
+            const ShadowRun run =
+                testing::renderAndValidateShadows(*context, *c.scene, testing::shadowRenderSettings(240, 135, shadows));
+            ASSERT_EQ(run.validation.lights.size(), 1u) << what;
+            testing::saveShadowRun("shadow-acne-" + what, run);
+            const AcneCount acne = countAcne(run);
+            EXPECT_EQ(acne.dark, 0u) << what << ": " << acne.dark << " of " << acne.compared
+                                     << " pixels at <= 80 degrees are dark (lowest factor " << int(acne.minFactor) << "/254)";
+            // Nor any partial darkening a filter could average below the threshold.
+            EXPECT_GE(acne.minFactor, 229) << what << ": a pixel at <= 80 degrees is more than 10% shadowed";
+            // No occluder: the rays agree everywhere, and nothing is an edge.
+            const reference::ShadowCounts& counts = run.validation.lights[0].counts;
+            EXPECT_EQ(counts.falseLit, 0u) << what;
+            EXPECT_EQ(counts.edgeBand, 0u) << what;
+            // Coverage: grazing receivers really are in the frame.
+            EXPECT_GE(acne.maxAngle, 79.0f) << what;
+            EXPECT_GE(acne.nearLimit, 500u) << what;
+            EXPECT_GE(acne.compared, 3000u) << what;
+            std::printf("[ shadows  ] acne %s: %zu compared (%zu at 75-80 deg, max %.1f deg), %zu dark, min factor %d\n",
+                        what.c_str(), acne.compared, acne.nearLimit, double(acne.maxAngle), acne.dark,
+                        int(acne.minFactor));
+        }
+    }
+
+    // The check can fail: without any bias the same floors are covered in acne.
+    for (const Case& c : cases) {
+        ShadowSettings unbiased;
+        unbiased.bias = glm::vec4(0.0f);
+        unbiased.pointLayout = c.layout;
+        unbiased.resolution = 512;
+        const ShadowRun run =
+            testing::renderAndValidateShadows(*context, *c.scene, testing::shadowRenderSettings(240, 135, unbiased));
+        const AcneCount acne = countAcne(run);
+        EXPECT_GT(acne.dark, 100u) << c.name << ": zero bias should show acne";
+        std::printf("[ shadows  ] acne %s with zero bias: %zu of %zu dark\n", c.name, acne.dark, acne.compared);
+    }
+    testing::expectNoValidationMessages(*context);
+}
+
+// ---- 3. point layouts ----------------------------------------------------------------------------
+
+// One point light among posts, hanging boxes and two walls (its lamp cap keeps the near-plane bug
+// out of this test; without the cap both layouts misclassify 2.2%, see ShadowNearPlane).
+TEST(ShadowLayouts, CubeAndSlicesBothValidate) {
+    auto context = testing::makeValidatedContext();
+    const Scene scene = testing::pointAmongOccludersScene(true);
+    for (const PointShadowLayout layout : {PointShadowLayout::Cube, PointShadowLayout::Slices}) {
+        ShadowSettings shadows;
+        shadows.pointLayout = layout;
+        shadows.resolution = 512;
+        const std::string what = describe(shadows);
+        const ShadowRun run = testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(320, 180, shadows));
+        testing::saveShadowRun(std::string("shadow-layout-") + pointShadowLayoutName(layout), run);
+        ASSERT_EQ(run.validation.lights.size(), 1u);
+        std::string clippedExample;
+        EXPECT_EQ(clippedCasterSamples(scene, run.plan, clippedExample), 0u)
+            << "the scene should keep clear of the near-plane bug: " << clippedExample;
+        const reference::LightShadowValidation& light = run.validation.lights[0];
+        EXPECT_LE(light.counts.misclassifiedOutsideBand(), 0.01) << what << ": " << describe(light.counts);
+        EXPECT_GT(light.counts.comparedOutsideBand, 10000u) << what;
+
+        // Real shadows, on several cube faces (by the face the light-to-point direction falls on).
+        std::array<size_t, 6> shadowedPerFace{};
+        const glm::vec3 lightPos = lightPosition(run, light);
+        for (size_t i = 0; i < light.verdicts.size(); ++i) {
+            if (light.verdicts[i] != PixelVerdict::AgreeShadow) continue;
+            ++shadowedPerFace[gpu::cubeFaceOfDirection(run.factors.positions[i] - lightPos)];
+        }
+        std::ostringstream perFaceText;
+        size_t facesWithShadow = 0;
+        for (size_t face = 0; face < 6; ++face) {
+            perFaceText << ' ' << shadowedPerFace[face];
+            facesWithShadow += shadowedPerFace[face] >= 50;
+        }
+        const std::string perFace = perFaceText.str();
+        EXPECT_GE(facesWithShadow, 5u) << what << ": shadowed pixels per face (+X -X +Y -Y +Z -Z):" << perFace;
+        std::printf("[ shadows  ] layout %s: %s; shadowed per face%s\n", what.c_str(), describe(light.counts).c_str(),
+                    perFace.c_str());
+    }
+    testing::expectNoValidationMessages(*context);
+}
+
+// ---- 4. cube seams -------------------------------------------------------------------------------
+
+struct SeamSplit {
+    reference::ShadowCounts seams;
+    reference::ShadowCounts interiors;
+    size_t seamShadowed = 0;  // seam pixels the ray says are in shadow
+    size_t seamLit = 0;
+    size_t seamBand = 0;
+};
+
+// A pixel is "at a seam" when its light-to-point direction lies within `texels` texels of a cube
+// face edge: on a face, second / major spans [-1, 1] over `resolution` texels, so that is
+// (major - second) / major < 2 texels / resolution.
+SeamSplit splitBySeams(const ShadowRun& run, float texels, uint32_t resolution) {
+    SeamSplit split;
+    const reference::LightShadowValidation& light = run.validation.lights.at(0);
+    const glm::vec3 lightPos = lightPosition(run, light);
+    const float threshold = 2.0f * texels / float(resolution);
+    for (size_t i = 0; i < light.verdicts.size(); ++i) {
+        const PixelVerdict verdict = light.verdicts[i];
+        if (verdict == PixelVerdict::NotCompared) continue;
+        const glm::vec3 d = glm::abs(run.factors.positions[i] - lightPos);
+        const float major = std::max({d.x, d.y, d.z});
+        const float second = std::max({std::min(d.x, d.y), std::min(d.y, d.z), std::min(d.x, d.z)});
+        const bool seam = (major - second) / major < threshold;
+        reference::ShadowCounts& counts = seam ? split.seams : split.interiors;
+        ++counts.compared;
+        if (light.inBand[i]) {
+            ++counts.edgeBand;
+        } else {
+            ++counts.comparedOutsideBand;
+            counts.falseShadowOutsideBand += verdict == PixelVerdict::FalseShadow;
+            counts.falseLitOutsideBand += verdict == PixelVerdict::FalseLit;
+        }
+        counts.falseShadow += verdict == PixelVerdict::FalseShadow;
+        counts.falseLit += verdict == PixelVerdict::FalseLit;
+        if (seam) {
+            const bool rayLit = verdict == PixelVerdict::AgreeLit || verdict == PixelVerdict::FalseShadow;
+            (rayLit ? split.seamLit : split.seamShadowed)++;
+            split.seamBand += light.inBand[i];
+        }
+    }
+    return split;
+}
+
+// Seamless cube filtering must make a shadow crossing a face edge as right as one inside a face
+// (and the slices' widened faces must do the same). Tolerance: the seam rate may exceed the
+// interior rate by 1 percentage point: seam pixels are about 3% of the compared ones, so a dozen
+// pixels move their rate by one point. The check can fail: with the near-plane bug (scene without
+// its lamp cap) the seams misclassify 11.9% against 2.1% inside the faces.
+TEST(ShadowSeams, CubeSeamsNoWorseThanFaceInteriors) {
+    auto context = testing::makeValidatedContext();
+    const Scene scene = testing::pointAmongOccludersScene(true);
+    for (const PointShadowLayout layout : {PointShadowLayout::Cube, PointShadowLayout::Slices}) {
+        ShadowSettings shadows;  // tent5: reaches 2.5 texels, plus the bilinear footprint
+        shadows.pointLayout = layout;
+        // A coarse map widens the seams in world space, so that enough pixels fall in them.
+        shadows.resolution = 256;
+        const std::string what = describe(shadows);
+        const ShadowRun run =
+            testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(320, 180, shadows));
+        testing::saveShadowRun(std::string("shadow-seams-") + pointShadowLayoutName(layout), run);
+        const float seamTexels = shadows.penumbraTexels() + 1.0f;  // where the filter footprint crosses an edge
+        const SeamSplit split = splitBySeams(run, seamTexels, shadows.resolution);
+        const double seamRate = split.seams.misclassifiedOutsideBand();
+        const double interiorRate = split.interiors.misclassifiedOutsideBand();
+        EXPECT_GE(split.seams.comparedOutsideBand, 200u) << what << ": too few seam pixels to mean anything";
+        // Shadow edges really cross the seams: shadowed and lit seam pixels, some at an edge.
+        EXPECT_GE(split.seamShadowed, 50u) << what;
+        EXPECT_GE(split.seamLit, 50u) << what;
+        EXPECT_GE(split.seamBand, 10u) << what;
+        EXPECT_LE(seamRate, interiorRate + 0.01) << what << "\nseams: " << describe(split.seams)
+                                                 << "\ninteriors: " << describe(split.interiors);
+        std::printf("[ shadows  ] %s seams (%.1f texels): %s; %zu shadowed, %zu lit, %zu in band\n", what.c_str(),
+                    double(seamTexels), describe(split.seams).c_str(), split.seamShadowed, split.seamLit,
+                    split.seamBand);
+        std::printf("[ shadows  ] %s interiors: %s\n", what.c_str(), describe(split.interiors).c_str());
+    }
+    testing::expectNoValidationMessages(*context);
+}
+
+// ---- 4b. the near plane ------------------------------------------------------------------------
+
+// The near plane is a plane across the view's axis: placing it by the straight-line distance to
+// the nearest caster (as planShadows once did) clips off-axis caster parts whose depth along the
+// axis is smaller, and the shadows they cast are lost (false lit). planShadows now places it by
+// the casters' depth along the axis; this test keeps that bug fixed.
+// The third case is the control: the same point scene with its lamp cap keeps the near plane at
+// 0.25 m, clips nothing and loses 2% of its shadow (the shadow tips' bias).
+// Runs the CPU check on the default scene too: the bug is not confined to built scenes.
+TEST(ShadowNearPlane, OffAxisCastersNearerThanTheNearPlaneStillCastShadows) {
+    auto context = testing::makeValidatedContext();
+    struct Case {
+        Scene scene;
+        const char* name;
+    };
+    const Case cases[] = {{testing::offAxisPostScene(), "spot beside a post"},
+                          {testing::pointAmongOccludersScene(false), "point among occluders, no lamp cap"},
+                          {testing::pointAmongOccludersScene(true), "point among occluders, with lamp cap"}};
+    for (const Case& c : cases) {
+        ShadowSettings shadows;
+        shadows.resolution = 512;
+        const ShadowRun run =
+            testing::renderAndValidateShadows(*context, c.scene, testing::shadowRenderSettings(320, 180, shadows));
+        testing::saveShadowRun(std::string("shadow-near-plane-") + c.name, run);
+        std::string example;
+        const size_t clipped = clippedCasterSamples(c.scene, run.plan, example);
+        EXPECT_EQ(clipped, 0u) << "RENDERER BUG (near plane from the straight-line caster distance): " << c.name
+                               << ": " << clipped << " caster surface samples lie inside a shadow view but in front "
+                               << "of its near plane, so the shadow pass clips them; first: " << example;
+        // On the GPU: the share of the ray-traced shadow (outside the edge band) drawn lit. Over
+        // the whole frame the loss is diluted by the lit floor, so it is measured on the shadow.
+        const reference::LightShadowValidation& light = run.validation.lights.at(0);
+        const size_t agreeShadow = countVerdicts(light, PixelVerdict::AgreeShadow, true);
+        const size_t falseLit = countVerdicts(light, PixelVerdict::FalseLit, true);
+        const double lost = double(falseLit) / double(std::max<size_t>(agreeShadow + falseLit, 1));
+        EXPECT_GT(agreeShadow + falseLit, 200u) << c.name << ": too little shadow in the frame";
+        EXPECT_LE(lost, 0.05) << "RENDERER BUG (near plane clips off-axis casters): " << c.name << ": " << falseLit
+                              << " of " << agreeShadow + falseLit
+                              << " ray-shadowed pixels outside the edge band are lit on the GPU; "
+                              << describe(light.counts);
+        std::printf("[ shadows  ] near plane, %s: %zu clipped caster samples; %.1f%% of the shadow lost; %s\n", c.name,
+                    clipped, 100.0 * lost, describe(light.counts).c_str());
+    }
+
+    // The default scene's plan (CPU only): the same clipping, mostly slivers of walls, crates and the
+    // floor at the edge of wide views.
+    const Scene scene = makeDefaultScene();
+    FrameLights lights = setupFrameLights(scene, scene.camera.view, scene.camera.projection(default_scene::kDesignAspect));
+    const ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), ShadowSettings{});
+    size_t viewsWithClipping = 0;
+    for (const ShadowView& view : plan.views) {
+        ShadowPlan one;
+        one.views = {view};
+        std::string unused;
+        viewsWithClipping += clippedCasterSamples(scene, one, unused) > 0;
+    }
+    std::string example;
+    const size_t clipped = clippedCasterSamples(scene, plan, example);
+    EXPECT_EQ(clipped, 0u) << "RENDERER BUG (near plane from the straight-line caster distance): default scene: "
+                           << clipped << " caster surface samples in " << viewsWithClipping << " of "
+                           << plan.views.size() << " views are in front of the near plane; first: " << example;
+    testing::expectNoValidationMessages(*context);
+}
+
+// ---- 5. very wide spots --------------------------------------------------------------------------
+
+float angleFromAxis(const glm::vec3& position, const glm::vec3& lightPos, const glm::vec3& axis) {
+    return std::acos(std::clamp(glm::dot(glm::normalize(position - lightPos), axis), -1.0f, 1.0f));
+}
+
+// Spots up to 90 degrees: shadowed with an 80-degree frustum (kMaxSpotShadowHalfAngle in
+// shadow_setup.cpp); the rim beyond stays unshadowed.
+TEST(ShadowWideSpot, OuterConeNear90DegreesStaysFinite) {
+    auto context = testing::makeValidatedContext();
+    constexpr uint32_t kWidth = 320;
+    constexpr uint32_t kHeight = 180;
+    // 90 degrees exactly: validateLights accepts outer <= pi/2 (1.57079633f, the float nearest pi/2).
+    for (const float outer : {89.0f * kDegree, 1.57079633f}) {
+        const std::string what = "outer cone " + std::to_string(outer / kDegree) + " degrees";
+        const Scene scene = testing::wideSpotScene(outer, true);
+        ASSERT_NO_THROW(validateLights(scene.lights, scene.source)) << what;
+        const ShadowSettings shadows;  // 1024 texels: an 80-degree frustum spreads them thin
+        const ShadowRun run = testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(kWidth, kHeight, shadows));
+        testing::saveShadowRun(what, run);
+        ASSERT_EQ(run.validation.lights.size(), 1u) << what;
+        const reference::LightShadowValidation& light = run.validation.lights[0];
+        ASSERT_EQ(run.plan.views.size(), 1u);
+        std::string clippedExample;
+        EXPECT_EQ(clippedCasterSamples(scene, run.plan, clippedExample), 0u)
+            << what << ": the scene should keep clear of the near-plane bug: " << clippedExample;
+        EXPECT_NEAR(run.plan.views[0].gpu.params.y, 2.0f * std::tan(80.0f * kDegree), 1e-3f)
+            << what << ": the shadow frustum's half-angle is capped at 80 degrees";
+
+        // The image: deterministic, not black, and shadows only darken (a NaN would show as black or
+        // white pixels against the unshadowed image).
+        ImageRgba8 again;
+        ImageRgba8 unshadowed;
+        {
+            render::Renderer renderer(*context, scene, testing::shadowRenderSettings(kWidth, kHeight, shadows));
+            again = renderer.render(1, 0).image;
+            ShadowSettings off = shadows;
+            off.enabled = false;
+            render::Renderer offRenderer(*context, scene, testing::shadowRenderSettings(kWidth, kHeight, off));
+            unshadowed = offRenderer.render(1, 0).image;
+        }
+        EXPECT_TRUE(again.pixels == run.image.pixels) << what << ": two renders differ";
+        EXPECT_GT(testing::fractionBrighterThan(run.image, 20), 0.05) << what;
+        size_t brighter = 0;
+        size_t litButDifferent = 0;
+        for (size_t p = 0; p < size_t(kWidth) * kHeight; ++p) {
+            const uint8_t factor = factorAt(run, p, 0);
+            for (size_t c = 0; c < 3; ++c) {
+                const int shadowed = run.image.pixels[4 * p + c];
+                const int flat = unshadowed.pixels[4 * p + c];
+                brighter += shadowed > flat + 1;
+                litButDifferent += factor == 254 && std::abs(shadowed - flat) > 1;
+            }
+        }
+        EXPECT_EQ(brighter, 0u) << what << ": channels brighter than without shadows";
+        EXPECT_EQ(litButDifferent, 0u) << what << ": fully lit channels that differ from the unshadowed image";
+
+        // The factors: every covered pixel has a finite surface; uncovered ones report "not reached".
+        size_t badSurfaces = 0;
+        size_t uncoveredWithFactor = 0;
+        size_t reached = 0;
+        for (size_t p = 0; p < size_t(kWidth) * kHeight; ++p) {
+            if (!run.factors.covered[p]) {
+                uncoveredWithFactor += factorAt(run, p, 0) != PUNCTUAL_SHADOW_FACTOR_NOT_REACHED;
+                continue;
+            }
+            const glm::vec3 position = run.factors.positions[p];
+            const glm::vec3 normal = run.factors.normals[p];
+            badSurfaces += !(std::isfinite(position.x) && std::isfinite(position.y) && std::isfinite(position.z) &&
+                             std::abs(glm::length(normal) - 1.0f) < 1e-3f);
+            reached += factorAt(run, p, 0) != PUNCTUAL_SHADOW_FACTOR_NOT_REACHED;
+        }
+        EXPECT_EQ(badSurfaces, 0u) << what;
+        EXPECT_EQ(uncoveredWithFactor, 0u) << what;
+        EXPECT_GT(reached, size_t(kWidth) * kHeight / 2) << what;
+
+        // Within 80 degrees: validated like any spot. Beyond 81 degrees (a margin for the bias and
+        // the filter's reach past the frustum's edge): fully lit, even where the rays are blocked.
+        const glm::vec3 lightPos = testing::kWideSpotPosition;
+        const glm::vec3 axis(0.0f, -1.0f, 0.0f);
+        reference::ShadowCounts inside;
+        size_t insideShadowed = 0;
+        size_t rim = 0;
+        size_t rimNotFullyLit = 0;
+        size_t rimBlocked = 0;
+        for (size_t p = 0; p < light.verdicts.size(); ++p) {
+            const PixelVerdict verdict = light.verdicts[p];
+            if (verdict == PixelVerdict::NotCompared) continue;
+            const float angle = angleFromAxis(run.factors.positions[p], lightPos, axis) / kDegree;
+            if (angle <= 80.0f) {
+                ++inside.compared;
+                insideShadowed += verdict == PixelVerdict::AgreeShadow;
+                if (light.inBand[p]) continue;
+                ++inside.comparedOutsideBand;
+                inside.falseShadowOutsideBand += verdict == PixelVerdict::FalseShadow;
+                inside.falseLitOutsideBand += verdict == PixelVerdict::FalseLit;
+            } else if (angle > 81.0f) {
+                ++rim;
+                rimNotFullyLit += factorAt(run, p, light.slot) != 254;
+                rimBlocked += verdict == PixelVerdict::FalseLit || verdict == PixelVerdict::AgreeShadow;
+            }
+        }
+        EXPECT_LE(inside.misclassifiedOutsideBand(), 0.02) << what << ", within 80 degrees: " << describe(inside);
+        EXPECT_GE(inside.comparedOutsideBand, 5000u) << what;
+        EXPECT_GE(insideShadowed, 200u) << what << ": no real shadow within 80 degrees";
+        EXPECT_EQ(rimNotFullyLit, 0u) << what << ": rim pixels (beyond 81 degrees) not fully lit, of " << rim;
+        EXPECT_GE(rim, 2000u) << what << ": too little rim in the frame";
+        EXPECT_GE(rimBlocked, 200u) << what << ": the rim test needs rim pixels a ray finds blocked";
+        std::printf("[ shadows  ] wide spot %s: within 80 deg %s, %zu shadowed; rim %zu pixels (%zu ray-blocked), "
+                    "%zu not fully lit\n",
+                    what.c_str(), describe(inside).c_str(), insideShadowed, rim, rimBlocked, rimNotFullyLit);
+    }
+    testing::expectNoValidationMessages(*context);
+}
+
+// ---- 6. command line -----------------------------------------------------------------------------
+
+struct RunResult {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+// Concatenation through a stream: GCC 12 warns falsely (-Wrestrict, bug 105329) about some
+// chains of std::string operator+.
+template <typename... Parts>
+std::string cat(const Parts&... parts) {
+    std::ostringstream s;
+    (s << ... << parts);
+    return s.str();
+}
+
+std::string quoted(const std::string& path) { return cat("'", path, "'"); }
+
+std::string readText(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+RunResult runPunctual(const testing::TempFolder& folder, const std::string& args) {
+    const std::string outFile = folder.file("stdout.txt");
+    const std::string errFile = folder.file("stderr.txt");
+    const std::string command = cat(quoted(PUNCTUAL_BINARY), " ", args, " >", quoted(outFile), " 2>", quoted(errFile));
+    const int status = std::system(command.c_str());
+    RunResult result;
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = readText(outFile);
+    result.err = readText(errFile);
+    return result;
+}
+
+size_t lineCount(const std::string& text) { return size_t(std::count(text.begin(), text.end(), '\n')); }
+
+// Non-zero exit (not an internal error), one line on stderr naming `mention`, and nothing but the
+// captured stdout and stderr left in the folder.
+void expectCleanFailure(const testing::TempFolder& folder, const std::string& args, const std::string& mention) {
+    const RunResult run = runPunctual(folder, args);
+    EXPECT_NE(run.exitCode, 0) << args;
+    EXPECT_NE(run.exitCode, 3) << "internal error instead of a clear one: " << run.err;
+    EXPECT_EQ(lineCount(run.err), 1u) << args << "\nstderr:\n" << run.err;
+    EXPECT_EQ(run.err.rfind("punctual: error: ", 0), 0u) << args << ": " << run.err;
+    EXPECT_NE(run.err.find(mention), std::string::npos) << args << ": stderr should name '" << mention << "': " << run.err;
+    for (const auto& entry : std::filesystem::directory_iterator(folder.path())) {
+        const std::string name = entry.path().filename().string();
+        EXPECT_TRUE(name == "stdout.txt" || name == "stderr.txt") << "left behind: " << name << " after " << args;
+    }
+}
+
+TEST(ShadowOptions, BadOptionsGiveClearErrors) {
+    testing::TempFolder folder;
+    const std::string renderOut =
+        cat(" --size 32x18 --out ", quoted(folder.file("out.png")), " --stats ", quoted(folder.file("stats.json")));
+    const std::string validateOut = cat(" --size 32x18 --out-dir ", quoted(folder.file("report")));
+    const std::pair<const char*, const char*> bad[] = {
+        {"--shadow-res 1000", "--shadow-res"},         {"--shadow-filter blur", "--shadow-filter"},
+        {"--shadow-bias 1,2", "--shadow-bias"},        {"--shadow-samples 65", "--shadow-samples"},
+        {"--point-shadow-layout x", "--point-shadow-layout"}, {"--shadow-strength -1", "--shadow-strength"},
+    };
+    for (const auto& [option, mention] : bad) {
+        expectCleanFailure(folder, cat("render ", option, renderOut), mention);
+        expectCleanFailure(folder, cat("validate ", option, validateOut), mention);
+    }
+    expectCleanFailure(folder, "validate --size 32x18", "--out-dir");
+    expectCleanFailure(folder, cat("validate --shadows off", validateOut), "--shadows");
+
+    // The check can fail: a good option set does write its outputs.
+    const RunResult good = runPunctual(folder, cat("render --shadow-res 64 --shadow-filter hw", renderOut));
+    EXPECT_EQ(good.exitCode, 0) << good.err;
+    EXPECT_TRUE(std::filesystem::exists(folder.file("out.png")));
+}
+
+// ---- 7. the shadow plan (CPU) --------------------------------------------------------------------
+
+// A floor seen from above with lights placed over it, all inside the view.
+Scene planScene() {
+    Scene scene = testing::emptyFloorScene();
+    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 30.0f, 0.1f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    return scene;
+}
+
+FrameLights frameLights(const Scene& scene) {
+    return setupFrameLights(scene, scene.camera.view, scene.camera.projection(16.0f / 9.0f));
+}
+
+TEST(ShadowPlan, CapsChooseTheMostImportantLights) {
+    Scene scene = planScene();
+    // 40 shadow-casting spots and 12 points with intensities in a scrambled order (importance is
+    // not scene order), plus bright lights that cast no shadow: they must neither be shadowed nor
+    // take a shadowed place.
+    for (int i = 0; i < 40; ++i) {
+        const glm::vec3 position(-8.0f + 0.4f * float(i), 3.0f, -3.0f + 0.15f * float(i % 7));
+        scene.lights.push_back(testing::spotLight(position, glm::vec3(0.0f, -1.0f, 0.0f), 6.0f,
+                                                  1.0f + float((i * 17) % 40), 0.3f, 0.5f));
+    }
+    for (int i = 0; i < 12; ++i) {
+        scene.lights.push_back(testing::pointLight(glm::vec3(-6.0f + float(i), 2.0f, 4.0f), 5.0f, 1.0f + float((i * 5) % 12)));
+    }
+    for (int i = 0; i < 3; ++i) {
+        Light spot = testing::spotLight(glm::vec3(float(i), 3.0f, 6.0f), glm::vec3(0.0f, -1.0f, 0.0f), 6.0f, 1000.0f, 0.3f, 0.5f);
+        spot.castsShadow = false;
+        scene.lights.push_back(spot);
+        Light point = testing::pointLight(glm::vec3(float(i), 2.0f, -6.0f), 5.0f, 1000.0f);
+        point.castsShadow = false;
+        scene.lights.push_back(point);
+    }
+    FrameLights lights = frameLights(scene);
+    ASSERT_EQ(lights.spotCount, 43u) << "every spot should be in view and under the light caps";
+    ASSERT_EQ(lights.pointCount, 15u);
+    const glm::vec3 camera = scene.camera.position();
+    const ShadowPlan plan = planShadows(scene, lights, camera, ShadowSettings{});
+
+    EXPECT_EQ(plan.shadowedSpots, 32u);
+    EXPECT_EQ(plan.shadowedPoints, 8u);
+    EXPECT_EQ(plan.droppedByCap, 8u + 4u);
+    EXPECT_EQ(plan.views.size(), 32u + 6u * 8u);
+    EXPECT_EQ(plan.viewsRendered + plan.viewsSkipped, uint32_t(plan.views.size()));
+
+    for (const bool points : {false, true}) {
+        const uint32_t first = points ? lights.spotCount : 0;
+        const uint32_t count = points ? lights.pointCount : lights.spotCount;
+        float leastShadowed = 1e30f;
+        float mostDropped = -1.0f;
+        uint32_t shadowed = 0;
+        for (uint32_t i = first; i < first + count; ++i) {
+            const Light& source = scene.lights[lights.sceneLightIndex[i]];
+            const bool hasShadow = lights.packed[i].angleOffsetShadow.y >= 0.0f;
+            if (!source.castsShadow) {
+                EXPECT_FALSE(hasShadow) << "light " << lights.sceneLightIndex[i] << " casts no shadow";
+                continue;
+            }
+            const float importance = lightImportance(source, camera);
+            if (hasShadow) {
+                ++shadowed;
+                leastShadowed = std::min(leastShadowed, importance);
+                EXPECT_EQ(lights.packed[i].angleOffsetShadow.w, 1.0f);
+                const ShadowView& view = plan.views.at(size_t(lights.packed[i].angleOffsetShadow.y));
+                EXPECT_EQ(view.packedLight, i);
+                EXPECT_EQ(view.isPoint, points);
+            } else {
+                mostDropped = std::max(mostDropped, importance);
+            }
+        }
+        EXPECT_EQ(shadowed, points ? 8u : 32u);
+        EXPECT_GT(leastShadowed, mostDropped) << (points ? "points" : "spots")
+                                              << ": a dropped light is more important than a shadowed one";
+    }
+}
+
+TEST(ShadowPlan, SpotWithoutCasterIsSkipped) {
+    Scene scene = planScene();
+    // Pointing up from above the floor: nothing in its frustum. The other looks down at the floor.
+    scene.lights.push_back(testing::spotLight(glm::vec3(-2.0f, 1.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 4.0f, 10.0f, 0.3f, 0.5f));
+    scene.lights.push_back(testing::spotLight(glm::vec3(2.0f, 3.0f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f), 6.0f, 10.0f, 0.3f, 0.5f));
+    FrameLights lights = frameLights(scene);
+    ASSERT_EQ(lights.spotCount, 2u);
+    const ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), ShadowSettings{});
+    ASSERT_EQ(plan.views.size(), 2u);
+    EXPECT_EQ(plan.views[0].gpu.params.x, -1.0f);
+    EXPECT_TRUE(plan.views[0].casters.empty());
+    EXPECT_GE(plan.views[1].gpu.params.x, 0.0f);
+    EXPECT_EQ(plan.views[1].casters.size(), 1u);
+    EXPECT_EQ(plan.viewsSkipped, 1u);
+    EXPECT_EQ(plan.viewsRendered, 1u);
+    // The light keeps its shadow slot: the shader reads the view and finds it skipped (always lit).
+    EXPECT_EQ(lights.packed[0].angleOffsetShadow.y, 0.0f);
+}
+
+// Vulkan's cube map face selection table (spec, "Cube Map Face Selection and Transformations"),
+// written out here independently of shadows.h: (sc, tc, ma) for a direction on each face.
+glm::vec3 vulkanCubeCoordinates(uint32_t face, const glm::vec3& r) {
+    switch (face) {
+        case 0: return {-r.z, -r.y, r.x};
+        case 1: return {r.z, -r.y, r.x};
+        case 2: return {r.x, r.z, r.y};
+        case 3: return {r.x, -r.z, r.y};
+        case 4: return {r.x, -r.y, r.z};
+        default: return {-r.x, -r.y, r.z};
+    }
+}
+
+TEST(ShadowPlan, CubeFaceMatricesFollowVulkanCubeConventions) {
+    const glm::vec3 light(1.0f, 2.0f, -3.0f);
+    const float nearPlane = 0.1f;
+    const float farPlane = 10.0f;
+    for (uint32_t face = 0; face < 6; ++face) {
+        const glm::vec3 axis = gpu::cubeFaceAxis(face);
+        EXPECT_EQ(gpu::cubeFaceOfDirection(axis), face);
+        const glm::mat4 m = cubeFaceViewProjection(light, face, nearPlane, farPlane);
+        auto ndc = [&](const glm::vec3& p) {
+            const glm::vec4 clip = m * glm::vec4(p, 1.0f);
+            EXPECT_GT(clip.w, 0.0f) << "face " << face;
+            return glm::vec3(clip) / clip.w;
+        };
+        // On the axis: the centre of the face, depth in [0, 1] as perspectiveDepth gives it.
+        for (const float distance : {nearPlane, 0.5f, 4.0f, farPlane}) {
+            const glm::vec3 onAxis = ndc(light + axis * distance);
+            EXPECT_NEAR(onAxis.x, 0.0f, 1e-5f) << "face " << face;
+            EXPECT_NEAR(onAxis.y, 0.0f, 1e-5f) << "face " << face;
+            EXPECT_GE(onAxis.z, -1e-5f);
+            EXPECT_LE(onAxis.z, 1.0f + 1e-5f);
+            EXPECT_NEAR(onAxis.z, gpu::perspectiveDepth(distance, nearPlane, farPlane), 1e-5f) << "face " << face;
+        }
+        // Along U: positive NDC x; along V: positive NDC y.
+        EXPECT_NEAR(ndc(light + axis * 2.0f + gpu::cubeFaceU(face) * 0.5f).x, 0.25f, 1e-5f) << "face " << face;
+        EXPECT_NEAR(ndc(light + axis * 2.0f + gpu::cubeFaceV(face) * 0.5f).y, 0.25f, 1e-5f) << "face " << face;
+        // Everywhere on the face, NDC is Vulkan's (sc / |ma|, tc / |ma|): what the render writes at
+        // texel (s, t) is what the sampler reads for that direction. With a widened slice, NDC
+        // shrinks by the scale.
+        for (int i = 0; i < 25; ++i) {
+            const float a = -0.9f + 0.075f * float(i);
+            const float b = 0.85f - 0.07f * float(i);
+            const glm::vec3 direction = axis + gpu::cubeFaceU(face) * a + gpu::cubeFaceV(face) * b;
+            ASSERT_EQ(gpu::cubeFaceOfDirection(direction), face);
+            const glm::vec3 vk = vulkanCubeCoordinates(face, direction);
+            const glm::vec3 p = ndc(light + direction * 3.0f);
+            EXPECT_NEAR(p.x, vk.x / std::abs(vk.z), 1e-5f) << "face " << face << " direction " << i;
+            EXPECT_NEAR(p.y, vk.y / std::abs(vk.z), 1e-5f) << "face " << face << " direction " << i;
+            const glm::vec4 wide = cubeFaceViewProjection(light, face, nearPlane, farPlane, 1.25f) *
+                                   glm::vec4(light + direction * 3.0f, 1.0f);
+            EXPECT_NEAR(wide.x / wide.w, vk.x / std::abs(vk.z) / 1.25f, 1e-5f) << "face " << face;
+        }
+    }
+}
+
+// ---- 8. strength -------------------------------------------------------------------------------
+
+ImageRgba8 renderDefault(vk::Context& context, const Scene& scene, const ShadowSettings& shadows) {
+    render::RenderSettings settings;
+    settings.width = 320;
+    settings.height = 180;
+    settings.shadows = shadows;
+    render::Renderer renderer(context, scene, settings);
+    return renderer.render(1, 0).image;
+}
+
+TEST(ShadowStrength, ZeroStrengthEqualsNoShadows) {
+    auto context = testing::makeValidatedContext();
+    const Scene scene = makeDefaultScene();
+    ShadowSettings shadows;
+    shadows.resolution = 512;
+    ShadowSettings off = shadows;
+    off.enabled = false;
+    ShadowSettings zero = shadows;
+    zero.strength = 0.0f;
+    ShadowSettings half = shadows;
+    half.strength = 0.5f;
+    const ImageRgba8 offImage = renderDefault(*context, scene, off);
+    const ImageRgba8 zeroImage = renderDefault(*context, scene, zero);
+    const ImageRgba8 halfImage = renderDefault(*context, scene, half);
+    const ImageRgba8 fullImage = renderDefault(*context, scene, shadows);
+
+    // mix(1, v, 0) is exactly 1, so the radiance and the image are the same bit for bit.
+    size_t differing = 0;
+    for (size_t i = 0; i < offImage.pixels.size(); ++i) differing += offImage.pixels[i] != zeroImage.pixels[i];
+    EXPECT_EQ(differing, 0u) << "bytes differing between strength 0 and shadows off";
+
+    const double offLuma = testing::meanLuma(offImage);
+    const double halfLuma = testing::meanLuma(halfImage);
+    const double fullLuma = testing::meanLuma(fullImage);
+    // Shadows cover a few percent of the lit floor: the steps are small but well above noise
+    // (the images are deterministic).
+    EXPECT_LT(fullLuma, halfLuma - 0.001);
+    EXPECT_LT(halfLuma, offLuma - 0.001);
+    std::printf("[ shadows  ] mean luma: off %.4f, strength 0.5 %.4f, strength 1 %.4f\n", offLuma, halfLuma, fullLuma);
+    testing::expectNoValidationMessages(*context);
+}
+
+}  // namespace
+}  // namespace punctual
