@@ -1,0 +1,475 @@
+#!/usr/bin/python3
+"""Charts and an HTML index for the results of `punctual bench --out-dir DIR`.
+
+    /usr/bin/python3 bench/plot_results.py DIR
+
+reads DIR/results.csv and writes DIR/charts/<name>.png and .svg for every chart the data allows,
+then DIR/index.html with every chart, every DIR/images/*.png and the CSV as a table. A chart whose
+series or columns are missing or empty is skipped with a note in index.html, so the few rows of
+`--quick` work too. Output is deterministic: rerunning on the same CSV gives identical files.
+
+Needs Debian's /usr/bin/python3 with python3-matplotlib (no other packages).
+"""
+
+import argparse
+import csv
+import html
+import math
+import os
+import sys
+import urllib.parse
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (after selecting the backend)
+from matplotlib.ticker import FixedLocator, NullLocator, PercentFormatter  # noqa: E402
+
+COLUMNS = [
+    "config", "series", "method", "spot", "point", "shadows", "shadow_res", "shadow_filter",
+    "point_layout", "frames", "depth_ms", "culling_ms", "shadows_ms", "forward_ms", "total_ms",
+    "forward_spread_ms", "total_spread_ms", "tested_per_pixel", "affecting_per_pixel",
+    "efficiency", "missed_energy", "image_error", "pixels_off", "shadow_misclassified",
+    "shadow_false_shadow", "shadow_false_lit",
+]
+METHODS = ["brute", "per-object", "tiled", "clustered"]
+METHOD_STYLE = {"brute": ("tab:red", "o"), "per-object": ("tab:orange", "s"),
+                "tiled": ("tab:blue", "^"), "clustered": ("tab:green", "D")}
+LIGHT_SERIES = [("mix", "mix (spot:point = 2:1)"), ("spot-only", "spot lights only"),
+                ("point-only", "point lights only")]
+WIDE_RATIO = 10.0  # a log axis once the largest value is this many times the smallest
+
+
+class SkipChart(Exception):
+    """Raised by a chart function when the data cannot support its chart; the message says why."""
+
+
+# ----------------------------------------------------------------------------------- data access
+
+def read_results(path):
+    """Returns (header, rows) of the CSV; rows are dicts of strings, missing cells are ''."""
+    with open(path, newline="", encoding="utf-8") as f:
+        reader = csv.DictReader(f)
+        header = list(reader.fieldnames or [])
+        rows = [{k: (v or "").strip() for k, v in row.items() if k is not None} for row in reader]
+    return header, rows
+
+
+def number(row, column):
+    """The cell as a finite float, or None when it is empty, missing or not a number."""
+    try:
+        value = float(row.get(column) or "")
+    except ValueError:
+        return None
+    return value if math.isfinite(value) else None
+
+
+def light_count(row):
+    """Spot plus point lights of a row (0 for missing counts)."""
+    return int((number(row, "spot") or 0) + (number(row, "point") or 0))
+
+
+def series_rows(rows, series):
+    """The rows of one series, in file order."""
+    return [r for r in rows if r.get("series") == series]
+
+
+def method_order(rows):
+    """The methods present, known ones first in their usual order, then any others sorted."""
+    present = {r.get("method", "") for r in rows}
+    return [m for m in METHODS if m in present] + sorted(present - set(METHODS))
+
+
+def method_style(method):
+    return METHOD_STYLE.get(method, ("tab:gray", "x"))
+
+
+def is_wide(values):
+    """True when the positive values span more than WIDE_RATIO (and none is <= 0)."""
+    values = [v for v in values if v is not None]
+    return bool(values) and min(values) > 0 and max(values) / min(values) > WIDE_RATIO
+
+
+def varying_label(row, rows, fields):
+    """A label made of those `fields` whose values differ between `rows`."""
+    varying = [f for f in fields if len({r.get(f, "") for r in rows}) > 1] or fields[:1]
+    return " ".join(row.get(f, "") for f in varying)
+
+
+def pareto_front(points):
+    """Indices of the non-dominated (x, y) points, both lower-is-better, sorted by x then y.
+
+    A point is dominated when another is at least as good in both and better in one.
+    Equal points are all kept."""
+    order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
+    front, best_y = [], math.inf
+    for i in order:
+        x, y = points[i]
+        if y < best_y or (front and points[front[-1]] == (x, y)):
+            front.append(i)
+            best_y = min(best_y, y)
+    return front
+
+
+# ------------------------------------------------------------------------------- chart helpers
+
+def configure_matplotlib():
+    """Fixed style and a fixed SVG id salt, so that reruns write identical files."""
+    matplotlib.rcParams.update({
+        "svg.hashsalt": "punctual-bench", "svg.fonttype": "path", "figure.dpi": 100,
+        "savefig.dpi": 100, "font.size": 9, "axes.grid": True, "grid.alpha": 0.3,
+        "axes.titlesize": 10, "legend.fontsize": 8,
+    })
+
+
+def save_chart(fig, charts_dir, name):
+    """Writes charts_dir/name.png and .svg without timestamps, and closes the figure."""
+    fig.savefig(os.path.join(charts_dir, name + ".png"), metadata={"Software": None})
+    fig.savefig(os.path.join(charts_dir, name + ".svg"), metadata={"Date": None, "Creator": None})
+    plt.close(fig)
+
+
+def set_count_axis(ax, counts):
+    """Light counts on x: log 2 when they span a wide range, ticks at the measured counts."""
+    counts = sorted(set(counts))
+    if counts and counts[0] > 0 and counts[-1] / counts[0] >= 8:
+        ax.set_xscale("log", base=2)
+    ax.xaxis.set_major_locator(FixedLocator(counts))
+    ax.xaxis.set_minor_locator(NullLocator())
+    ax.set_xticklabels([str(c) for c in counts])
+    ax.set_xlabel("lights (spot + point)")
+
+
+def plot_per_method(ax, rows, column):
+    """One line per method of `column` against light count; returns the values drawn."""
+    drawn = []
+    for method in method_order(rows):
+        pts = sorted((light_count(r), number(r, column)) for r in rows
+                     if r.get("method") == method and number(r, column) is not None)
+        if pts:
+            colour, marker = method_style(method)
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], color=colour, marker=marker,
+                    label=method)
+            drawn += [p[1] for p in pts]
+    return drawn
+
+
+def draw_front(ax, points, front):
+    """The Pareto front of `points` as a step line with its points ringed."""
+    xs, ys = [points[i][0] for i in front], [points[i][1] for i in front]
+    ax.plot(xs, ys, drawstyle="steps-post", color="black", linewidth=1.2, zorder=1,
+            label="Pareto front")
+    ax.scatter(xs, ys, s=150, facecolors="none", edgecolors="black", linewidths=1.5, zorder=3)
+
+
+# ---------------------------------------------------------------------------------------- charts
+
+def chart_pass_time(rows, column, what):
+    """Median GPU time of `column` against light count, one line per method, one panel per
+    light series (mix, spot-only, point-only). It shows how each method scales with the number
+    of lights: brute force grows linearly, culled lists with the lights actually reaching pixels."""
+    panels = [(s, t, series_rows(rows, s)) for s, t in LIGHT_SERIES]
+    panels = [(s, t, rs) for s, t, rs in panels if any(number(r, column) is not None for r in rs)]
+    if not any(s == "mix" for s, _, _ in panels):
+        raise SkipChart(f"no {column} values in the mix series")
+    fig, axes = plt.subplots(1, len(panels), figsize=(4.2 * len(panels) + 0.6, 4.0), sharey=True,
+                             squeeze=False)
+    values = []
+    for ax, (_, title, rs) in zip(axes[0], panels):
+        values += plot_per_method(ax, rs, column)
+        set_count_axis(ax, [light_count(r) for r in rs if number(r, column) is not None])
+        ax.set_title(title)
+    if is_wide(values):
+        axes[0][0].set_yscale("log")
+    axes[0][0].set_ylabel(f"{what}: median GPU ms")
+    axes[0][0].legend()
+    fig.suptitle(f"{what} time against light count")
+    fig.tight_layout()
+    return fig
+
+
+def chart_forward_time(rows):
+    return chart_pass_time(rows, "forward_ms", "forward pass")
+
+
+def chart_total_time(rows):
+    return chart_pass_time(rows, "total_ms", "whole frame")
+
+
+def chart_culling_efficiency(rows):
+    """Culling efficiency (lights tested / lights affecting each pixel, 1 = perfect) against
+    light count for the mix series, and next to it the two per-pixel counts it is made of. It
+    shows how much wasted shading work each light list leaves as the lights get denser."""
+    rs = [r for r in series_rows(rows, "mix") if number(r, "efficiency") is not None]
+    if not rs:
+        raise SkipChart("no efficiency values in the mix series")
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4.0))
+    values = plot_per_method(left, rs, "efficiency")
+    left.axhline(1.0, color="black", linestyle=":", linewidth=1, label="perfect (1)")
+    if is_wide(values + [1.0]):
+        left.set_yscale("log")
+    left.set_ylabel("efficiency = tested / affecting")
+    left.set_title("culling efficiency (lower is better)")
+    left.legend()
+    tested = plot_per_method(right, rs, "tested_per_pixel")
+    affecting = {}
+    for r in sorted(rs, key=lambda r: r.get("config", "")):
+        if number(r, "affecting_per_pixel") is not None:
+            affecting.setdefault(light_count(r), number(r, "affecting_per_pixel"))
+    if affecting:
+        xs = sorted(affecting)
+        right.plot(xs, [affecting[x] for x in xs], color="black", linestyle="--",
+                   label="affecting (exact)")
+    if is_wide(tested + list(affecting.values())):
+        right.set_yscale("log")
+    right.set_ylabel("lights per covered pixel (mean)")
+    right.set_title("lights tested and lights affecting")
+    if tested or affecting:
+        right.legend()
+    for ax in (left, right):
+        set_count_axis(ax, [light_count(r) for r in rs])
+    fig.suptitle("light culling efficiency, mix series (spot:point = 2:1)")
+    fig.tight_layout()
+    return fig
+
+
+def chart_shadow_pareto(rows):
+    """Whole-frame time against the fraction of shadow tests misclassified (outside the edge
+    band, against the Embree reference), one point per shadow resolution and filter. The Pareto
+    front marks the settings no other setting beats in both speed and accuracy."""
+    rs = [r for r in series_rows(rows, "shadow-quality")
+          if number(r, "total_ms") is not None and number(r, "shadow_misclassified") is not None]
+    if not rs:
+        raise SkipChart("no shadow-quality rows with both total_ms and shadow_misclassified")
+    points = [(number(r, "shadow_misclassified"), number(r, "total_ms")) for r in rs]
+    front = pareto_front(points)
+    fig, ax = plt.subplots(figsize=(8, 5.2))
+    filters = sorted({r.get("shadow_filter", "") for r in rs})
+    cmap = plt.get_cmap("tab10")
+    for k, flt in enumerate(filters):
+        pts = [p for p, r in zip(points, rs) if r.get("shadow_filter", "") == flt]
+        ax.scatter([p[0] for p in pts], [p[1] for p in pts], color=cmap(k % 10), zorder=2,
+                   label=flt or "(no filter)")
+    fields = ["shadow_res", "shadow_filter", "point_layout", "method", "spot", "point"]
+    for (x, y), r in zip(points, rs):
+        ax.annotate(varying_label(r, rs, fields), (x, y), xytext=(5, 4),
+                    textcoords="offset points", fontsize=7)
+    draw_front(ax, points, front)
+    if is_wide([p[1] for p in points]):
+        ax.set_yscale("log")
+    ax.xaxis.set_major_formatter(PercentFormatter(xmax=1.0))
+    ax.set_xlabel("shadow tests misclassified outside the edge band (lower is better)")
+    ax.set_ylabel("whole frame: median GPU ms (lower is better)")
+    ax.set_title("shadow quality: speed against accuracy (resolution x filter)")
+    ax.legend(title="filter")
+    fig.tight_layout()
+    return fig
+
+
+def assignment_error_column(rows):
+    """image_error when the non-brute rows have any, else pixels_off, else None."""
+    for column in ("image_error", "pixels_off"):
+        if any(number(r, column) is not None for r in rows if r.get("method") != "brute"):
+            return column
+    return None
+
+
+def chart_assignment_pareto(rows):
+    """Whole-frame time against image error versus brute force, one panel per light count of the
+    mix series, one point per method. Brute force is the reference (error 0 when its cell is
+    empty); tiled and clustered should sit on 0 as well, and per-object's capped lists show as
+    error. The Pareto front marks the methods nothing beats in both speed and accuracy."""
+    mix = series_rows(rows, "mix")
+    column = assignment_error_column(mix)
+    if column is None:
+        raise SkipChart("no image_error or pixels_off values in the mix series")
+
+    def error(r):
+        value = number(r, column)
+        return 0.0 if value is None and r.get("method") == "brute" else value
+
+    rs = [r for r in mix if number(r, "total_ms") is not None and error(r) is not None]
+    counts = sorted({light_count(r) for r in rs})
+    ncols = min(3, len(counts))
+    nrows = math.ceil(len(counts) / ncols)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(4.3 * ncols, 3.8 * nrows), squeeze=False)
+    for ax in axes.flat[len(counts):]:
+        ax.set_visible(False)
+    for ax, count in zip(axes.flat, counts):
+        group = [r for r in rs if light_count(r) == count]
+        points = [(error(r), number(r, "total_ms")) for r in group]
+        for (x, y), r in zip(points, group):
+            colour, marker = method_style(r.get("method", ""))
+            ax.scatter([x], [y], color=colour, marker=marker, s=45, zorder=2,
+                       label=r.get("method", ""))
+        draw_front(ax, points, pareto_front(points))
+        if is_wide([p[1] for p in points]):
+            ax.set_yscale("log")
+        spots, pts = group[0].get("spot", ""), group[0].get("point", "")
+        ax.set_title(f"{count} lights ({spots} spot + {pts} point)")
+        ax.set_xlabel(("mean abs. error per channel" if column == "image_error"
+                       else "fraction of pixels off by > 2/255") + " vs brute")
+        ax.set_ylabel("whole frame: median GPU ms")
+        handles, labels = ax.get_legend_handles_labels()
+        unique = dict(zip(labels, handles))
+        ax.legend(unique.values(), unique.keys())
+    fig.suptitle("light assignment: speed against accuracy (lower is better on both axes)")
+    fig.tight_layout()
+    return fig
+
+
+def chart_shadow_cost(rows):
+    """Per-pass GPU time with shadows off and on at the largest light count ("shadows" series),
+    one stacked bar per method and setting: what the shadow maps and their lookups cost."""
+    rs = [r for r in series_rows(rows, "shadows") if number(r, "total_ms") is not None]
+    if not rs:
+        raise SkipChart("no rows in the shadows series")
+    order = method_order(rs)
+    rs.sort(key=lambda r: (order.index(r.get("method", "")), number(r, "shadows") or 0,
+                           r.get("config", "")))
+    fig, ax = plt.subplots(figsize=(max(6.0, 1.1 * len(rs) + 2), 4.6))
+    xs = list(range(len(rs)))
+    bottom = [0.0] * len(rs)
+    passes = [("depth_ms", "depth"), ("culling_ms", "culling"), ("shadows_ms", "shadow maps"),
+              ("forward_ms", "forward")]
+    for k, (column, label) in enumerate(passes):
+        heights = [number(r, column) or 0.0 for r in rs]
+        ax.bar(xs, heights, bottom=bottom, color=plt.get_cmap("tab10")(k), label=label)
+        bottom = [b + h for b, h in zip(bottom, heights)]
+    other = [max(number(r, "total_ms") - b, 0.0) for r, b in zip(rs, bottom)]
+    ax.bar(xs, other, bottom=bottom, color="lightgray", label="other (tone mapping, gaps)")
+    fields = ["method", "shadows", "point_layout", "shadow_res", "shadow_filter"]
+    labels = []
+    for r in rs:
+        text = varying_label(r, rs, [f for f in fields if f != "shadows"])
+        labels.append(f"{text}\nshadows {'on' if number(r, 'shadows') else 'off'}")
+    ax.set_xticks(xs)
+    ax.set_xticklabels(labels, fontsize=7)
+    ax.set_ylabel("median GPU ms per pass")
+    counts = sorted({light_count(r) for r in rs})
+    ax.set_title("cost of shadows at " + "/".join(map(str, counts)) + " lights")
+    ax.legend()
+    fig.tight_layout()
+    return fig
+
+
+# (file name, title, function); the function's docstring is the chart's caption.
+CHARTS = [
+    ("forward_time", "Forward pass time against light count", chart_forward_time),
+    ("total_time", "Whole-frame time against light count", chart_total_time),
+    ("culling_efficiency", "Culling efficiency against light count", chart_culling_efficiency),
+    ("pareto_shadows", "Shadows: speed against accuracy", chart_shadow_pareto),
+    ("pareto_light_assignment", "Light assignment: speed against accuracy",
+     chart_assignment_pareto),
+    ("shadow_cost", "Cost of shadows per pass", chart_shadow_cost),
+]
+
+
+def draw_charts(rows, charts_dir):
+    """Draws every chart; returns [(name, title, caption, skip reason or None)]."""
+    os.makedirs(charts_dir, exist_ok=True)
+    done = []
+    for name, title, function in CHARTS:
+        caption = " ".join((function.__doc__ or "").split())
+        try:
+            fig = function(rows)
+        except SkipChart as reason:
+            for ext in (".png", ".svg"):  # never leave a stale chart from an earlier run
+                stale = os.path.join(charts_dir, name + ext)
+                if os.path.exists(stale):
+                    os.remove(stale)
+            done.append((name, title, caption, str(reason)))
+            continue
+        save_chart(fig, charts_dir, name)
+        done.append((name, title, caption, None))
+    return done
+
+
+# ------------------------------------------------------------------------------------ index.html
+
+STYLE = """body { font-family: sans-serif; margin: 1.5em; max-width: 1400px; }
+figure { display: inline-block; margin: 0.6em; vertical-align: top; }
+figure img { max-width: 100%; border: 1px solid #ccc; }
+figcaption { font-size: 0.85em; max-width: 60em; }
+.skipped { color: #a33; }
+table { border-collapse: collapse; font-size: 0.75em; }
+th, td { border: 1px solid #bbb; padding: 2px 5px; text-align: right; }
+th { background: #eee; position: sticky; top: 0; }
+td:first-child, th:first-child { text-align: left; }"""
+
+
+def href(path):
+    """A relative URL for an attribute: percent-encoded, then HTML-escaped."""
+    return html.escape(urllib.parse.quote(path), quote=True)
+
+
+def list_images(out_dir):
+    """Sorted file names of DIR/images/*.png (empty when the folder is absent)."""
+    folder = os.path.join(out_dir, "images")
+    if not os.path.isdir(folder):
+        return []
+    return sorted(f for f in os.listdir(folder)
+                  if f.lower().endswith(".png") and os.path.isfile(os.path.join(folder, f)))
+
+
+def render_index(header, rows, charts, images, notes):
+    """The text of index.html: charts (or why each was skipped), images, the CSV as a table."""
+    e = html.escape
+    out = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
+           "<title>punctual bench results</title>", f"<style>\n{STYLE}\n</style></head><body>",
+           "<h1>punctual bench results</h1>",
+           f"<p>{len(rows)} configurations from <a href=\"results.csv\">results.csv</a>. "
+           "Times are median GPU ms over the timed frames.</p>"]
+    out += [f'<p class="skipped">{e(n)}</p>' for n in notes]
+    out.append("<h2>Charts</h2>")
+    for name, title, caption, skipped in charts:
+        if skipped:
+            out.append(f'<p class="skipped"><b>{e(title)}</b>: not drawn: {e(skipped)}.</p>')
+            continue
+        out += [f'<figure id="{e(name)}"><img src="{href("charts/" + name + ".png")}" '
+                f'alt="{e(title)}">',
+                f"<figcaption><b>{e(title)}</b>. {e(caption)} "
+                f'(<a href="{href("charts/" + name + ".svg")}">SVG</a>)</figcaption></figure>']
+    out.append("<h2>Images</h2>")
+    if not images:
+        out.append('<p class="skipped">No images in images/.</p>')
+    for name in images:
+        out.append(f'<figure><img src="{href("images/" + name)}" alt="{e(name)}">'
+                   f"<figcaption>{e(name)}</figcaption></figure>")
+    out += ["<h2>Results</h2>", "<table>",
+            "<tr>" + "".join(f"<th>{e(c)}</th>" for c in header) + "</tr>"]
+    for row in rows:
+        out.append("<tr>" + "".join(f"<td>{e(row.get(c, ''))}</td>" for c in header) + "</tr>")
+    out += ["</table>", "</body></html>", ""]
+    return "\n".join(out)
+
+
+def main(argv=None):
+    """Command line entry point; returns the exit status."""
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("out_dir", metavar="DIR", help="folder holding results.csv (from "
+                        "`punctual bench --out-dir DIR`); charts/ and index.html go there too")
+    args = parser.parse_args(argv)
+    csv_path = os.path.join(args.out_dir, "results.csv")
+    try:
+        header, rows = read_results(csv_path)
+    except OSError as err:
+        print(f"plot_results: error: {csv_path}: {err.strerror or err}", file=sys.stderr)
+        return 1
+    notes = []
+    missing = [c for c in COLUMNS if c not in header]
+    if missing:
+        notes.append("results.csv lacks the columns " + ", ".join(missing) + "; they count as empty.")
+    configure_matplotlib()
+    charts = draw_charts(rows, os.path.join(args.out_dir, "charts"))
+    index = render_index(header, rows, charts, list_images(args.out_dir), notes)
+    with open(os.path.join(args.out_dir, "index.html"), "w", encoding="utf-8") as f:
+        f.write(index)
+    for name, title, _, skipped in charts:
+        print(f"{'skipped' if skipped else 'wrote'} charts/{name}: {skipped or title}")
+    print(f"wrote {os.path.join(args.out_dir, 'index.html')}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
