@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/output_files.h"
 #include "metrics/heatmap.h"
+#include "metrics/image_diff.h"
 #include "reference/embree_scene.h"
 #include "reference/shadow_validation.h"
 #include "render/renderer.h"
@@ -70,23 +71,6 @@ std::string number(double value) {
     s.precision(6);
     s << value;
     return s.str();
-}
-
-// Mean absolute channel difference (0..1) and the share of pixels off by more than 2/255.
-std::pair<double, double> imageError(const ImageRgba8& a, const ImageRgba8& b) {
-    double sum = 0.0;
-    size_t off = 0;
-    const size_t pixels = size_t(a.width) * a.height;
-    for (size_t i = 0; i < pixels; ++i) {
-        int worst = 0;
-        for (int c = 0; c < 3; ++c) {
-            const int d = std::abs(int(a.pixels[i * 4 + c]) - int(b.pixels[i * 4 + c]));
-            sum += d;
-            worst = std::max(worst, d);
-        }
-        off += worst > 2;
-    }
-    return {sum / (3.0 * 255.0 * double(pixels)), double(off) / double(pixels)};
 }
 
 class ProgressBar {
@@ -176,11 +160,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
         }
     }
     if (!outDir) throw Error("--out-dir", "bench needs an output folder (--out-dir DIR)");
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path parent = fs::path(*outDir).has_parent_path() ? fs::path(*outDir).parent_path() : fs::path(".");
-    if (!fs::is_directory(parent, ec)) throw Error(*outDir, "folder '" + parent.string() + "' does not exist");
-    if (fs::exists(*outDir, ec) && !fs::is_directory(*outDir, ec)) throw Error(*outDir, "exists and is not a folder");
+    checkOutputFolder(*outDir);
 
     RenderOptions options = parseRenderOptions(renderArgs);
     const bool sizeGiven = std::find(renderArgs.begin(), renderArgs.end(), "--size") != renderArgs.end();
@@ -192,10 +172,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
                                      ? options.frames
                                      : (quick ? 3u : 5u);
     const Scene baseScene = loadSceneForOptions(options);
-    vk::ContextOptions contextOptions;
-    contextOptions.validation = options.validate;
-    contextOptions.deviceIndex = options.deviceIndex;
-    vk::Context context(contextOptions);
+    vk::Context context(contextOptionsFrom(options));
     const reference::EmbreeScene embree(baseScene);  // geometry only: shared by every configuration
 
     const std::vector<Config> configs = plan(quick);
@@ -265,9 +242,9 @@ int runBenchCommand(const std::vector<std::string>& args) {
         if (config.method == render::LightListMethod::Brute && !config.validateShadows) {
             bruteImages[bruteKey] = result.image;
         } else if (bruteImages.count(bruteKey)) {
-            const auto [error, off] = imageError(result.image, bruteImages[bruteKey]);
-            row["image_error"] = number(error);
-            row["pixels_off"] = number(off);
+            const ImageDifference difference = compareImages(result.image, bruteImages[bruteKey]);
+            row["image_error"] = number(difference.meanAbsolute);
+            row["pixels_off"] = number(difference.pixelsOff);
         }
         if (config.validateShadows) {
             const render::ShadowFactorImage factors = renderer.readShadowFactors();
@@ -312,7 +289,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
     outputs.add(*outDir + "/results.csv", csv.str());
     outputs.add(*outDir + "/failures.csv", failuresCsv(failures));
     outputs.add(*outDir + "/results.json", document.dump(2) + "\n");
-    fs::create_directories(fs::path(*outDir) / "images", ec);
+    std::error_code ec;
+    std::filesystem::create_directories(std::filesystem::path(*outDir) / "images", ec);
     if (ec) throw Error(*outDir, "cannot create the folder: " + ec.message());
     outputs.commit();
     std::printf("bench: %zu configurations on %s at %ux%u, %u timed frames each; wrote %s/results.csv\n", rows.size(),

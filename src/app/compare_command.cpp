@@ -6,6 +6,7 @@
 #include "app/options.h"
 #include "app/scene_source.h"
 #include "core/error.h"
+#include "metrics/image_diff.h"
 #include "reference/embree_scene.h"
 #include "reference/shadow_validation.h"
 #include "render/renderer.h"
@@ -24,30 +25,6 @@ share of (pixel, light) pairs whose shadow disagrees with Embree's ray-cast visi
 the +-1 texel edge band. --culling is ignored: every method runs.
 )";
 
-struct ImageError {
-    double mean = 0.0;      // 0..255 per channel
-    double pixelsOff = 0.0;  // share with a channel more than 2/255 off
-};
-
-ImageError compareImages(const ImageRgba8& a, const ImageRgba8& b) {
-    ImageError e;
-    const size_t pixels = size_t(a.width) * a.height;
-    size_t off = 0;
-    double sum = 0.0;
-    for (size_t i = 0; i < pixels; ++i) {
-        int worst = 0;
-        for (int c = 0; c < 3; ++c) {
-            const int d = std::abs(int(a.pixels[i * 4 + c]) - int(b.pixels[i * 4 + c]));
-            sum += d;
-            worst = std::max(worst, d);
-        }
-        off += worst > 2;
-    }
-    e.mean = sum / (3.0 * double(pixels));
-    e.pixelsOff = double(off) / double(pixels);
-    return e;
-}
-
 }  // namespace
 
 int runCompareCommand(const std::vector<std::string>& args) {
@@ -60,10 +37,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     }
     const RenderOptions options = parseRenderOptions(args);
     const Scene scene = loadSceneForOptions(options);
-    vk::ContextOptions contextOptions;
-    contextOptions.validation = options.validate;
-    contextOptions.deviceIndex = options.deviceIndex;
-    vk::Context context(contextOptions);
+    vk::Context context(contextOptionsFrom(options));
     std::optional<reference::EmbreeScene> embree;
     if (options.shadows.enabled) embree.emplace(scene);
 
@@ -76,19 +50,13 @@ int runCompareCommand(const std::vector<std::string>& args) {
     ImageRgba8 brute;
     for (render::LightListMethod method : {render::LightListMethod::Brute, render::LightListMethod::PerObject,
                                            render::LightListMethod::Tiled, render::LightListMethod::Clustered}) {
-        render::RenderSettings settings;
-        settings.width = options.width;
-        settings.height = options.height;
-        settings.exposure = options.exposure;
+        render::RenderSettings settings = renderSettingsFrom(options);
         settings.method = method;
-        settings.tileSize = options.tileSize;
-        settings.clusterSlices = options.slices;
-        settings.shadows = options.shadows;
         settings.collectShadowFactors = options.shadows.enabled;
         render::Renderer renderer(context, scene, settings);
         const render::FrameResult result = renderer.render(options.frames, 1);
         if (method == render::LightListMethod::Brute) brute = result.image;
-        const ImageError error = compareImages(result.image, brute);
+        const ImageDifference error = compareImages(result.image, brute);
         std::string shadowColumn = "-";
         if (embree) {
             const reference::ShadowValidation validation = reference::validateShadows(
@@ -99,7 +67,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
         }
         const render::PassTimings& ms = result.medianMs;
         std::printf("%-11s %9.1f %9.1f %9.1f %9.1f | %13.3f %10.3f%% | %13s\n", render::methodName(method), ms.culling,
-                    ms.shadows, ms.forward, ms.total, error.mean, 100.0 * error.pixelsOff, shadowColumn.c_str());
+                    ms.shadows, ms.forward, ms.total, 255.0 * error.meanAbsolute, 100.0 * error.pixelsOff, shadowColumn.c_str());
         std::fflush(stdout);
     }
     if (context.validationMessageCount() > 0) {

@@ -131,6 +131,25 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
     return options;
 }
 
+render::RenderSettings renderSettingsFrom(const RenderOptions& options) {
+    render::RenderSettings settings;
+    settings.width = options.width;
+    settings.height = options.height;
+    settings.exposure = options.exposure;
+    settings.method = options.culling;
+    settings.tileSize = options.tileSize;
+    settings.clusterSlices = options.slices;
+    settings.shadows = options.shadows;
+    return settings;
+}
+
+vk::ContextOptions contextOptionsFrom(const RenderOptions& options) {
+    vk::ContextOptions context;
+    context.validation = options.validate;
+    context.deviceIndex = options.deviceIndex;
+    return context;
+}
+
 std::string renderUsage() {
     return R"(usage: punctual render [SCENE.gltf|SCENE.glb] [options]
 

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "lights/shadow_setup.h"
+#include "render/renderer.h"
+#include "vk/context.h"
 #include "render/light_list_method.h"
 #include "scene/light_generator.h"
 
@@ -36,5 +38,9 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args);
 void parseSize(const std::string& text, uint32_t& width, uint32_t& height);
 
 std::string renderUsage();
+
+// The renderer and device settings the options ask for (statistics and validation variants off).
+render::RenderSettings renderSettingsFrom(const RenderOptions& options);
+vk::ContextOptions contextOptionsFrom(const RenderOptions& options);
 
 }  // namespace punctual::app

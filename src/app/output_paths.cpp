@@ -17,4 +17,13 @@ void checkOutputPath(const std::optional<std::string>& path) {
     if (!fs::is_directory(folder, ec)) throw Error(*path, "folder '" + folder.string() + "' does not exist");
 }
 
+void checkOutputFolder(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::exists(path, ec) && !fs::is_directory(path, ec)) throw Error(path, "exists and is not a folder");
+    const fs::path folder(path);
+    const fs::path parent = folder.has_parent_path() ? folder.parent_path() : fs::path(".");
+    if (!fs::is_directory(parent, ec)) throw Error(path, "folder '" + parent.string() + "' does not exist");
+}
+
 }  // namespace punctual::app

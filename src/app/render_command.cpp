@@ -45,20 +45,9 @@ int runRenderCommand(const std::vector<std::string>& args) {
     checkOutputPath(options.heatmapPath);
     const Scene scene = loadSceneForOptions(options);
 
-    vk::ContextOptions contextOptions;
-    contextOptions.validation = options.validate;
-    contextOptions.deviceIndex = options.deviceIndex;
-    vk::Context context(contextOptions);
-
-    render::RenderSettings settings;
-    settings.width = options.width;
-    settings.height = options.height;
-    settings.exposure = options.exposure;
-    settings.method = options.culling;
-    settings.tileSize = options.tileSize;
-    settings.clusterSlices = options.slices;
+    vk::Context context(contextOptionsFrom(options));
+    render::RenderSettings settings = renderSettingsFrom(options);
     settings.collectLightStats = options.statsPath.has_value() || options.heatmapPath.has_value();
-    settings.shadows = options.shadows;
     render::Renderer renderer(context, scene, settings);
     const render::FrameResult result = renderer.render(options.frames);
     std::optional<LightStatsImage> lightStats;

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "app/options.h"
+#include "app/output_paths.h"
 #include "app/scene_source.h"
 #include "app/validation_report.h"
 #include "core/error.h"
@@ -51,28 +52,14 @@ int runValidateCommand(const std::vector<std::string>& args) {
         }
     }
     if (!outDir) throw Error("--out-dir", "validate needs an output folder (--out-dir DIR)");
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    if (fs::exists(*outDir, ec) && !fs::is_directory(*outDir, ec)) throw Error(*outDir, "exists and is not a folder");
-    const fs::path parent = fs::path(*outDir).has_parent_path() ? fs::path(*outDir).parent_path() : fs::path(".");
-    if (!fs::is_directory(parent, ec)) throw Error(*outDir, "folder '" + parent.string() + "' does not exist");
+    checkOutputFolder(*outDir);
 
     const RenderOptions options = parseRenderOptions(renderArgs);
     if (!options.shadows.enabled) throw Error("--shadows", "validate compares shadows: they must be on");
     const Scene scene = loadSceneForOptions(options);
 
-    vk::ContextOptions contextOptions;
-    contextOptions.validation = options.validate;
-    contextOptions.deviceIndex = options.deviceIndex;
-    vk::Context context(contextOptions);
-    render::RenderSettings settings;
-    settings.width = options.width;
-    settings.height = options.height;
-    settings.exposure = options.exposure;
-    settings.method = options.culling;
-    settings.tileSize = options.tileSize;
-    settings.clusterSlices = options.slices;
-    settings.shadows = options.shadows;
+    vk::Context context(contextOptionsFrom(options));
+    render::RenderSettings settings = renderSettingsFrom(options);
     settings.collectShadowFactors = true;
     render::Renderer renderer(context, scene, settings);
     const ImageRgba8 gpuImage = renderer.render(1, 0).image;
@@ -104,7 +91,8 @@ int runValidateCommand(const std::vector<std::string>& args) {
                     encodePng(mismatchMap(light, validation.width, validation.height)));
     }
     if (exportExr) addExrImages(outputs, dir, factors);
-    fs::create_directories(dir, ec);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
     if (ec) throw Error(dir, "cannot create the folder: " + ec.message());
     outputs.commit();
 
