@@ -2,63 +2,17 @@
 
 #include <cmath>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "gpu_types.h"
-#include "scene/default_scene.h"
+#include "scene/study_scenes.h"
 
 namespace punctual::testing {
 
-void addBox(Scene& scene, const glm::vec3& center, const glm::vec3& size, uint32_t material) {
-    Object object;
-    object.name = "box";
-    object.mesh = appendBoxMesh(scene, "box", size, material);
-    object.model = glm::translate(glm::mat4(1.0f), center);
-    scene.objects.push_back(object);
-}
-
-Light pointLight(const glm::vec3& position, float range, float intensity, const glm::vec3& color) {
-    Light light;
-    light.type = LightType::Point;
-    light.position = position;
-    light.range = range;
-    light.intensity = intensity;
-    light.color = color;
-    return light;
-}
-
-Light spotLight(const glm::vec3& position, const glm::vec3& direction, float range, float intensity, float innerAngle,
-                float outerAngle, const glm::vec3& color) {
-    Light light = pointLight(position, range, intensity, color);
-    light.type = LightType::Spot;
-    light.direction = glm::normalize(direction);
-    light.innerConeAngle = innerAngle;
-    light.outerConeAngle = outerAngle;
-    return light;
-}
-
-namespace {
-
-// A 20 x 20 m floor at y = 0 seen from (0, 3, 10) looking at (0, 0, 0).
-Scene floorScene(const std::string& name) {
-    Scene scene;
-    scene.source = name;
-    Material material;
-    material.name = "grey";
-    material.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
-    material.metallic = 0.0f;
-    material.roughness = 0.6f;
-    scene.materials.push_back(material);
-    addBox(scene, glm::vec3(0.0f, -0.1f, 0.0f), glm::vec3(20.0f, 0.2f, 20.0f));
-    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 3.0f, 10.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
-    scene.camera.yfov = 1.0f;
-    scene.camera.znear = 0.1f;
-    scene.camera.zfar = 40.0f;
-    scene.cameraFromFile = true;
-    return scene;
-}
-
-}  // namespace
+// Every scene stands on study::floorScene's 20 x 20 m floor at y = 0, seen from (0, 3, 10)
+// looking at (0, 0, 0).
+using study::addBox;
+using study::floorScene;
+using study::pointLight;
+using study::spotLight;
 
 std::vector<NamedScene> adversarialCullingScenes() {
     std::vector<NamedScene> scenes;
@@ -68,17 +22,20 @@ std::vector<NamedScene> adversarialCullingScenes() {
         Scene scene = floorScene("light straddling the near plane");
         const glm::vec3 eye(0.0f, 3.0f, 10.0f);
         scene.lights.push_back(pointLight(eye + glm::vec3(0.3f, -0.2f, -0.05f), 6.0f, 40.0f));
-        scene.lights.push_back(pointLight(eye + glm::vec3(-1.0f, -0.5f, 0.5f), 5.0f, 30.0f, glm::vec3(1.0f, 0.5f, 0.3f)));
-        scene.lights.push_back(spotLight(eye + glm::vec3(0.0f, 0.0f, -0.08f), glm::vec3(0.0f, -0.3f, -1.0f), 14.0f,
-                                         80.0f, 0.2f, 0.5f, glm::vec3(0.4f, 0.6f, 1.0f)));
+        scene.lights.push_back(
+            withColor(pointLight(eye + glm::vec3(-1.0f, -0.5f, 0.5f), 5.0f, 30.0f), glm::vec3(1.0f, 0.5f, 0.3f)));
+        scene.lights.push_back(withColor(spotLight(eye + glm::vec3(0.0f, 0.0f, -0.08f), glm::vec3(0.0f, -0.3f, -1.0f),
+                                                   14.0f, 80.0f, 0.2f, 0.5f),
+                                         glm::vec3(0.4f, 0.6f, 1.0f)));
         scenes.push_back({scene.source, scene});
     }
     {
         // The camera inside a big point light's range and inside a spot's cone.
         Scene scene = floorScene("camera inside a light's range");
         scene.lights.push_back(pointLight(glm::vec3(1.0f, 2.0f, 8.0f), 25.0f, 30.0f));
-        scene.lights.push_back(spotLight(glm::vec3(0.0f, 4.0f, 14.0f), glm::vec3(0.0f, -0.35f, -1.0f), 25.0f, 60.0f,
-                                         0.3f, 0.6f, glm::vec3(1.0f, 0.8f, 0.6f)));
+        scene.lights.push_back(withColor(spotLight(glm::vec3(0.0f, 4.0f, 14.0f), glm::vec3(0.0f, -0.35f, -1.0f), 25.0f,
+                                                   60.0f, 0.3f, 0.6f),
+                                         glm::vec3(1.0f, 0.8f, 0.6f)));
         scenes.push_back({scene.source, scene});
     }
     {
@@ -88,10 +45,12 @@ std::vector<NamedScene> adversarialCullingScenes() {
         Scene scene = floorScene("spot cone seen edge-on");
         scene.lights.push_back(spotLight(glm::vec3(-9.0f, 1.5f, 1.0f), glm::vec3(1.0f, -0.2f, 0.0f), 18.0f, 150.0f,
                                          0.1f, 0.22f));
-        scene.lights.push_back(spotLight(glm::vec3(9.0f, 1.2f, 4.0f), glm::vec3(-1.0f, -0.15f, 0.0f), 16.0f, 120.0f,
-                                         0.05f, 0.15f, glm::vec3(1.0f, 0.4f, 0.4f)));
-        scene.lights.push_back(spotLight(glm::vec3(0.0f, 6.0f, 0.0f), glm::vec3(0.0f, -0.5f, 1.0f), 15.0f, 80.0f,
-                                         0.1f, 0.35f, glm::vec3(0.4f, 1.0f, 0.4f)));
+        scene.lights.push_back(withColor(spotLight(glm::vec3(9.0f, 1.2f, 4.0f), glm::vec3(-1.0f, -0.15f, 0.0f), 16.0f,
+                                                   120.0f, 0.05f, 0.15f),
+                                         glm::vec3(1.0f, 0.4f, 0.4f)));
+        scene.lights.push_back(withColor(spotLight(glm::vec3(0.0f, 6.0f, 0.0f), glm::vec3(0.0f, -0.5f, 1.0f), 15.0f,
+                                                   80.0f, 0.1f, 0.35f),
+                                         glm::vec3(0.4f, 1.0f, 0.4f)));
         scenes.push_back({scene.source, scene});
     }
     {
@@ -102,12 +61,13 @@ std::vector<NamedScene> adversarialCullingScenes() {
         for (int i = 0; i < 7; ++i) {
             const float x = -3.6f + 1.2f * float(i);
             addBox(scene, glm::vec3(x, 1.5f, 6.0f), glm::vec3(0.35f, 3.0f, 0.2f));
-            scene.lights.push_back(pointLight(glm::vec3(x, 1.0f + 0.4f * float(i % 3), 6.4f), 0.7f, 1.0f,
-                                              glm::vec3(1.0f, 0.6f, 0.3f)));
+            scene.lights.push_back(withColor(pointLight(glm::vec3(x, 1.0f + 0.4f * float(i % 3), 6.4f), 0.7f, 1.0f),
+                                             glm::vec3(1.0f, 0.6f, 0.3f)));
         }
         for (int i = 0; i < 10; ++i) {
-            scene.lights.push_back(pointLight(glm::vec3(-9.0f + 2.0f * float(i), 0.8f, -5.0f + 0.6f * float(i % 4)), 3.0f,
-                                              12.0f, glm::vec3(0.3f, 0.6f, 1.0f)));
+            scene.lights.push_back(withColor(
+                pointLight(glm::vec3(-9.0f + 2.0f * float(i), 0.8f, -5.0f + 0.6f * float(i % 4)), 3.0f, 12.0f),
+                glm::vec3(0.3f, 0.6f, 1.0f)));
         }
         scenes.push_back({scene.source, scene});
     }
@@ -117,8 +77,9 @@ std::vector<NamedScene> adversarialCullingScenes() {
         for (int i = 0; i < PUNCTUAL_MAX_SPOT_LIGHTS; ++i) {
             const float angle = 6.2831853f * float(i) / float(PUNCTUAL_MAX_SPOT_LIGHTS);
             const glm::vec3 position(3.0f * std::cos(angle), 4.0f + 0.02f * float(i), 3.0f * std::sin(angle));
-            scene.lights.push_back(spotLight(position, glm::vec3(0.0f) - position, 9.0f, 0.6f, 0.2f, 0.45f,
-                                             glm::vec3(0.5f + 0.5f * std::cos(angle), 0.7f, 0.5f + 0.5f * std::sin(angle))));
+            scene.lights.push_back(
+                withColor(spotLight(position, glm::vec3(0.0f) - position, 9.0f, 0.6f, 0.2f, 0.45f),
+                          glm::vec3(0.5f + 0.5f * std::cos(angle), 0.7f, 0.5f + 0.5f * std::sin(angle))));
         }
         for (int i = 0; i < PUNCTUAL_MAX_POINT_LIGHTS; ++i) {
             const float angle = 6.2831853f * float(i) / float(PUNCTUAL_MAX_POINT_LIGHTS);
@@ -134,8 +95,9 @@ Scene largeFloorScene(int lightCount) {
     Scene scene = floorScene("large floor under overlapping lights");
     for (int i = 0; i < lightCount; ++i) {
         const float angle = 6.2831853f * float(i) / float(lightCount);
-        scene.lights.push_back(pointLight(glm::vec3(4.0f * std::cos(angle), 1.5f, 4.0f * std::sin(angle)), 9.0f, 4.0f,
-                                          glm::vec3(0.6f + 0.4f * std::cos(angle), 0.8f, 0.6f + 0.4f * std::sin(angle))));
+        scene.lights.push_back(
+            withColor(pointLight(glm::vec3(4.0f * std::cos(angle), 1.5f, 4.0f * std::sin(angle)), 9.0f, 4.0f),
+                      glm::vec3(0.6f + 0.4f * std::cos(angle), 0.8f, 0.6f + 0.4f * std::sin(angle))));
     }
     scene.computeBounds();
     return scene;

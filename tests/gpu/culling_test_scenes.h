@@ -1,7 +1,10 @@
 #pragma once
 // Small scenes built in code for the culling tests, each provoking one way culling can go wrong.
+// They stand on the floor, boxes and lights of scene/study_scenes.h.
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "scene/scene.h"
 
@@ -12,11 +15,11 @@ struct NamedScene {
     Scene scene;
 };
 
-// A box of `size` centred at `center` added to `scene` (mesh + object).
-void addBox(Scene& scene, const glm::vec3& center, const glm::vec3& size, uint32_t material = 0);
-Light pointLight(const glm::vec3& position, float range, float intensity, const glm::vec3& color = glm::vec3(1.0f));
-Light spotLight(const glm::vec3& position, const glm::vec3& direction, float range, float intensity,
-                float innerAngle, float outerAngle, const glm::vec3& color = glm::vec3(1.0f));
+// `light` with its colour set to `color` (study::pointLight and study::spotLight make white ones).
+inline Light withColor(Light light, const glm::vec3& color) {
+    light.color = color;
+    return light;
+}
 
 // The adversarial scenes of issue 3: a light straddling the near plane, the camera inside a
 // light's range, a spot cone seen edge-on, tile columns spanning a near wall and a far floor,

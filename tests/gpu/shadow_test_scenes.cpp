@@ -6,16 +6,18 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "app/validation_report.h"
-#include "culling_test_scenes.h"
 #include "gpu_test_support.h"
 #include "reference/embree_scene.h"
+#include "scene/study_scenes.h"
 
 namespace punctual::testing {
 
+using study::addBox;
+using study::pointLight;
+using study::spotLight;
+
 render::RenderSettings shadowRenderSettings(uint32_t width, uint32_t height, const ShadowSettings& shadows) {
-    render::RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
+    render::RenderSettings settings = renderSettings(width, height);
     settings.shadows = shadows;
     settings.collectShadowFactors = true;
     return settings;

@@ -3,12 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
-#include <set>
-#include <vector>
 #include <filesystem>
-#include <fstream>
+#include <set>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -17,22 +16,18 @@
 namespace punctual {
 namespace {
 
-std::string readAll(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using testing::readText;
+using testing::RunResult;
+using testing::runPunctual;
 
 TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     testing::TempFolder folder;
     const std::string dir = folder.file("bench");
-    const std::string command = std::string("'") + PUNCTUAL_BINARY + "' bench --quick --validate --out-dir '" + dir +
-                                "' > '" + folder.file("out.txt") + "' 2> '" + folder.file("err.txt") + "'";
-    ASSERT_EQ(std::system(command.c_str()), 0) << readAll(folder.file("err.txt"));
-    EXPECT_EQ(readAll(folder.file("err.txt")), "");  // no validation messages, no progress bar (not a terminal)
+    const RunResult run = runPunctual(folder, "bench --quick --validate --out-dir '" + dir + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_EQ(run.err, "");  // no validation messages, no progress bar (not a terminal)
 
-    std::istringstream csv(readAll(dir + "/results.csv"));
+    std::istringstream csv(readText(dir + "/results.csv"));
     std::string header;
     std::getline(csv, header);
     EXPECT_EQ(header,
@@ -57,13 +52,13 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     EXPECT_EQ(series, (std::set<std::string>{"mix", "spot-only", "point-only", "shadows", "shadow-quality"}));
     EXPECT_EQ(methods, (std::set<std::string>{"brute", "per-object", "tiled", "clustered"}));
 
-    const nlohmann::json json = nlohmann::json::parse(readAll(dir + "/results.json"));
+    const nlohmann::json json = nlohmann::json::parse(readText(dir + "/results.json"));
     EXPECT_EQ(json["configurations"].size(), rows);
     EXPECT_TRUE(json["quick"].get<bool>());
     EXPECT_TRUE(std::filesystem::exists(dir + "/images/heatmap-tiled.png"));
 
     // The failure study: every known failure measured against its parameter.
-    std::istringstream failures(readAll(dir + "/failures.csv"));
+    std::istringstream failures(readText(dir + "/failures.csv"));
     std::string failureHeader;
     std::getline(failures, failureHeader);
     EXPECT_EQ(failureHeader, "study,parameter,value,variant,metric,error,total_ms");
@@ -78,13 +73,10 @@ TEST(BenchCli, BadOptionsFailCleanly) {
     testing::TempFolder folder;
     for (const std::string& args : std::vector<std::string>{"bench", "bench --out-dir", "bench --out-dir '" + folder.file("a/b") + "'",
                                    "bench --culling tiled --out-dir '" + folder.file("x") + "'"}) {
-        const std::string command = std::string("'") + PUNCTUAL_BINARY + "' " + args + " > /dev/null 2> '" +
-                                    folder.file("err.txt") + "'";
-        const int status = std::system(command.c_str());
-        EXPECT_NE(status, 0) << args;
-        const std::string err = readAll(folder.file("err.txt"));
-        EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << args << ": " << err;
-        EXPECT_NE(err.find("punctual: error: "), std::string::npos) << err;
+        const RunResult run = runPunctual(folder, args);
+        EXPECT_NE(run.exitCode, 0) << args;
+        EXPECT_EQ(testing::lineCount(run.err), 1u) << args << ": " << run.err;
+        EXPECT_NE(run.err.find("punctual: error: "), std::string::npos) << run.err;
     }
     EXPECT_FALSE(std::filesystem::exists(folder.file("x")));
 }

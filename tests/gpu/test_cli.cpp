@@ -3,10 +3,8 @@
 // output file.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -16,47 +14,16 @@
 namespace punctual {
 namespace {
 
-struct RunResult {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
+using testing::readText;
+using testing::RunResult;
+using testing::runPunctual;
 
-std::string readText(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-RunResult runPunctual(const testing::TempFolder& folder, const std::string& args) {
-    const std::string outFile = folder.file("stdout.txt");
-    const std::string errFile = folder.file("stderr.txt");
-    const std::string command = std::string("'") + PUNCTUAL_BINARY + "' " + args + " >'" + outFile + "' 2>'" + errFile + "'";
-    const int status = std::system(command.c_str());
-    RunResult result;
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = readText(outFile);
-    result.err = readText(errFile);
-    return result;
-}
-
-size_t lineCount(const std::string& text) {
-    size_t lines = 0;
-    for (char c : text) lines += c == '\n';
-    return lines;
-}
-
-// One failing run: non-zero exit, exactly one line on stderr containing `mention`, no output.
+// One failing run: one clear error naming `mention`, and no output.
 void expectCleanFailure(const testing::TempFolder& folder, const std::string& args, const std::string& mention) {
     const std::string png = folder.file("out.png");
     const std::string json = folder.file("stats.json");
     const RunResult run = runPunctual(folder, args + " --validate --out '" + png + "' --stats '" + json + "'");
-    EXPECT_NE(run.exitCode, 0) << args;
-    EXPECT_NE(run.exitCode, 3) << "internal error instead of a clear one: " << run.err;
-    EXPECT_EQ(lineCount(run.err), 1u) << args << "\nstderr:\n" << run.err;
-    EXPECT_NE(run.err.find("punctual: error: "), std::string::npos) << run.err;
-    EXPECT_NE(run.err.find(mention), std::string::npos) << "stderr should name '" << mention << "': " << run.err;
+    testing::expectOneClearError(run, args, mention);
     EXPECT_FALSE(std::filesystem::exists(png)) << args;
     EXPECT_FALSE(std::filesystem::exists(json)) << args;
     EXPECT_FALSE(std::filesystem::exists(png + ".partial")) << args;

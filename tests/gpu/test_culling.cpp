@@ -19,9 +19,7 @@ namespace {
 using render::LightListMethod;
 
 render::RenderSettings settingsFor(LightListMethod method, uint32_t width = 256, uint32_t height = 144) {
-    render::RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
+    render::RenderSettings settings = testing::renderSettings(width, height);
     settings.method = method;
     return settings;
 }

@@ -17,6 +17,7 @@
 #include "render/renderer.h"
 #include "scene/default_scene.h"
 #include "scene/gltf_loader.h"
+#include "scene/study_scenes.h"
 
 namespace punctual {
 namespace {
@@ -93,7 +94,7 @@ Scene floorScene() {
     Scene scene;
     scene.source = "test floor";
     scene.materials.push_back(greyMaterial());
-    testing::addBox(scene, glm::vec3(0.0f, -0.05f, 0.0f), glm::vec3(40.0f, 0.1f, 40.0f));
+    study::addBox(scene, glm::vec3(0.0f, -0.05f, 0.0f), glm::vec3(40.0f, 0.1f, 40.0f));
     scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 8.0f, 12.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
     scene.camera.zfar = 60.0f;
     scene.computeBounds();
@@ -162,7 +163,7 @@ TEST(ReferenceVisibility, SphereShadowMatchesTheTangentCone) {
     ASSERT_LT(0.9 * R, shadowRadius(aInner));
 
     const reference::EmbreeScene embree(scene);
-    const gpu::GpuPunctualLight light = packPunctualLight(testing::pointLight(glm::vec3(0.0f, float(H), 0.0f), 30.0f, 50.0f));
+    const gpu::GpuPunctualLight light = packPunctualLight(study::pointLight(glm::vec3(0.0f, float(H), 0.0f), 30.0f, 50.0f));
     const glm::vec3 up(0.0f, 1.0f, 0.0f);
     EXPECT_EQ(reference::visibility(embree, glm::vec3(0.0f), up, light), 0.0f);
     for (int k = 0; k < 12; ++k) {
@@ -252,9 +253,7 @@ struct GpuFrame {
 };
 
 GpuFrame renderGpu(vk::Context& context, const Scene& scene, uint32_t width, uint32_t height) {
-    render::RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
+    render::RenderSettings settings = testing::renderSettings(width, height);
     settings.method = render::LightListMethod::Brute;
     settings.shadows.enabled = false;  // compared with the unshadowed reference
     render::Renderer renderer(context, scene, settings);
@@ -311,7 +310,7 @@ TEST(ReferenceImage, MatchesGpuOnBackFacesAndMirroredObjects) {
     metal.metallic = 1.0f;
     metal.roughness = 0.35f;
     scene.materials.push_back(metal);
-    testing::addBox(scene, glm::vec3(0.0f, 3.0f, 0.0f), glm::vec3(12.0f, 6.0f, 12.0f));
+    study::addBox(scene, glm::vec3(0.0f, 3.0f, 0.0f), glm::vec3(12.0f, 6.0f, 12.0f));
     Object mirrored;
     mirrored.mesh = appendBoxMesh(scene, "mirrored", glm::vec3(1.5f, 1.0f, 2.0f), 1);
     mirrored.model = glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-2.0f, 1.0f, -1.0f)), 0.6f,
@@ -324,9 +323,10 @@ TEST(ReferenceImage, MatchesGpuOnBackFacesAndMirroredObjects) {
                                             glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f))),
                                 glm::vec3(2.5f, 0.7f, 1.2f));
     scene.objects.push_back(squashed);
-    scene.lights.push_back(testing::pointLight(glm::vec3(1.0f, 4.5f, 2.0f), 14.0f, 60.0f));
-    scene.lights.push_back(testing::spotLight(glm::vec3(-3.0f, 5.0f, 3.0f), glm::vec3(0.3f, -1.0f, -0.6f), 14.0f,
-                                              120.0f, 0.3f, 0.6f, glm::vec3(0.4f, 0.7f, 1.0f)));
+    scene.lights.push_back(study::pointLight(glm::vec3(1.0f, 4.5f, 2.0f), 14.0f, 60.0f));
+    scene.lights.push_back(testing::withColor(
+        study::spotLight(glm::vec3(-3.0f, 5.0f, 3.0f), glm::vec3(0.3f, -1.0f, -0.6f), 14.0f, 120.0f, 0.3f, 0.6f),
+        glm::vec3(0.4f, 0.7f, 1.0f)));
     scene.camera.view = glm::lookAtRH(glm::vec3(0.5f, 2.5f, 5.5f), glm::vec3(0.0f, 1.5f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
     scene.camera.zfar = 40.0f;
     scene.computeBounds();
@@ -344,30 +344,10 @@ TEST(ReferenceImage, MatchesGpuOnBackFacesAndMirroredObjects) {
     testing::expectNoValidationMessages(*context);
 }
 
-std::string base64(const std::string& bytes) {
-    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < bytes.size(); i += 3) {
-        uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
-        if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
-        if (i + 2 < bytes.size()) v |= uint8_t(bytes[i + 2]);
-        for (size_t k = 0; k < 4; ++k) out += i + k <= bytes.size() ? table[(v >> (18 - 6 * k)) & 63] : '=';
-    }
-    return out;
-}
-
 // A 2 x 2 m quad in the XZ plane with a 4 x 4 texture repeated twice across it (UVs 0..2:
 // REPEAT wrapping and bilinear filtering across the wrap are both visible), a tinted base-colour
 // factor, a sun from the side, and a camera looking down at it at an angle.
 std::string writeTexturedQuad(const testing::TempFolder& folder) {
-    std::string buffer;
-    auto append = [&](const auto& values) {
-        buffer.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(values[0]));
-    };
-    append(std::vector<float>{-1, 0, 1, 1, 0, 1, 1, 0, -1, -1, 0, -1});  // positions, 48 bytes
-    append(std::vector<float>{0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0});      // normals, 48 bytes
-    append(std::vector<float>{0, 2, 2, 2, 2, 0, 0, 0});                  // uvs, 32 bytes
-    append(std::vector<uint16_t>{0, 1, 2, 0, 2, 3});                     // indices, 12 bytes
     ImageRgba8 texture;
     texture.width = 4;
     texture.height = 4;
@@ -391,16 +371,8 @@ std::string writeTexturedQuad(const testing::TempFolder& folder) {
   "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "baseColorFactor": [1, 0.9, 0.8, 1],
                  "metallicFactor": 0, "roughnessFactor": 0.6}}],
   "textures": [{"source": 0}],
-  "images": [{"uri": "data:image/png;base64,)" + base64(encodePng(texture)) + R"("}],
-  "buffers": [{"byteLength": 140, "uri": "data:application/octet-stream;base64,)" + base64(buffer) + R"("}],
-  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 128}, {"buffer": 0, "byteOffset": 128, "byteLength": 12}],
-  "accessors": [
-    {"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]},
-    {"bufferView": 0, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3"},
-    {"bufferView": 0, "byteOffset": 96, "componentType": 5126, "count": 4, "type": "VEC2"},
-    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}
-  ]
-})";
+  "images": [{"uri": "data:image/png;base64,)" + testing::base64(encodePng(texture)) + R"("}],)" +
+                             testing::quadGltfBuffers({0, 2, 2, 2, 2, 0, 0, 0}) + "\n}";
     const std::string path = folder.file("quad.gltf");
     std::ofstream(path) << gltf;
     return path;

@@ -3,10 +3,8 @@
 // output file.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include "gpu_test_support.h"
@@ -14,65 +12,19 @@
 namespace punctual {
 namespace {
 
-struct RunResult {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
+using testing::cat;
+using testing::quoted;
+using testing::RunResult;
+using testing::runPunctual;
 
-// Concatenation through a stream: GCC 12 warns falsely (-Wrestrict, bug 105329) about some
-// chains of std::string operator+.
-template <typename... Parts>
-std::string cat(const Parts&... parts) {
-    std::ostringstream s;
-    (s << ... << parts);
-    return s.str();
-}
-
-std::string quoted(const std::string& path) { return cat("'", path, "'"); }
-
-std::string readText(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-RunResult runPunctual(const testing::TempFolder& folder, const std::string& args) {
-    const std::string outFile = folder.file("stdout.txt");
-    const std::string errFile = folder.file("stderr.txt");
-    const std::string command = cat(quoted(PUNCTUAL_BINARY), " ", args, " >", quoted(outFile), " 2>", quoted(errFile));
-    const int status = std::system(command.c_str());
-    RunResult result;
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = readText(outFile);
-    result.err = readText(errFile);
-    return result;
-}
-
-size_t lineCount(const std::string& text) {
-    size_t lines = 0;
-    for (char c : text) lines += c == '\n';
-    return lines;
-}
-
-// One failing run: non-zero exit (not an internal error), exactly one line on stderr naming
-// `mention`, and no output file, not even a temporary one.
+// One failing run: one clear error naming `mention`, and no output file, not even a temporary one
+// (only the test's own glTF inputs stay in the folder).
 void expectCleanFailure(const testing::TempFolder& folder, const std::string& args, const std::string& mention,
                         const std::string& png) {
     const RunResult run = runPunctual(folder, cat("reference ", args));
-    EXPECT_NE(run.exitCode, 0) << args;
-    EXPECT_NE(run.exitCode, 3) << "internal error instead of a clear one: " << run.err;
-    EXPECT_EQ(lineCount(run.err), 1u) << args << "\nstderr:\n" << run.err;
-    EXPECT_EQ(run.err.rfind("punctual: error: ", 0), 0u) << run.err;
-    EXPECT_NE(run.err.find(mention), std::string::npos) << "stderr should name '" << mention << "': " << run.err;
+    testing::expectOneClearError(run, args, mention);
     EXPECT_FALSE(std::filesystem::exists(png)) << args;
-    for (const auto& entry : std::filesystem::directory_iterator(folder.path())) {
-        const std::string name = entry.path().filename().string();
-        EXPECT_TRUE(name == "stdout.txt" || name == "stderr.txt" || name.find(".gltf") != std::string::npos ||
-                    name.find(".glb") != std::string::npos)
-            << "left behind: " << name << " after " << args;
-    }
+    testing::expectNothingLeftBehind(folder, args, {".gltf", ".glb"});
 }
 
 TEST(ReferenceCli, WritesTheImageAndASummary) {

@@ -13,12 +13,7 @@
 namespace punctual {
 namespace {
 
-render::RenderSettings smallSettings() {
-    render::RenderSettings settings;
-    settings.width = 320;
-    settings.height = 180;
-    return settings;
-}
+render::RenderSettings smallSettings() { return testing::renderSettings(320, 180); }
 
 TEST(RenderDefaultScene, IsLitDeterministicAndValidationClean) {
     auto context = testing::makeValidatedContext();

@@ -14,38 +14,9 @@
 namespace punctual {
 namespace {
 
-std::string base64(const std::string& bytes) {
-    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    size_t i = 0;
-    for (; i + 2 < bytes.size(); i += 3) {
-        const uint32_t v = uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 | uint8_t(bytes[i + 2]);
-        for (int k = 3; k >= 0; --k) out += table[(v >> (6 * k)) & 63];
-    }
-    if (i < bytes.size()) {
-        uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
-        if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
-        out += table[(v >> 18) & 63];
-        out += table[(v >> 12) & 63];
-        out += i + 1 < bytes.size() ? table[(v >> 6) & 63] : '=';
-        out += '=';
-    }
-    return out;
-}
-
-template <typename T>
-void append(std::string& bytes, const std::vector<T>& values) {
-    bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-}
-
 // A 2 x 2 m quad in the XZ plane, textured red on its left half (-X) and green on its right,
 // lit from straight above by a 2 lux directional light, seen from a camera 3 m above it.
 std::string writeTexturedQuad(const testing::TempFolder& folder) {
-    std::string buffer;
-    append(buffer, std::vector<float>{-1, 0, 1, 1, 0, 1, 1, 0, -1, -1, 0, -1});      // positions, 48 bytes
-    append(buffer, std::vector<float>{0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0});          // normals, 48 bytes
-    append(buffer, std::vector<float>{0, 1, 1, 1, 1, 0, 0, 0});                      // uvs, 32 bytes
-    append(buffer, std::vector<uint16_t>{0, 1, 2, 0, 2, 3});                         // indices, 12 bytes
     ImageRgba8 texture;
     // 8 x 1 texels, red then green: bilinear filtering and repeat wrapping blend only near the
     // middle and the edges, so a quarter of the way in from either side the colour is pure.
@@ -72,19 +43,8 @@ std::string writeTexturedQuad(const testing::TempFolder& folder) {
   "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0, "roughnessFactor": 1}}],
   "textures": [{"source": 0, "sampler": 0}],
   "samplers": [{"magFilter": 9728, "minFilter": 9728}],
-  "images": [{"uri": "data:image/png;base64,)" + base64(png) + R"("}],
-  "buffers": [{"byteLength": 140, "uri": "data:application/octet-stream;base64,)" + base64(buffer) + R"("}],
-  "bufferViews": [
-    {"buffer": 0, "byteOffset": 0, "byteLength": 128},
-    {"buffer": 0, "byteOffset": 128, "byteLength": 12}
-  ],
-  "accessors": [
-    {"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]},
-    {"bufferView": 0, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3"},
-    {"bufferView": 0, "byteOffset": 96, "componentType": 5126, "count": 4, "type": "VEC2"},
-    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}
-  ]
-})";
+  "images": [{"uri": "data:image/png;base64,)" + testing::base64(png) + R"("}],)" +
+                             testing::quadGltfBuffers({0, 1, 1, 1, 1, 0, 0, 0}) + "\n}";
     const std::string path = folder.file("quad.gltf");
     std::ofstream(path) << gltf;
     return path;
@@ -96,10 +56,7 @@ TEST(RenderGltf, TexturedQuadUnderDirectionalLightFromTheFilesCamera) {
     ASSERT_EQ(scene.textures.size(), 1u);
     ASSERT_TRUE(scene.cameraFromFile);
     auto context = testing::makeValidatedContext();
-    render::RenderSettings settings;
-    settings.width = 64;
-    settings.height = 64;
-    render::Renderer renderer(*context, scene, settings);
+    render::Renderer renderer(*context, scene, testing::renderSettings(64, 64));
     const ImageRgba8 image = renderer.render(1, 0).image;
     testing::saveTestImage("gltf-textured-quad", image);
     EXPECT_EQ(renderer.lights().directionalCount, 1u);
@@ -125,9 +82,7 @@ TEST(RenderGltf, CornellBoxWithGeneratedLights) {
     // generated spot and point lights instead.
     replaceLights(scene, 8, 4, 3);
     auto context = testing::makeValidatedContext();
-    render::RenderSettings settings;
-    settings.width = 160;
-    settings.height = 160;
+    render::RenderSettings settings = testing::renderSettings(160, 160);
     render::Renderer tiled(*context, scene, settings);
     const ImageRgba8 image = tiled.render(1, 0).image;
     testing::saveTestImage("gltf-cornell-box", image);

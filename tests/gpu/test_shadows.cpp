@@ -9,20 +9,19 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "culling_test_scenes.h"
 #include "gpu_test_support.h"
 #include "lights/light_setup.h"
 #include "lights/shadow_setup.h"
 #include "reference/shadow_validation.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
+#include "scene/study_scenes.h"
 #include "shadow_test_scenes.h"
 #include "shadows.h"
 
@@ -516,57 +515,17 @@ TEST(ShadowWideSpot, OuterConeNear90DegreesStaysFinite) {
 
 // ---- 6. command line -----------------------------------------------------------------------------
 
-struct RunResult {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
+using testing::cat;
+using testing::quoted;
+using testing::RunResult;
+using testing::runPunctual;
 
-// Concatenation through a stream: GCC 12 warns falsely (-Wrestrict, bug 105329) about some
-// chains of std::string operator+.
-template <typename... Parts>
-std::string cat(const Parts&... parts) {
-    std::ostringstream s;
-    (s << ... << parts);
-    return s.str();
-}
-
-std::string quoted(const std::string& path) { return cat("'", path, "'"); }
-
-std::string readText(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-RunResult runPunctual(const testing::TempFolder& folder, const std::string& args) {
-    const std::string outFile = folder.file("stdout.txt");
-    const std::string errFile = folder.file("stderr.txt");
-    const std::string command = cat(quoted(PUNCTUAL_BINARY), " ", args, " >", quoted(outFile), " 2>", quoted(errFile));
-    const int status = std::system(command.c_str());
-    RunResult result;
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = readText(outFile);
-    result.err = readText(errFile);
-    return result;
-}
-
-size_t lineCount(const std::string& text) { return size_t(std::count(text.begin(), text.end(), '\n')); }
-
-// Non-zero exit (not an internal error), one line on stderr naming `mention`, and nothing but the
-// captured stdout and stderr left in the folder.
+// One clear error naming `mention`, and nothing but the captured stdout and stderr left in the
+// folder.
 void expectCleanFailure(const testing::TempFolder& folder, const std::string& args, const std::string& mention) {
     const RunResult run = runPunctual(folder, args);
-    EXPECT_NE(run.exitCode, 0) << args;
-    EXPECT_NE(run.exitCode, 3) << "internal error instead of a clear one: " << run.err;
-    EXPECT_EQ(lineCount(run.err), 1u) << args << "\nstderr:\n" << run.err;
-    EXPECT_EQ(run.err.rfind("punctual: error: ", 0), 0u) << args << ": " << run.err;
-    EXPECT_NE(run.err.find(mention), std::string::npos) << args << ": stderr should name '" << mention << "': " << run.err;
-    for (const auto& entry : std::filesystem::directory_iterator(folder.path())) {
-        const std::string name = entry.path().filename().string();
-        EXPECT_TRUE(name == "stdout.txt" || name == "stderr.txt") << "left behind: " << name << " after " << args;
-    }
+    testing::expectOneClearError(run, args, mention);
+    testing::expectNothingLeftBehind(folder, args);
 }
 
 TEST(ShadowOptions, BadOptionsGiveClearErrors) {
@@ -612,17 +571,17 @@ TEST(ShadowPlan, CapsChooseTheMostImportantLights) {
     // take a shadowed place.
     for (int i = 0; i < 40; ++i) {
         const glm::vec3 position(-8.0f + 0.4f * float(i), 3.0f, -3.0f + 0.15f * float(i % 7));
-        scene.lights.push_back(testing::spotLight(position, glm::vec3(0.0f, -1.0f, 0.0f), 6.0f,
-                                                  1.0f + float((i * 17) % 40), 0.3f, 0.5f));
+        scene.lights.push_back(study::spotLight(position, glm::vec3(0.0f, -1.0f, 0.0f), 6.0f,
+                                                1.0f + float((i * 17) % 40), 0.3f, 0.5f));
     }
     for (int i = 0; i < 12; ++i) {
-        scene.lights.push_back(testing::pointLight(glm::vec3(-6.0f + float(i), 2.0f, 4.0f), 5.0f, 1.0f + float((i * 5) % 12)));
+        scene.lights.push_back(study::pointLight(glm::vec3(-6.0f + float(i), 2.0f, 4.0f), 5.0f, 1.0f + float((i * 5) % 12)));
     }
     for (int i = 0; i < 3; ++i) {
-        Light spot = testing::spotLight(glm::vec3(float(i), 3.0f, 6.0f), glm::vec3(0.0f, -1.0f, 0.0f), 6.0f, 1000.0f, 0.3f, 0.5f);
+        Light spot = study::spotLight(glm::vec3(float(i), 3.0f, 6.0f), glm::vec3(0.0f, -1.0f, 0.0f), 6.0f, 1000.0f, 0.3f, 0.5f);
         spot.castsShadow = false;
         scene.lights.push_back(spot);
-        Light point = testing::pointLight(glm::vec3(float(i), 2.0f, -6.0f), 5.0f, 1000.0f);
+        Light point = study::pointLight(glm::vec3(float(i), 2.0f, -6.0f), 5.0f, 1000.0f);
         point.castsShadow = false;
         scene.lights.push_back(point);
     }
@@ -672,8 +631,8 @@ TEST(ShadowPlan, CapsChooseTheMostImportantLights) {
 TEST(ShadowPlan, SpotWithoutCasterIsSkipped) {
     Scene scene = planScene();
     // Pointing up from above the floor: nothing in its frustum. The other looks down at the floor.
-    scene.lights.push_back(testing::spotLight(glm::vec3(-2.0f, 1.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 4.0f, 10.0f, 0.3f, 0.5f));
-    scene.lights.push_back(testing::spotLight(glm::vec3(2.0f, 3.0f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f), 6.0f, 10.0f, 0.3f, 0.5f));
+    scene.lights.push_back(study::spotLight(glm::vec3(-2.0f, 1.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 4.0f, 10.0f, 0.3f, 0.5f));
+    scene.lights.push_back(study::spotLight(glm::vec3(2.0f, 3.0f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f), 6.0f, 10.0f, 0.3f, 0.5f));
     FrameLights lights = frameLights(scene);
     ASSERT_EQ(lights.spotCount, 2u);
     const ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), ShadowSettings{});
@@ -748,9 +707,7 @@ TEST(ShadowPlan, CubeFaceMatricesFollowVulkanCubeConventions) {
 // ---- 8. strength -------------------------------------------------------------------------------
 
 ImageRgba8 renderDefault(vk::Context& context, const Scene& scene, const ShadowSettings& shadows) {
-    render::RenderSettings settings;
-    settings.width = 320;
-    settings.height = 180;
+    render::RenderSettings settings = testing::renderSettings(320, 180);
     settings.shadows = shadows;
     render::Renderer renderer(context, scene, settings);
     return renderer.render(1, 0).image;

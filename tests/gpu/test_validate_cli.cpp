@@ -5,8 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <string>
 
 #include <nlohmann/json.hpp>
 #include <tinyexr.h>
@@ -17,23 +16,19 @@
 namespace punctual {
 namespace {
 
-std::string readAll(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using testing::readText;
+using testing::RunResult;
+using testing::runPunctual;
 
 TEST(ValidateCli, WritesReportHtmlMapsAndExr) {
     testing::TempFolder folder;
     const std::string dir = folder.file("validation");
-    const std::string command = std::string("'") + PUNCTUAL_BINARY + "' validate --validate --size 96x54 --shadow-res 256 " +
-                                "--out-dir '" + dir + "' --export-exr > '" + folder.file("out.txt") + "' 2> '" +
-                                folder.file("err.txt") + "'";
-    ASSERT_EQ(std::system(command.c_str()), 0) << readAll(folder.file("err.txt"));
-    EXPECT_EQ(readAll(folder.file("err.txt")), "");  // validation layers printed nothing
+    const RunResult run =
+        runPunctual(folder, "validate --validate --size 96x54 --shadow-res 256 --out-dir '" + dir + "' --export-exr");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_EQ(run.err, "");  // validation layers printed nothing
 
-    const nlohmann::json report = nlohmann::json::parse(readAll(dir + "/report.json"));
+    const nlohmann::json report = nlohmann::json::parse(readText(dir + "/report.json"));
     ASSERT_EQ(report["lights"].size(), 40u);  // 32 spots + 8 points shadowed
     for (const char* part : {"overall", "spot", "point"}) {
         const auto& counts = report[part];
@@ -41,7 +36,7 @@ TEST(ValidateCli, WritesReportHtmlMapsAndExr) {
         EXPECT_LE(counts["false_shadow"].get<int>() + counts["false_lit"].get<int>(), counts["compared"].get<int>());
         EXPECT_TRUE(counts["outside_edge_band"].contains("misclassified_fraction")) << part;
     }
-    const std::string html = readAll(dir + "/report.html");
+    const std::string html = readText(dir + "/report.html");
     EXPECT_NE(html.find("gpu.png"), std::string::npos);
     EXPECT_NE(html.find("reference.png"), std::string::npos);
     EXPECT_NE(html.find("mismatch-39.png"), std::string::npos);
