@@ -3,7 +3,8 @@
 that provokes it, one line per variant (filter, layout or method).
 
 Usage: /usr/bin/python3 bench/plot_failures.py DIR   (reads DIR/failures.csv; writes
-DIR/charts/failure-<study>.png and .svg, and DIR/failures.html)
+DIR/charts/failure-<study>.png and .svg and DIR/failures.html, and adds the charts to
+DIR/index.html when plot_results.py has written one; run it after plot_results.py)
 """
 import csv
 import html
@@ -48,18 +49,43 @@ def plot_study(name, study, charts):
     return "failure-" + name + ".png"
 
 
+MARK_BEGIN = "<!-- failure study: begin -->"
+MARK_END = "<!-- failure study: end -->"
+
+
+def add_to_index(folder, sections):
+    """Puts the failure charts into DIR/index.html (replacing an earlier copy), so the index
+    shows every chart of the bench."""
+    index = os.path.join(folder, "index.html")
+    if not os.path.exists(index):
+        return False
+    with open(index) as f:
+        page = f.read()
+    if MARK_BEGIN in page:
+        page = page[:page.index(MARK_BEGIN)] + page[page.index(MARK_END) + len(MARK_END):]
+    block = MARK_BEGIN + "\n<h2>Where methods fail</h2>\n" + "\n".join(sections) + "\n" + MARK_END + "\n"
+    at = page.rfind("</body>")
+    page = page[:at] + block + page[at:] if at >= 0 else page + block
+    with open(index, "w") as f:
+        f.write(page)
+    return True
+
+
 def main(folder):
     studies = read_studies(os.path.join(folder, "failures.csv"))
     charts = os.path.join(folder, "charts")
     os.makedirs(charts, exist_ok=True)
     parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'><title>Where methods fail</title></head><body>",
              "<h1>Where methods fail</h1>"]
+    sections = []
     for name, study in studies.items():
         image = plot_study(name, study, charts)
-        parts.append("<h2>%s</h2><img src='charts/%s' alt='%s'>" % (html.escape(name), image, html.escape(name)))
+        sections.append("<h3>%s</h3><img src='charts/%s' alt='%s'>" % (html.escape(name), image, html.escape(name)))
+    parts.extend(sections)
     parts.append("</body></html>\n")
     with open(os.path.join(folder, "failures.html"), "w") as f:
         f.write("\n".join(parts))
+    add_to_index(folder, sections)
     return len(studies)
 
 

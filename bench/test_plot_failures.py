@@ -1,0 +1,51 @@
+"""Tests of bench/plot_failures.py on a synthetic failures.csv: one chart per study, the
+failures page, and an idempotent section in index.html."""
+import os
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_failures  # noqa: E402
+
+CSV = """study,parameter,value,variant,metric,error,total_ms
+acne-vs-bias,"bias scale (x 1,1,1,0)",0,"hw","false_shadow fraction",0.5,20
+acne-vs-bias,"bias scale (x 1,1,1,0)",1,"hw","false_shadow fraction",0,21
+acne-vs-bias,"bias scale (x 1,1,1,0)",0,"tent5","false_shadow fraction",0.49,30
+tile-depth-discontinuities,"tile size (pixels)",16,"tiled","efficiency",2.1,12
+tile-depth-discontinuities,"tile size (pixels)",16,"clustered","efficiency",1.3,13
+"""
+
+
+class PlotFailuresTest(unittest.TestCase):
+    def test_charts_page_and_index_section(self):
+        with tempfile.TemporaryDirectory() as folder:
+            with open(os.path.join(folder, "failures.csv"), "w") as f:
+                f.write(CSV)
+            with open(os.path.join(folder, "index.html"), "w") as f:
+                f.write("<html><body><h1>bench</h1></body></html>\n")
+            self.assertEqual(plot_failures.main(folder), 2)
+            plot_failures.main(folder)  # a second run must not add a second section
+            for study in ("acne-vs-bias", "tile-depth-discontinuities"):
+                for ext in ("png", "svg"):
+                    self.assertTrue(os.path.exists(os.path.join(folder, "charts", "failure-%s.%s" % (study, ext))))
+            with open(os.path.join(folder, "failures.html")) as f:
+                self.assertIn("failure-acne-vs-bias.png", f.read())
+            with open(os.path.join(folder, "index.html")) as f:
+                index = f.read()
+            self.assertEqual(index.count(plot_failures.MARK_BEGIN), 1)
+            self.assertIn("failure-tile-depth-discontinuities.png", index)
+            self.assertTrue(index.rstrip().endswith("</html>"))
+
+    def test_variants_become_lines_in_value_order(self):
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "failures.csv")
+            with open(path, "w") as f:
+                f.write(CSV)
+            studies = plot_failures.read_studies(path)
+            self.assertEqual(list(studies["acne-vs-bias"]["variants"]), ["hw", "tent5"])
+            self.assertEqual(studies["acne-vs-bias"]["variants"]["hw"], [(0.0, 0.5), (1.0, 0.0)])
+
+
+if __name__ == "__main__":
+    unittest.main()
