@@ -46,7 +46,7 @@ depth discontinuities (tiled against clustered), per-object lists on large objec
 counts beyond the caps.
 --quick: 320x180, fewer counts, resolutions 256 and 1024, filters hw and tent5 (under 3 minutes
 on 2 CPU cores). Default size: 1280x720 (quick: 320x180).
-Charts: /usr/bin/python3 bench/plot_results.py DIR
+Charts: /usr/bin/python3 bench/plot_results.py DIR && /usr/bin/python3 bench/plot_failures.py DIR
 )";
 
 const std::vector<std::string> kColumns = {
