@@ -69,6 +69,9 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
         {"dropped_by_cap", plan.droppedByCap},
         {"views_rendered", plan.viewsRendered},
         {"views_skipped", plan.viewsSkipped},
+        // The same counts under the names of the shadow design: a spot's view is its one face.
+        {"faces_rendered", plan.viewsRendered},
+        {"faces_skipped", plan.viewsSkipped},
         {"memory_bytes", renderer.shadowMemoryBytes()},
     };
 }

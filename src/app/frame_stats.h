@@ -20,7 +20,7 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
 
 // {"enabled", "resolution", "filter", "samples", "penumbra", "bias", "strength", "point_layout",
 //  "shadowed_spots", "shadowed_points", "dropped_by_cap", "views_rendered", "views_skipped",
-//  "memory_bytes"}
+//  "faces_rendered", "faces_skipped" (the same counts), "memory_bytes"}
 nlohmann::json shadowStatsJson(const render::Renderer& renderer);
 
 std::string timingTable(const render::PassTimings& ms);

@@ -53,6 +53,8 @@ TEST(Cli, RenderWritesImageAndStats) {
     EXPECT_EQ(stats["shadows"]["shadowed_points"].get<int>(), 8);
     EXPECT_EQ(stats["shadows"]["views_rendered"].get<int>() + stats["shadows"]["views_skipped"].get<int>(), 32 + 6 * 8);
     EXPECT_GT(stats["shadows"]["memory_bytes"].get<double>(), 0.0);
+    EXPECT_EQ(stats["shadows"]["faces_rendered"], stats["shadows"]["views_rendered"]);
+    EXPECT_EQ(stats["shadows"]["faces_skipped"], stats["shadows"]["views_skipped"]);
     EXPECT_EQ(stats["culling"]["method"].get<std::string>(), "tiled");
     for (const char* key : {"tested_per_pixel", "affecting_per_pixel", "max_tested", "missed_energy"}) {
         EXPECT_TRUE(stats["culling"].contains(key)) << key;
