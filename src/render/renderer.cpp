@@ -41,7 +41,7 @@ struct Renderer::Resources {
     std::unique_ptr<ShadowPass> shadowPass;         // always: it also puts unused placeholders in their layout
     ForwardPass forwardPass;
     // Debug variants of the forward pass, each with its own command buffer; never timed.
-    struct DebugVariant {
+    struct DebugVariant : Renderer::DebugVariantBase {
         std::unique_ptr<ForwardPass> pass;
         const vk::Buffer* output = nullptr;  // cleared before the pass
         VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
@@ -271,7 +271,7 @@ Renderer::~Renderer() {
 // One frame: depth prepass, light culling (tiled, clustered), forward, tone mapping, readback.
 // The statistics variant swaps in the forward shader that also writes per-pixel light counts
 // and skips tone mapping; it is never timed.
-void Renderer::recordFrame(VkCommandBuffer cmd, const void* debugVariant) {
+void Renderer::recordFrame(VkCommandBuffer cmd, const DebugVariantBase* debugVariant) {
     const auto* debug = static_cast<const Resources::DebugVariant*>(debugVariant);
     const bool withStats = debug != nullptr;
     Resources& r = *resources_;

@@ -103,8 +103,11 @@ public:
 
 private:
     struct Resources;
-    // `debugVariant`: null for the timed frame, else the Resources::DebugVariant to record.
-    void recordFrame(VkCommandBuffer cmd, const void* debugVariant);
+    // A debug variant of the forward pass (statistics or shadow factors); defined in the .cpp.
+    struct DebugVariantBase {};
+    // `debugVariant`: null for the timed frame, else the debug variant to record instead of the
+    // timed forward pass and tone mapping.
+    void recordFrame(VkCommandBuffer cmd, const DebugVariantBase* debugVariant);
     void submitAndWait(VkCommandBuffer cmd);
     std::vector<uint8_t> readBuffer(const vk::Buffer& buffer);
 
