@@ -94,30 +94,28 @@ std::vector<Study> studies(vk::Context& context, bool quick, uint32_t width, uin
         settings.shadows.resolution = 512;
         return settings;
     };
-    auto filterOf = [](const std::string& variant) { return parseShadowFilter(variant); };
+    // Acne and peter-panning: one scene rendered with every bias scaled by `value`, measuring
+    // false shadows (acne) or false lights (peter-panning) outside the edge band.
+    auto biasStudy = [&context, base](Scene (*makeScene)(), bool countFalseShadow) {
+        return [&context, base, makeScene, countFalseShadow](double value, const std::string& variant) {
+            render::RenderSettings s = base();
+            s.shadows.filter = parseShadowFilter(variant);
+            s.shadows.bias = float(value) * glm::vec4(1.0f, 1.0f, 1.0f, 0.0f);
+            const Frame f = renderAndValidate(context, makeScene(), s);
+            const reference::ShadowCounts& c = f.validation.overall;
+            const uint64_t wrong = countFalseShadow ? c.falseShadowOutsideBand : c.falseLitOutsideBand;
+            return std::pair{fraction(wrong, c.comparedOutsideBand), f.result.medianMs.total};
+        };
+    };
     std::vector<Study> list;
     list.push_back({"acne-vs-bias", "bias scale (x 1,1,1,0)", "false_shadow fraction outside the edge band",
                     quick ? std::vector<double>{0.0, 0.5, 1.0} : std::vector<double>{0.0, 0.25, 0.5, 1.0, 2.0},
                     quick ? std::vector<std::string>{"hw"} : std::vector<std::string>{"hw", "tent5"},
-                    [&context, base, filterOf](double value, const std::string& variant) {
-                        render::RenderSettings s = base();
-                        s.shadows.filter = filterOf(variant);
-                        s.shadows.bias = float(value) * glm::vec4(1.0f, 1.0f, 1.0f, 0.0f);
-                        const Frame f = renderAndValidate(context, study::grazingLightScene(), s);
-                        return std::pair{fraction(f.validation.overall.falseShadowOutsideBand, f.validation.overall.comparedOutsideBand),
-                                         f.result.medianMs.total};
-                    }});
+                    biasStudy(&study::grazingLightScene, true)});
     list.push_back({"peter-panning-vs-bias", "bias scale (x 1,1,1,0)", "false_lit fraction outside the edge band",
                     quick ? std::vector<double>{1.0, 4.0} : std::vector<double>{0.5, 1.0, 2.0, 4.0, 8.0},
                     quick ? std::vector<std::string>{"tent5"} : std::vector<std::string>{"hw", "tent5"},
-                    [&context, base, filterOf](double value, const std::string& variant) {
-                        render::RenderSettings s = base();
-                        s.shadows.filter = filterOf(variant);
-                        s.shadows.bias = float(value) * glm::vec4(1.0f, 1.0f, 1.0f, 0.0f);
-                        const Frame f = renderAndValidate(context, study::contactCasterScene(), s);
-                        return std::pair{fraction(f.validation.overall.falseLitOutsideBand, f.validation.overall.comparedOutsideBand),
-                                         f.result.medianMs.total};
-                    }});
+                    biasStudy(&study::contactCasterScene, false)});
     list.push_back({"cube-seams", "shadow resolution", "misclassified fraction",
                     quick ? std::vector<double>{256.0} : std::vector<double>{256.0, 512.0, 1024.0},
                     {"cube seams", "cube interior", "slices seams", "slices interior"},
