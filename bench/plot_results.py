@@ -23,18 +23,16 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after selecting the backend)
-from matplotlib.ticker import FixedLocator, NullLocator, PercentFormatter  # noqa: E402
+from matplotlib.ticker import FixedLocator, MaxNLocator, NullLocator, PercentFormatter  # noqa: E402
 
-COLUMNS = [
-    "config", "series", "method", "spot", "point", "shadows", "shadow_res", "shadow_filter",
-    "point_layout", "frames", "depth_ms", "culling_ms", "shadows_ms", "forward_ms", "total_ms",
-    "forward_spread_ms", "total_spread_ms", "tested_per_pixel", "affecting_per_pixel",
-    "efficiency", "missed_energy", "image_error", "pixels_off", "shadow_misclassified",
-    "shadow_false_shadow", "shadow_false_lit",
-]
+COLUMNS = """config series method spot point shadows shadow_res shadow_filter point_layout frames
+    depth_ms culling_ms shadows_ms forward_ms total_ms forward_spread_ms total_spread_ms
+    tested_per_pixel affecting_per_pixel efficiency missed_energy image_error pixels_off
+    shadow_misclassified shadow_false_shadow shadow_false_lit""".split()
 METHODS = ["brute", "per-object", "tiled", "clustered"]
 METHOD_STYLE = {"brute": ("tab:red", "o"), "per-object": ("tab:orange", "s"),
                 "tiled": ("tab:blue", "^"), "clustered": ("tab:green", "D")}
+OTHER_STYLE = ("tab:gray", "x")  # a method this script does not know
 LIGHT_SERIES = [("mix", "mix (spot:point = 2:1)"), ("spot-only", "spot lights only"),
                 ("point-only", "point lights only")]
 WIDE_RATIO = 10.0  # a log axis once the largest value is this many times the smallest
@@ -80,10 +78,6 @@ def method_order(rows):
     return [m for m in METHODS if m in present] + sorted(present - set(METHODS))
 
 
-def method_style(method):
-    return METHOD_STYLE.get(method, ("tab:gray", "x"))
-
-
 def is_wide(values):
     """True when the positive values span more than WIDE_RATIO (and none is <= 0)."""
     values = [v for v in values if v is not None]
@@ -97,10 +91,8 @@ def varying_label(row, rows, fields):
 
 
 def pareto_front(points):
-    """Indices of the non-dominated (x, y) points, both lower-is-better, sorted by x then y.
-
-    A point is dominated when another is at least as good in both and better in one.
-    Equal points are all kept."""
+    """Indices of the non-dominated (x, y) points, both lower-is-better, sorted by x then y: no
+    other point is at least as good in both and better in one. Equal points are all kept."""
     order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
     front, best_y = [], math.inf
     for i in order:
@@ -147,7 +139,7 @@ def plot_per_method(ax, rows, column):
         pts = sorted((light_count(r), number(r, column)) for r in rows
                      if r.get("method") == method and number(r, column) is not None)
         if pts:
-            colour, marker = method_style(method)
+            colour, marker = METHOD_STYLE.get(method, OTHER_STYLE)
             ax.plot([p[0] for p in pts], [p[1] for p in pts], color=colour, marker=marker,
                     label=method)
             drawn += [p[1] for p in pts]
@@ -165,9 +157,10 @@ def draw_front(ax, points, front):
 # ---------------------------------------------------------------------------------------- charts
 
 def chart_pass_time(rows, column, what):
-    """Median GPU time of `column` against light count, one line per method, one panel per
-    light series (mix, spot-only, point-only). It shows how each method scales with the number
-    of lights: brute force grows linearly, culled lists with the lights actually reaching pixels."""
+    """Median GPU time (forward pass, or whole frame) against light count, one line per method,
+    one panel per light series (mix, spot-only, point-only). It shows how each method scales with
+    the number of lights: brute force grows linearly, culled lists with the lights that actually
+    reach pixels."""
     panels = [(s, t, series_rows(rows, s)) for s, t in LIGHT_SERIES]
     panels = [(s, t, rs) for s, t, rs in panels if any(number(r, column) is not None for r in rs)]
     if not any(s == "mix" for s, _, _ in panels):
@@ -188,14 +181,6 @@ def chart_pass_time(rows, column, what):
     return fig
 
 
-def chart_forward_time(rows):
-    return chart_pass_time(rows, "forward_ms", "forward pass")
-
-
-def chart_total_time(rows):
-    return chart_pass_time(rows, "total_ms", "whole frame")
-
-
 def chart_culling_efficiency(rows):
     """Culling efficiency (lights tested / lights affecting each pixel, 1 = perfect) against
     light count for the mix series, and next to it the two per-pixel counts it is made of. It
@@ -212,10 +197,9 @@ def chart_culling_efficiency(rows):
     left.set_title("culling efficiency (lower is better)")
     left.legend()
     tested = plot_per_method(right, rs, "tested_per_pixel")
-    affecting = {}
-    for r in sorted(rs, key=lambda r: r.get("config", "")):
-        if number(r, "affecting_per_pixel") is not None:
-            affecting.setdefault(light_count(r), number(r, "affecting_per_pixel"))
+    # Exact counts, the same for every method at one light count.
+    affecting = {light_count(r): number(r, "affecting_per_pixel") for r in rs
+                 if number(r, "affecting_per_pixel") is not None}
     if affecting:
         xs = sorted(affecting)
         right.plot(xs, [affecting[x] for x in xs], color="black", linestyle="--",
@@ -299,7 +283,7 @@ def chart_assignment_pareto(rows):
         group = [r for r in rs if light_count(r) == count]
         points = [(error(r), number(r, "total_ms")) for r in group]
         for (x, y), r in zip(points, group):
-            colour, marker = method_style(r.get("method", ""))
+            colour, marker = METHOD_STYLE.get(r.get("method"), OTHER_STYLE)
             ax.scatter([x], [y], color=colour, marker=marker, s=45, zorder=2,
                        label=r.get("method", ""))
         draw_front(ax, points, pareto_front(points))
@@ -307,61 +291,30 @@ def chart_assignment_pareto(rows):
             ax.set_yscale("log")
         spots, pts = group[0].get("spot", ""), group[0].get("point", "")
         ax.set_title(f"{count} lights ({spots} spot + {pts} point)")
+        ax.xaxis.set_major_locator(MaxNLocator(4))
         ax.set_xlabel(("mean abs. error per channel" if column == "image_error"
                        else "fraction of pixels off by > 2/255") + " vs brute")
         ax.set_ylabel("whole frame: median GPU ms")
-        handles, labels = ax.get_legend_handles_labels()
-        unique = dict(zip(labels, handles))
-        ax.legend(unique.values(), unique.keys())
+    legend = {}
+    for ax in axes.flat[:len(counts)]:
+        legend.update(zip(*reversed(ax.get_legend_handles_labels())))
+    fig.legend(legend.values(), legend.keys(), loc="lower center", ncol=len(legend))
     fig.suptitle("light assignment: speed against accuracy (lower is better on both axes)")
-    fig.tight_layout()
+    margin = 0.4 / fig.get_figheight()  # room for the title above and the legend below
+    fig.tight_layout(rect=(0, margin, 1, 1 - margin / 2))
     return fig
 
 
-def chart_shadow_cost(rows):
-    """Per-pass GPU time with shadows off and on at the largest light count ("shadows" series),
-    one stacked bar per method and setting: what the shadow maps and their lookups cost."""
-    rs = [r for r in series_rows(rows, "shadows") if number(r, "total_ms") is not None]
-    if not rs:
-        raise SkipChart("no rows in the shadows series")
-    order = method_order(rs)
-    rs.sort(key=lambda r: (order.index(r.get("method", "")), number(r, "shadows") or 0,
-                           r.get("config", "")))
-    fig, ax = plt.subplots(figsize=(max(6.0, 1.1 * len(rs) + 2), 4.6))
-    xs = list(range(len(rs)))
-    bottom = [0.0] * len(rs)
-    passes = [("depth_ms", "depth"), ("culling_ms", "culling"), ("shadows_ms", "shadow maps"),
-              ("forward_ms", "forward")]
-    for k, (column, label) in enumerate(passes):
-        heights = [number(r, column) or 0.0 for r in rs]
-        ax.bar(xs, heights, bottom=bottom, color=plt.get_cmap("tab10")(k), label=label)
-        bottom = [b + h for b, h in zip(bottom, heights)]
-    other = [max(number(r, "total_ms") - b, 0.0) for r, b in zip(rs, bottom)]
-    ax.bar(xs, other, bottom=bottom, color="lightgray", label="other (tone mapping, gaps)")
-    fields = ["method", "shadows", "point_layout", "shadow_res", "shadow_filter"]
-    labels = []
-    for r in rs:
-        text = varying_label(r, rs, [f for f in fields if f != "shadows"])
-        labels.append(f"{text}\nshadows {'on' if number(r, 'shadows') else 'off'}")
-    ax.set_xticks(xs)
-    ax.set_xticklabels(labels, fontsize=7)
-    ax.set_ylabel("median GPU ms per pass")
-    counts = sorted({light_count(r) for r in rs})
-    ax.set_title("cost of shadows at " + "/".join(map(str, counts)) + " lights")
-    ax.legend()
-    fig.tight_layout()
-    return fig
-
-
-# (file name, title, function); the function's docstring is the chart's caption.
+# (file name, title, function, extra arguments); the function's docstring is the caption.
 CHARTS = [
-    ("forward_time", "Forward pass time against light count", chart_forward_time),
-    ("total_time", "Whole-frame time against light count", chart_total_time),
-    ("culling_efficiency", "Culling efficiency against light count", chart_culling_efficiency),
-    ("pareto_shadows", "Shadows: speed against accuracy", chart_shadow_pareto),
+    ("forward_time", "Forward pass time against light count", chart_pass_time,
+     ("forward_ms", "forward pass")),
+    ("total_time", "Whole-frame time against light count", chart_pass_time,
+     ("total_ms", "whole frame")),
+    ("culling_efficiency", "Culling efficiency against light count", chart_culling_efficiency, ()),
+    ("pareto_shadows", "Shadows: speed against accuracy", chart_shadow_pareto, ()),
     ("pareto_light_assignment", "Light assignment: speed against accuracy",
-     chart_assignment_pareto),
-    ("shadow_cost", "Cost of shadows per pass", chart_shadow_cost),
+     chart_assignment_pareto, ()),
 ]
 
 
@@ -369,10 +322,10 @@ def draw_charts(rows, charts_dir):
     """Draws every chart; returns [(name, title, caption, skip reason or None)]."""
     os.makedirs(charts_dir, exist_ok=True)
     done = []
-    for name, title, function in CHARTS:
+    for name, title, function, args in CHARTS:
         caption = " ".join((function.__doc__ or "").split())
         try:
-            fig = function(rows)
+            fig = function(rows, *args)
         except SkipChart as reason:
             for ext in (".png", ".svg"):  # never leave a stale chart from an earlier run
                 stale = os.path.join(charts_dir, name + ext)
@@ -388,13 +341,10 @@ def draw_charts(rows, charts_dir):
 # ------------------------------------------------------------------------------------ index.html
 
 STYLE = """body { font-family: sans-serif; margin: 1.5em; max-width: 1400px; }
-figure { display: inline-block; margin: 0.6em; vertical-align: top; }
-figure img { max-width: 100%; border: 1px solid #ccc; }
-figcaption { font-size: 0.85em; max-width: 60em; }
-.skipped { color: #a33; }
-table { border-collapse: collapse; font-size: 0.75em; }
+figure { display: inline-block; margin: 0.6em; vertical-align: top; } .skipped { color: #a33; }
+figure img { max-width: 100%; border: 1px solid #ccc; } figcaption { max-width: 60em; }
+table { border-collapse: collapse; font-size: 0.75em; } th { background: #eee; }
 th, td { border: 1px solid #bbb; padding: 2px 5px; text-align: right; }
-th { background: #eee; position: sticky; top: 0; }
 td:first-child, th:first-child { text-align: left; }"""
 
 
@@ -406,9 +356,8 @@ def href(path):
 def list_images(out_dir):
     """Sorted file names of DIR/images/*.png (empty when the folder is absent)."""
     folder = os.path.join(out_dir, "images")
-    if not os.path.isdir(folder):
-        return []
-    return sorted(f for f in os.listdir(folder)
+    names = os.listdir(folder) if os.path.isdir(folder) else []
+    return sorted(f for f in names
                   if f.lower().endswith(".png") and os.path.isfile(os.path.join(folder, f)))
 
 
@@ -459,7 +408,7 @@ def main(argv=None):
     notes = []
     missing = [c for c in COLUMNS if c not in header]
     if missing:
-        notes.append("results.csv lacks the columns " + ", ".join(missing) + "; they count as empty.")
+        notes.append(f"results.csv lacks the columns {', '.join(missing)}; they count as empty.")
     configure_matplotlib()
     charts = draw_charts(rows, os.path.join(args.out_dir, "charts"))
     index = render_index(header, rows, charts, list_images(args.out_dir), notes)

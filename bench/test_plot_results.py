@@ -14,7 +14,7 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import plot_results  # noqa: E402
 
-ALL_CHARTS = [name for name, _, _ in plot_results.CHARTS]
+ALL_CHARTS = [chart[0] for chart in plot_results.CHARTS]
 METHODS = ["brute", "per-object", "tiled", "clustered"]
 COST = {"brute": 12.0, "per-object": 1.6, "tiled": 1.8, "clustered": 1.7}
 
@@ -96,10 +96,11 @@ def run(folder):
 
 def snapshot(folder):
     """{relative path: bytes} of every file the script wrote."""
-    files = {"index.html": open(os.path.join(folder, "index.html"), "rb").read()}
-    for name in sorted(os.listdir(os.path.join(folder, "charts"))):
-        with open(os.path.join(folder, "charts", name), "rb") as f:
-            files["charts/" + name] = f.read()
+    names = ["index.html"] + ["charts/" + n for n in os.listdir(os.path.join(folder, "charts"))]
+    files = {}
+    for name in names:
+        with open(os.path.join(folder, name), "rb") as f:
+            files[name] = f.read()
     return files
 
 
@@ -122,6 +123,10 @@ class PlotResultsTest(unittest.TestCase):
                 path = os.path.join(self.dir, "charts", name + ext)
                 self.assertTrue(os.path.getsize(path) > 1000, path)
             self.assertIn(f'<img src="charts/{name}.png"', index)
+            self.assertIn(f'<a href="charts/{name}.svg">SVG</a>', index)
+        captions = [line for line in index.splitlines() if line.startswith("<figcaption><b>")]
+        for caption in captions:  # every chart caption has its description
+            self.assertGreater(len(caption), 150, caption)
 
     def test_all_series_give_every_chart_and_index(self):
         write_csv(self.dir, full_rows())
@@ -153,11 +158,10 @@ class PlotResultsTest(unittest.TestCase):
         self.assertEqual(run(self.dir), 0)
         self.assert_charts(["forward_time", "total_time"])
         index = self.index()
-        for name in ("culling_efficiency", "pareto_shadows", "pareto_light_assignment",
-                     "shadow_cost"):
+        for name in ("culling_efficiency", "pareto_shadows", "pareto_light_assignment"):
             self.assertFalse(os.path.exists(os.path.join(self.dir, "charts", name + ".png")))
             self.assertNotIn(f"charts/{name}.png", index)
-        self.assertEqual(index.count("not drawn"), 4)
+        self.assertEqual(index.count("not drawn"), 3)
         self.assertIn("No images in images/.", index)
 
     def test_skipped_chart_removes_stale_files(self):
