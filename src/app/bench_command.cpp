@@ -183,10 +183,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
     for (const Config& config : configs) {
         Scene scene = baseScene;
         replaceLights(scene, config.spot, config.point, 1);
-        render::RenderSettings settings;
-        settings.width = options.width;
-        settings.height = options.height;
-        settings.exposure = options.exposure;
+        render::RenderSettings settings = renderSettingsFrom(options);
         settings.method = config.method;
         settings.shadows = config.shadows;
         settings.collectLightStats = !config.validateShadows;
