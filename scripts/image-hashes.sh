@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Renders every light-list method, shadow filter and point-shadow layout on the default scene,
+# the shipped small room and (where ../shared is present) the Cornell box, and prints one line
+# per image: "<scene> <variant> <sha256>". Run it before and after a change that must not change
+# behaviour and diff the two outputs: every line must match (images are bit-identical run to run).
+#   scripts/image-hashes.sh [BUILD_DIR] > before.txt
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+binary="${1:-$root/build}/punctual"
+[ -x "$binary" ] || { echo "image-hashes: no $binary; build first (scripts/build.sh)" >&2; exit 1; }
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+scenes=("default:" "small-room:$root/data/small-room.gltf")
+cornell="$root/../shared/data/cornell-box/cornellBox.gltf"
+[ -f "$cornell" ] && scenes+=("cornell-box:$cornell")
+
+hash_render() {  # NAME SCENE_PATH ARGS...
+  local name=$1 scene=$2
+  shift 2
+  local args=(render --size 320x180 --out "$work/image.png" "$@")
+  [ -n "$scene" ] && args+=("$scene")
+  "$binary" "${args[@]}" >/dev/null
+  echo "$name $(sha256sum "$work/image.png" | cut -d' ' -f1)"
+  if [ -f "$work/heat.png" ]; then
+    echo "$name-heatmap $(sha256sum "$work/heat.png" | cut -d' ' -f1)"
+    rm -f "$work/heat.png"
+  fi
+}
+
+for entry in "${scenes[@]}"; do
+  scene_name=${entry%%:*}
+  scene_path=${entry#*:}
+  for method in brute per-object tiled clustered; do
+    hash_render "$scene_name $method shadows-off" "$scene_path" --culling "$method" --shadows off \
+      --heatmap "$work/heat.png"
+    hash_render "$scene_name $method tent5-cube" "$scene_path" --culling "$method"
+  done
+  for filter in hw tent3 tent5 tent7 disk; do
+    for layout in cube slices; do
+      hash_render "$scene_name tiled $filter-$layout" "$scene_path" --shadow-filter "$filter" \
+        --point-shadow-layout "$layout"
+    done
+  done
+done
