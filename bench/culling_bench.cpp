@@ -86,8 +86,8 @@ int main(int argc, char** argv) {
             for (size_t k = 0; k < runs.size(); ++k) {
                 MethodRun& run = runs[(round + k) % runs.size()];
                 const auto result = run.renderer->render(1, 0);
-                run.culling.push_back(result.medianMs.culling);
-                run.forward.push_back(result.medianMs.forward);
+                run.culling.push_back(result.medianMs.of("culling"));
+                run.forward.push_back(result.medianMs.of("forward"));
                 run.total.push_back(result.medianMs.total);
             }
             std::fprintf(stderr, "\rround %u/%u", round + 1, rounds);

@@ -49,11 +49,38 @@ on 2 CPU cores). Default size: 1280x720 (quick: 320x180).
 Charts: /usr/bin/python3 bench/plot_results.py DIR && /usr/bin/python3 bench/plot_failures.py DIR
 )";
 
-const std::vector<std::string> kColumns = {
-    "config", "series", "method", "spot", "point", "shadows", "shadow_res", "shadow_filter", "point_layout", "frames",
-    "depth_ms", "culling_ms", "shadows_ms", "forward_ms", "total_ms", "forward_spread_ms", "total_spread_ms",
-    "tested_per_pixel", "affecting_per_pixel", "efficiency", "missed_energy", "image_error", "pixels_off",
-    "shadow_misclassified", "shadow_false_shadow", "shadow_false_lit"};
+// The columns of results.csv (and the keys of each results.json row): the configuration, then
+// <pass>_ms and <pass>_spread_ms for every pass of the frame in frame order (so a new pass gets
+// its columns with no edit here), then the statistics.
+std::vector<std::string> resultColumns(const std::vector<std::string>& passes) {
+    std::vector<std::string> columns = {"config",       "series",        "method",       "spot",  "point",
+                                        "shadows",      "shadow_res",    "shadow_filter", "point_layout", "frames"};
+    for (const std::string& pass : passes) columns.push_back(pass + "_ms");
+    columns.push_back("total_ms");
+    for (const std::string& pass : passes) columns.push_back(pass + "_spread_ms");
+    columns.push_back("total_spread_ms");
+    for (const char* column : {"tested_per_pixel", "affecting_per_pixel", "efficiency", "missed_energy", "image_error",
+                               "pixels_off", "shadow_misclassified", "shadow_false_shadow", "shadow_false_lit"}) {
+        columns.emplace_back(column);
+    }
+    return columns;
+}
+
+// TEMPORARY until the variant tables land: the names of every value of a variant kind.
+template <typename T>
+std::vector<std::string> variantNames();
+template <>
+std::vector<std::string> variantNames<render::LightListMethod>() {
+    return {"brute", "per-object", "tiled", "clustered"};
+}
+template <>
+std::vector<std::string> variantNames<ShadowFilter>() {
+    return {"hw", "tent3", "tent5", "tent7", "disk"};
+}
+template <>
+std::vector<std::string> variantNames<PointShadowLayout>() {
+    return {"cube", "slices"};
+}
 
 struct Config {
     std::string series;
@@ -179,6 +206,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
     ProgressBar progress(configs.size() + failureStudySize(context, quick));
     OutputFiles outputs;
     std::vector<Row> rows;
+    std::vector<std::string> passes;  // the frame's pass names, from the first renderer
     std::map<std::string, ImageRgba8> bruteImages;  // by series + counts
     for (const Config& config : configs) {
         Scene scene = baseScene;
@@ -190,11 +218,12 @@ int runBenchCommand(const std::vector<std::string>& args) {
         settings.collectShadowFactors = config.validateShadows;
         render::Renderer renderer(context, scene, settings);
         const render::FrameResult result = renderer.render(timedFrames, 1);
-        auto spread = [&](double render::PassTimings::*field) {
+        // Median and spread (max - min over the timed frames) of every pass, by name.
+        auto spread = [&](auto&& value) {
             double lo = 1e300, hi = 0.0;
             for (const render::PassTimings& t : result.framesMs) {
-                lo = std::min(lo, t.*field);
-                hi = std::max(hi, t.*field);
+                lo = std::min(lo, value(t));
+                hi = std::max(hi, value(t));
             }
             return hi - lo;
         };
@@ -209,13 +238,13 @@ int runBenchCommand(const std::vector<std::string>& args) {
                    {"shadow_filter", shadowFilterName(config.shadows.filter)},
                    {"point_layout", pointShadowLayoutName(config.shadows.pointLayout)},
                    {"frames", std::to_string(timedFrames)},
-                   {"depth_ms", number(result.medianMs.depth)},
-                   {"culling_ms", number(result.medianMs.culling)},
-                   {"shadows_ms", number(result.medianMs.shadows)},
-                   {"forward_ms", number(result.medianMs.forward)},
                    {"total_ms", number(result.medianMs.total)},
-                   {"forward_spread_ms", number(spread(&render::PassTimings::forward))},
-                   {"total_spread_ms", number(spread(&render::PassTimings::total))}};
+                   {"total_spread_ms", number(spread([](const render::PassTimings& t) { return t.total; }))}};
+        for (const auto& [pass, ms] : result.medianMs.passes) {
+            row[pass + "_ms"] = number(ms);
+            row[pass + "_spread_ms"] = number(spread([&](const render::PassTimings& t) { return t.of(pass); }));
+        }
+        if (passes.empty()) passes = renderer.passNames();
         if (settings.collectLightStats) {
             const LightStatsImage stats = renderer.readLightStats();
             const CullingStats culling = computeCullingStats(stats);
@@ -265,24 +294,33 @@ int runBenchCommand(const std::vector<std::string>& args) {
         throw Error("vulkan", std::to_string(context.validationMessageCount()) + " validation message(s); no output written");
     }
 
+    const std::vector<std::string> columns = resultColumns(passes);
     std::ostringstream csv;
-    for (size_t i = 0; i < kColumns.size(); ++i) csv << (i ? "," : "") << kColumns[i];
+    for (size_t i = 0; i < columns.size(); ++i) csv << (i ? "," : "") << columns[i];
     csv << "\n";
     nlohmann::json json = nlohmann::json::array();
     for (const Row& row : rows) {
         nlohmann::json entry;
-        for (size_t i = 0; i < kColumns.size(); ++i) {
-            const auto it = row.find(kColumns[i]);
+        for (size_t i = 0; i < columns.size(); ++i) {
+            const auto it = row.find(columns[i]);
             const std::string value = it == row.end() ? "" : it->second;
             csv << (i ? "," : "") << value;
-            entry[kColumns[i]] = value;
+            entry[columns[i]] = value;
         }
         csv << "\n";
         json.push_back(entry);
     }
-    nlohmann::json document = {{"scene", baseScene.source}, {"device", context.deviceName()},
+    // The variant and pass names, so the chart scripts list what this run has without a list of
+    // their own.
+    nlohmann::json document = {{"scene", baseScene.source},
+                               {"device", context.deviceName()},
                                {"size", {{"width", options.width}, {"height", options.height}}},
-                               {"quick", quick}, {"configurations", json}};
+                               {"quick", quick},
+                               {"methods", variantNames<render::LightListMethod>()},
+                               {"shadow_filters", variantNames<ShadowFilter>()},
+                               {"point_layouts", variantNames<PointShadowLayout>()},
+                               {"passes", passes},
+                               {"configurations", json}};
     outputs.add(*outDir + "/results.csv", csv.str());
     outputs.add(*outDir + "/failures.csv", failuresCsv(failures));
     outputs.add(*outDir + "/results.json", document.dump(2) + "\n");

@@ -13,8 +13,11 @@ nlohmann::json frameStatsJson(const render::FrameResult& result, const render::R
     stats["device"] = deviceName;
     stats["size"] = {{"width", renderer.settings().width}, {"height", renderer.settings().height}};
     stats["frames"] = frames;
-    stats["gpu_ms"] = {{"depth", ms.depth},     {"culling", ms.culling}, {"shadows", ms.shadows},
-                       {"forward", ms.forward}, {"tonemap", ms.tonemap}, {"total", ms.total}};
+    // Every pass under its own name, then the whole frame.
+    nlohmann::json gpuMs = nlohmann::json::object();
+    for (const auto& [pass, passMs] : ms.passes) gpuMs[pass] = passMs;
+    gpuMs["total"] = ms.total;
+    stats["gpu_ms"] = gpuMs;
     stats["lights"] = {{"spot", lights.spotCount},
                        {"point", lights.pointCount},
                        {"directional", lights.directionalCount},
@@ -83,11 +86,7 @@ std::string timingTable(const render::PassTimings& ms) {
         std::snprintf(line, sizeof(line), "%-10s %8.3f\n", name, value);
         table += line;
     };
-    row("depth", ms.depth);
-    row("culling", ms.culling);
-    row("shadows", ms.shadows);
-    row("forward", ms.forward);
-    row("tonemap", ms.tonemap);
+    for (const auto& [pass, passMs] : ms.passes) row(pass.c_str(), passMs);
     row("total", ms.total);
     return table;
 }

@@ -8,7 +8,7 @@
 
 namespace punctual::app {
 
-// {"gpu_ms": {depth, culling, shadows, forward, tonemap, total}, "lights": {spot, point,
+// {"gpu_ms": {<every pass by name, in frame order: depth, culling, shadows, forward, tonemap>, total}, "lights": {spot, point,
 //  directional, culled_by_frustum, dropped_by_cap, in_scene}, "frames", "size", "device", "scene"}
 nlohmann::json frameStatsJson(const render::FrameResult& result, const render::Renderer& renderer,
                               const Scene& scene, const std::string& deviceName, uint32_t frames);

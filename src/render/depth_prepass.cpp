@@ -1,26 +1,50 @@
 #include "render/depth_prepass.h"
 
+#include "gpu_types.h"
 #include "render/frame_bindings.h"
 #include "render/scene_gpu.h"
 #include "shaders/raster_mesh_vert_spv.h"
 #include "vk/context.h"
-#include "vk/image.h"
+#include "vk/descriptors.h"
 #include "vk/pipeline.h"
 
 namespace punctual::render {
+namespace {
 
-DepthPrepass::DepthPrepass(const vk::Context& context, const FrameBindings& bindings, const vk::Image& depth)
-    : width_(depth.desc().width), height_(depth.desc().height) {
-    const VkDevice device = context.device();
+vk::Image depthImage(const vk::Context& context, uint32_t width, uint32_t height) {
+    vk::ImageDesc desc;
+    desc.format = DepthPrepass::kDepthFormat;
+    desc.width = width;
+    desc.height = height;
+    // Sampled by the culling kernels, copied out by Renderer::readDepth.
+    desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    desc.debugName = "depth";
+    return vk::Image(context, desc);
+}
+
+}  // namespace
+
+DepthPrepass::DepthPrepass(const vk::Context& context, uint32_t width, uint32_t height)
+    : depth_(depthImage(context, width, height)),
+      sampler_(vk::createSampler(context.device(), VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE)),
+      width_(width),
+      height_(height) {
     vk::RenderPassDesc passDesc;
     passDesc.depthFormat = kDepthFormat;
     passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_CLEAR;
     passDesc.depthInitialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     passDesc.depthFinalLayout = kFinalLayout;
-    renderPass_ = vk::createRenderPass(device, passDesc);
-    const VkImageView view = depth.view();
-    framebuffer_ = vk::createFramebuffer(device, renderPass_, {&view, 1}, width_, height_);
+    renderPass_ = vk::createRenderPass(context.device(), passDesc);
+    const VkImageView view = depth_.view();
+    framebuffer_ = vk::createFramebuffer(context.device(), renderPass_, {&view, 1}, width_, height_);
+}
 
+void DepthPrepass::addBindings(BindingTable& table) const {
+    table.addImage(PUNCTUAL_BINDING_DEPTH, VK_SHADER_STAGE_COMPUTE_BIT, sampler_, depth_.view(), kFinalLayout);
+}
+
+void DepthPrepass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
     vk::GraphicsPipelineDesc pipelineDesc;
     pipelineDesc.layout = bindings.pipelineLayout();
     pipelineDesc.renderPass = renderPass_;
@@ -28,17 +52,23 @@ DepthPrepass::DepthPrepass(const vk::Context& context, const FrameBindings& bind
     pipelineDesc.vertexStride = SceneGpu::vertexStride();
     pipelineDesc.vertexAttributes = SceneGpu::vertexAttributes();
     pipelineDesc.depthCompare = VK_COMPARE_OP_LESS;
-    pipeline_ = vk::createGraphicsPipeline(device, pipelineDesc);
+    pipeline_ = vk::createGraphicsPipeline(context.device(), pipelineDesc);
 }
 
-void DepthPrepass::record(VkCommandBuffer cmd, const SceneGpu& scene, const FrameBindings& bindings) const {
+void DepthPrepass::record(const FrameContext& frame) const {
     VkClearValue clear{};
     clear.depthStencil = {1.0f, 0};
-    vk::beginRenderPass(cmd, renderPass_, framebuffer_, width_, height_, {&clear, 1});
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-    bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
-    scene.drawObjects(cmd, bindings.pipelineLayout(), /*withTextures=*/false);
-    vkCmdEndRenderPass(cmd);
+    vk::beginRenderPass(frame.cmd, renderPass_, framebuffer_, width_, height_, {&clear, 1});
+    vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    frame.bindings.bind(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
+    frame.scene.drawObjects(frame.cmd, frame.bindings.pipelineLayout(), /*withTextures=*/false);
+    vkCmdEndRenderPass(frame.cmd);
+    // Depth writes must land before the culling kernel samples them and the forward pass's EQUAL
+    // test reads them.
+    vk::memoryBarrier(frame.cmd, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
 }
 
 }  // namespace punctual::render

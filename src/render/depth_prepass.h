@@ -1,30 +1,36 @@
 #pragma once
 // Depth prepass: every object into a D32 depth buffer, no colour. The forward pass then shades
-// each pixel once (EQUAL test, no depth writes), and the culling passes read this depth.
+// each pixel once (EQUAL test, no depth writes), and the culling passes read this depth (set 0,
+// PUNCTUAL_BINDING_DEPTH).
 #include <vulkan/vulkan.h>
 
+#include "render/pass.h"
 #include "vk/handle.h"
-
-namespace punctual::vk {
-class Context;
-class Image;
-}  // namespace punctual::vk
+#include "vk/image.h"
 
 namespace punctual::render {
 
-class FrameBindings;
-class SceneGpu;
-
-class DepthPrepass {
+class DepthPrepass final : public Pass {
 public:
-    // `depth` ends in DEPTH_STENCIL_READ_ONLY_OPTIMAL: readable by later attachments and shaders.
-    DepthPrepass(const vk::Context& context, const FrameBindings& bindings, const vk::Image& depth);
-    void record(VkCommandBuffer cmd, const SceneGpu& scene, const FrameBindings& bindings) const;
+    DepthPrepass(const vk::Context& context, uint32_t width, uint32_t height);
+
+    const char* name() const override { return "depth"; }
+    void addBindings(BindingTable& table) const override;
+    void createPipelines(const vk::Context& context, const FrameBindings& bindings) override;
+    // Ends with the depth in kFinalLayout and its writes visible to the culling kernels and the
+    // forward pass's depth test.
+    void record(const FrameContext& frame) const override;
+    uint64_t memoryBytes() const override { return depth_.allocatedBytes(); }
+
+    const vk::Image& depth() const { return depth_; }
 
     static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+    // Readable by later attachments and shaders.
     static constexpr VkImageLayout kFinalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
 
 private:
+    vk::Image depth_;
+    vk::Handle<VkSampler> sampler_;  // nearest, for texelFetch in the culling kernels
     vk::Handle<VkRenderPass> renderPass_;
     vk::Handle<VkFramebuffer> framebuffer_;
     vk::Handle<VkPipeline> pipeline_;

@@ -9,15 +9,16 @@
 #include "render/scene_gpu.h"
 #include "shaders/raster_forward_frag_spv.h"
 #include "shaders/raster_mesh_vert_spv.h"
+#include "vk/buffer.h"
 #include "vk/context.h"
 #include "vk/image.h"
 #include "vk/pipeline.h"
 
 namespace punctual::render {
 
-ForwardPass::ForwardPass(const vk::Context& context, const FrameBindings& bindings, const vk::Image& radiance,
-                         const vk::Image& depth, const ForwardVariant& variant)
-    : width_(radiance.desc().width), height_(radiance.desc().height) {
+ForwardPass::ForwardPass(const vk::Context& context, const vk::Image& radiance, const vk::Image& depth,
+                         const ForwardVariant& variant, const vk::Buffer* debugOutput)
+    : variant_(variant), debugOutput_(debugOutput), width_(radiance.desc().width), height_(radiance.desc().height) {
     const VkDevice device = context.device();
     vk::RenderPassDesc passDesc;
     passDesc.colorFormat = kRadianceFormat;
@@ -30,6 +31,10 @@ ForwardPass::ForwardPass(const vk::Context& context, const FrameBindings& bindin
     renderPass_ = vk::createRenderPass(device, passDesc);
     const std::array<VkImageView, 2> views = {radiance.view(), depth.view()};
     framebuffer_ = vk::createFramebuffer(device, renderPass_, views, width_, height_);
+}
+
+void ForwardPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
+    const ForwardVariant& variant = variant_;
 
     struct Constants {
         uint32_t lightList;
@@ -70,17 +75,27 @@ ForwardPass::ForwardPass(const vk::Context& context, const FrameBindings& bindin
     pipelineDesc.hasColorAttachment = true;
     pipelineDesc.depthWrite = false;
     pipelineDesc.depthCompare = VK_COMPARE_OP_EQUAL;
-    pipeline_ = vk::createGraphicsPipeline(device, pipelineDesc);
+    pipeline_ = vk::createGraphicsPipeline(context.device(), pipelineDesc);
 }
 
-void ForwardPass::record(VkCommandBuffer cmd, const SceneGpu& scene, const FrameBindings& bindings) const {
+void ForwardPass::record(const FrameContext& frame) const {
+    const VkCommandBuffer cmd = frame.cmd;
+    if (debugOutput_) {
+        vkCmdFillBuffer(cmd, debugOutput_->handle(), 0, VK_WHOLE_SIZE, 0u);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+    }
     std::array<VkClearValue, 2> clears{};
     clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
     vk::beginRenderPass(cmd, renderPass_, framebuffer_, width_, height_, clears);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-    bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
-    scene.drawObjects(cmd, bindings.pipelineLayout(), /*withTextures=*/true);
+    frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
+    frame.scene.drawObjects(cmd, frame.bindings.pipelineLayout(), /*withTextures=*/true);
     vkCmdEndRenderPass(cmd);
+    if (debugOutput_) {
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    }
 }
 
 }  // namespace punctual::render

@@ -3,17 +3,15 @@
 // an RGBA16F radiance target.
 #include <vulkan/vulkan.h>
 
+#include "render/pass.h"
 #include "vk/handle.h"
 
 namespace punctual::vk {
-class Context;
+class Buffer;
 class Image;
 }  // namespace punctual::vk
 
 namespace punctual::render {
-
-class FrameBindings;
-class SceneGpu;
 
 // The specialization of the one forward shader.
 struct ForwardVariant {
@@ -28,17 +26,24 @@ struct ForwardVariant {
     bool writeShadowFactors = false;  // validation variant: per-pixel shadow factors
 };
 
-class ForwardPass {
+class ForwardPass final : public Pass {
 public:
     // `radiance` ends in SHADER_READ_ONLY_OPTIMAL for the tone-mapping pass; `depth` must be in
-    // DEPTH_STENCIL_READ_ONLY_OPTIMAL (the prepass leaves it so) and stays there.
-    ForwardPass(const vk::Context& context, const FrameBindings& bindings, const vk::Image& radiance,
-                const vk::Image& depth, const ForwardVariant& variant);
-    void record(VkCommandBuffer cmd, const SceneGpu& scene, const FrameBindings& bindings) const;
+    // DEPTH_STENCIL_READ_ONLY_OPTIMAL (the prepass leaves it so) and stays there. `debugOutput`
+    // (the statistics and validation variants only): the buffer the variant writes, cleared to 0
+    // before the pass and made visible to transfers after it.
+    ForwardPass(const vk::Context& context, const vk::Image& radiance, const vk::Image& depth,
+                const ForwardVariant& variant, const vk::Buffer* debugOutput = nullptr);
+
+    const char* name() const override { return "forward"; }
+    void createPipelines(const vk::Context& context, const FrameBindings& bindings) override;
+    void record(const FrameContext& frame) const override;
 
     static constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 private:
+    ForwardVariant variant_;
+    const vk::Buffer* debugOutput_ = nullptr;
     vk::Handle<VkRenderPass> renderPass_;
     vk::Handle<VkFramebuffer> framebuffer_;
     vk::Handle<VkPipeline> pipeline_;

@@ -1,44 +1,54 @@
 #pragma once
-// Descriptor set 0, shared by every pass of a frame: the frame uniform, the packed lights,
-// objects, materials, the depth buffer, the light lists and the shadow maps (see the
-// PUNCTUAL_BINDING_* numbers in gpu_types.h), plus the pipeline layout (set 0, the scene's
+// Descriptor set 0, shared by every pass of a frame, and the pipeline layout (set 0, the scene's
 // per-material texture set 1, and the per-draw object index push constant).
+//
+// Set 0 is built from a BindingTable: the renderer adds the frame's own buffers (frame uniform,
+// lights, objects, materials, per-object lists, debug outputs) and every pass adds the resources it
+// owns (the depth prepass its depth buffer, light culling its grid, the shadow stage its maps), each
+// under its PUNCTUAL_BINDING_* number from gpu_types.h. A new binding is one row where its resource
+// lives.
+#include <vector>
+
 #include <vulkan/vulkan.h>
 
-#include "vk/buffer.h"
 #include "vk/descriptors.h"
 #include "vk/handle.h"
 
 namespace punctual::vk {
+class Buffer;
 class Context;
-}
+}  // namespace punctual::vk
 
 namespace punctual::render {
 
 class SceneGpu;
 
-// What set 0 points at, besides the scene's own buffers and textures.
-struct FrameBindingResources {
-    const vk::Buffer& frameUniform;
-    const vk::Buffer& lights;
-    VkImageView depthView;      // depth prepass target, sampled by the culling passes
-    VkSampler depthSampler;     // nearest, for texelFetch
-    const vk::Buffer& lightGrid;
-    const vk::Buffer& depthRange;
-    const vk::Buffer& objectLights;
-    const vk::Buffer& lightStats;
-    const vk::Buffer& cullLights;
-    const vk::Buffer& shadowViews;
-    VkImageView spotShadows;     // 2D array
-    VkImageView pointShadows;    // cube array
-    VkImageView pointSlices;     // 2D array
-    VkSampler shadowSampler;     // compare sampler
-    const vk::Buffer& shadowDebug;  // validation variant output
+// Stage sets the bindings use.
+inline constexpr VkShaderStageFlags kRasterStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+inline constexpr VkShaderStageFlags kAllStages = kRasterStages | VK_SHADER_STAGE_COMPUTE_BIT;
+
+class BindingTable {
+public:
+    // A whole buffer (uniform or storage).
+    void addBuffer(uint32_t binding, VkDescriptorType type, VkShaderStageFlags stages, const vk::Buffer& buffer);
+    // A combined image sampler, read in `layout`.
+    void addImage(uint32_t binding, VkShaderStageFlags stages, VkSampler sampler, VkImageView view,
+                  VkImageLayout layout);
+
+private:
+    friend class FrameBindings;
+    struct Row {
+        VkDescriptorSetLayoutBinding layout;
+        VkDescriptorBufferInfo buffer;  // buffers
+        VkDescriptorImageInfo image;    // combined image samplers
+    };
+    std::vector<Row> rows_;
 };
 
 class FrameBindings {
 public:
-    FrameBindings(const vk::Context& context, const SceneGpu& scene, const FrameBindingResources& resources);
+    // Throws an internal error when two rows name the same binding.
+    FrameBindings(const vk::Context& context, const SceneGpu& scene, const BindingTable& table);
 
     VkDescriptorSetLayout setLayout() const { return setLayout_; }
     VkPipelineLayout pipelineLayout() const { return pipelineLayout_; }

@@ -1,8 +1,8 @@
 #include "render/light_culling_pass.h"
 
+#include <algorithm>
 #include <array>
 
-#include "core/error.h"
 #include "gpu_types.h"
 #include "render/frame_bindings.h"
 #include "shaders/compute_cluster_slices_comp_spv.h"
@@ -27,22 +27,37 @@ LightGridLayout LightGridLayout::forFrame(uint32_t width, uint32_t height, uint3
     return layout;
 }
 
-LightGridBuffers::LightGridBuffers(const vk::Context& context, const LightGridLayout& layout, bool culled)
-    : grid(context, VkDeviceSize(culled ? layout.cellCount() * PUNCTUAL_GRID_WORDS : 1) * sizeof(uint32_t),
-           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::DeviceLocal,
-           "light grid"),
-      depthRange(context, sizeof(gpu::GpuDepthRange),
-                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                 vk::MemoryUse::DeviceLocal, "depth range") {}
+LightCullingPass::LightCullingPass(vk::Context& context, const LightGridLayout& layout, bool culled, uint32_t width,
+                                   uint32_t height, const std::vector<gpu::CullLight>& cullLights)
+    : layout_(layout),
+      culled_(culled),
+      width_(width),
+      height_(height),
+      grid_(context, VkDeviceSize(culled ? layout.cellCount() * PUNCTUAL_GRID_WORDS : 1) * sizeof(uint32_t),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::DeviceLocal,
+            "light grid"),
+      depthRange_(context, sizeof(gpu::GpuDepthRange),
+                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                  vk::MemoryUse::DeviceLocal, "depth range"),
+      // Sized to the lights this frame really uses; one slot when there are none.
+      cullLights_(context, std::max<size_t>(cullLights.size(), 1) * sizeof(gpu::CullLight),
+                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "cull lights") {
+    if (!cullLights.empty()) cullLights_.write(cullLights.data(), cullLights.size() * sizeof(gpu::CullLight));
+}
 
-LightCullingPass::LightCullingPass(const vk::Context& context, const FrameBindings& bindings,
-                                   const LightGridLayout& layout, uint32_t width, uint32_t height)
-    : layout_(layout), width_(width), height_(height) {
-    if (layout.slices < 1 || layout.slices > PUNCTUAL_MAX_CLUSTER_SLICES) {
-        throw Error("--slices", "must be from 1 to " + std::to_string(PUNCTUAL_MAX_CLUSTER_SLICES));
-    }
-    const std::array<uint32_t, 2> values = {layout.tileSize, layout.slices};
+void LightCullingPass::addBindings(BindingTable& table) const {
+    table.addBuffer(PUNCTUAL_BINDING_LIGHT_GRID, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages, grid_);
+    table.addBuffer(PUNCTUAL_BINDING_DEPTH_RANGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages, depthRange_);
+    table.addBuffer(PUNCTUAL_BINDING_CULL_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT,
+                    cullLights_);
+}
+
+uint64_t LightCullingPass::memoryBytes() const { return grid_.size() + depthRange_.size() + cullLights_.size(); }
+
+void LightCullingPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
+    if (!culled_) return;
+    const std::array<uint32_t, 2> values = {layout_.tileSize, layout_.slices};
     const std::array<VkSpecializationMapEntry, 2> entries = {{
         {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, sizeof(uint32_t), sizeof(uint32_t)},
@@ -50,23 +65,24 @@ LightCullingPass::LightCullingPass(const vk::Context& context, const FrameBindin
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};
     cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
                                                  compute_light_culling_comp_spv, &specialization);
-    if (layout.slices > 1) {
+    if (layout_.slices > 1) {
         depthRangePipeline_ =
             vk::createComputePipeline(context.device(), bindings.pipelineLayout(), compute_depth_range_comp_spv);
         const VkSpecializationMapEntry sliceEntry{PUNCTUAL_SPEC_SLICE_COUNT, 0, sizeof(uint32_t)};
-        const VkSpecializationInfo sliceSpecialization{1, &sliceEntry, sizeof(uint32_t), &layout.slices};
+        const VkSpecializationInfo sliceSpecialization{1, &sliceEntry, sizeof(uint32_t), &layout_.slices};
         sliceBoundariesPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
                                                              compute_cluster_slices_comp_spv, &sliceSpecialization);
     }
 }
 
-void LightCullingPass::record(VkCommandBuffer cmd, const FrameBindings& bindings,
-                              const LightGridBuffers& buffers) const {
-    bindings.bind(cmd, VK_PIPELINE_BIND_POINT_COMPUTE);
+void LightCullingPass::record(const FrameContext& frame) const {
+    if (!culled_) return;
+    const VkCommandBuffer cmd = frame.cmd;
+    frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_COMPUTE);
     // Start from an empty range: min = all ones, max = 0 (each fill writes one repeated word).
     // Tiled culling never reads it, but it stays defined.
-    vkCmdFillBuffer(cmd, buffers.depthRange.handle(), 0, sizeof(uint32_t), 0xFFFFFFFFu);
-    vkCmdFillBuffer(cmd, buffers.depthRange.handle(), sizeof(uint32_t), sizeof(uint32_t), 0u);
+    vkCmdFillBuffer(cmd, depthRange_.handle(), 0, sizeof(uint32_t), 0xFFFFFFFFu);
+    vkCmdFillBuffer(cmd, depthRange_.handle(), sizeof(uint32_t), sizeof(uint32_t), 0u);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     if (depthRangePipeline_) {

@@ -5,19 +5,16 @@
 // fitted to that range. The light grid holds PUNCTUAL_GRID_WORDS words per cell and is sized to
 // the frame's real tile count (times the slices for clustered).
 #include <cstdint>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
+#include "culling.h"
+#include "render/pass.h"
 #include "vk/buffer.h"
 #include "vk/handle.h"
 
-namespace punctual::vk {
-class Context;
-}
-
 namespace punctual::render {
-
-class FrameBindings;
 
 struct LightGridLayout {
     uint32_t tileSize = 16;
@@ -29,26 +26,35 @@ struct LightGridLayout {
     static LightGridLayout forFrame(uint32_t width, uint32_t height, uint32_t tileSize, uint32_t slices);
 };
 
-// The grid and depth-range buffers live outside the pass so the frame's descriptor set can be
-// built before the pipelines.
-struct LightGridBuffers {
-    LightGridBuffers(const vk::Context& context, const LightGridLayout& layout, bool culled);
-    vk::Buffer grid;        // cellCount * PUNCTUAL_GRID_WORDS words (one word when not culled)
-    vk::Buffer depthRange;  // gpu::GpuDepthRange
-};
-
-class LightCullingPass {
+class LightCullingPass final : public Pass {
 public:
-    LightCullingPass(const vk::Context& context, const FrameBindings& bindings, const LightGridLayout& layout,
-                     uint32_t width, uint32_t height);
+    // `culled`: whether the frame's method reads the light grid (tiled, clustered). Otherwise the
+    // pass records nothing and its buffers are one-word placeholders (a descriptor cannot point at
+    // nothing). `cullLights` are the frame's lights in view space (gpu::makeCullLight), made once
+    // on the CPU rather than by every workgroup.
+    LightCullingPass(vk::Context& context, const LightGridLayout& layout, bool culled, uint32_t width, uint32_t height,
+                     const std::vector<gpu::CullLight>& cullLights);
+
+    const char* name() const override { return "culling"; }
+    void addBindings(BindingTable& table) const override;
+    void createPipelines(const vk::Context& context, const FrameBindings& bindings) override;
+    bool timed() const override { return culled_; }
     // Records the depth-range pass (clustered only) and the culling kernel, with the barriers
     // that make the grid visible to the forward pass's fragment shader.
-    void record(VkCommandBuffer cmd, const FrameBindings& bindings, const LightGridBuffers& buffers) const;
+    void record(const FrameContext& frame) const override;
+    uint64_t memoryBytes() const override;
+
+    const vk::Buffer& grid() const { return grid_; }              // cellCount * PUNCTUAL_GRID_WORDS words
+    const vk::Buffer& depthRange() const { return depthRange_; }  // gpu::GpuDepthRange
 
 private:
     LightGridLayout layout_;
+    bool culled_ = false;
     uint32_t width_ = 0;
     uint32_t height_ = 0;
+    vk::Buffer grid_;
+    vk::Buffer depthRange_;
+    vk::Buffer cullLights_;
     vk::Handle<VkPipeline> depthRangePipeline_;        // clustered: nearest/farthest geometry
     vk::Handle<VkPipeline> sliceBoundariesPipeline_;   // clustered: slice start depths
     vk::Handle<VkPipeline> cullingPipeline_;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "culling.h"
 #include "gpu_types.h"
@@ -15,6 +16,7 @@
 #include "render/tonemap_pass.h"
 #include "vk/buffer.h"
 #include "vk/check.h"
+#include "vk/command_buffer.h"
 #include "vk/context.h"
 #include "vk/descriptors.h"
 #include "vk/gpu_timer.h"
@@ -22,48 +24,33 @@
 
 namespace punctual::render {
 
+// Every GPU resource of the frame. The passes own what they write (depth, light grid, shadow
+// maps, tone-mapped pixels); the frame's shared inputs and the debug outputs live here.
 struct Renderer::Resources {
     SceneGpu scene;
     vk::Buffer frameUniform;
     vk::Buffer lights;
-    vk::Image depth;
-    vk::Image radiance;
-    vk::Handle<VkSampler> depthSampler;
-    LightGridBuffers grid;
     vk::Buffer objectLights;
     vk::Buffer lightStats;
-    vk::Buffer shadowDebug;    vk::Buffer cullLights;
-    vk::Buffer shadowViews;
-    ShadowMaps shadowMaps;
-    FrameBindings bindings;
-    DepthPrepass depthPrepass;
-    std::unique_ptr<LightCullingPass> cullingPass;  // tiled and clustered only
-    std::unique_ptr<ShadowPass> shadowPass;         // always: it also puts unused placeholders in their layout
-    ForwardPass forwardPass;
-    // Debug variants of the forward pass, each with its own command buffer; never timed.
-    struct DebugVariant : Renderer::DebugVariantBase {
-        std::unique_ptr<ForwardPass> pass;
-        const vk::Buffer* output = nullptr;  // cleared before the pass
-        VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
-    };
-    DebugVariant lightStatsVariant;     // with collectLightStats
-    DebugVariant shadowFactorsVariant;  // with collectShadowFactors
-    TonemapPass tonemapPass;
+    vk::Buffer shadowDebug;
+    vk::Image radiance;
+    // The passes in frame order; the typed pointers below point into this list.
+    std::vector<std::unique_ptr<Pass>> passes;
+    DepthPrepass* depth = nullptr;
+    LightCullingPass* culling = nullptr;
+    ShadowPass* shadows = nullptr;
+    TonemapPass* tonemap = nullptr;
+    // Debug variants of the forward pass, each recorded into its own command buffer after the
+    // passes before "forward"; never timed.
+    std::unique_ptr<ForwardPass> lightStatsPass;     // with collectLightStats
+    std::unique_ptr<ForwardPass> shadowFactorsPass;  // with collectShadowFactors
+    std::unique_ptr<FrameBindings> bindings;
     vk::Buffer readback;
     vk::GpuTimer timer;
-    VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
+    vk::CommandBuffer commandBuffer;
+    vk::CommandBuffer lightStatsCommands;
+    vk::CommandBuffer shadowFactorsCommands;
     vk::Handle<VkFence> fence;
-
-    static vk::Image makeImage(const vk::Context& context, VkFormat format, VkImageUsageFlags usage,
-                               const RenderSettings& settings, const char* name) {
-        vk::ImageDesc desc;
-        desc.format = format;
-        desc.width = settings.width;
-        desc.height = settings.height;
-        desc.usage = usage;
-        desc.debugName = name;
-        return vk::Image(context, desc);
-    }
 
     // A storage buffer holding `words`, or one word when the frame does not use it (a descriptor
     // cannot point at nothing).
@@ -76,8 +63,16 @@ struct Renderer::Resources {
         return buffer;
     }
 
+    // A buffer the debug variants write, `bytes` long when requested and 16 bytes otherwise.
+    static vk::Buffer debugOutput(const vk::Context& context, bool requested, VkDeviceSize bytes, const char* name) {
+        return vk::Buffer(context, requested ? bytes : 16,
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                              VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                          vk::MemoryUse::DeviceLocal, name);
+    }
+
     static ForwardVariant forwardVariant(const RenderSettings& settings, const LightGridLayout& grid, bool stats,
-                                         bool shadowFactors = false) {
+                                         bool shadowFactors) {
         ForwardVariant variant;
         variant.lightList = uint32_t(settings.method);
         variant.tileSize = grid.tileSize;
@@ -91,86 +86,92 @@ struct Renderer::Resources {
         return variant;
     }
 
+    template <typename P, typename... Args>
+    P* addPass(Args&&... args) {
+        passes.push_back(std::make_unique<P>(std::forward<Args>(args)...));
+        return static_cast<P*>(passes.back().get());
+    }
+
     Resources(vk::Context& context, const Scene& sceneData, const RenderSettings& settings,
               const FrameLights& frameLights, const PerObjectLightLists& perObject, const LightGridLayout& gridLayout,
-              const ShadowPlan& shadowPlan)
+              const ShadowPlan& shadowPlan, const glm::mat4& view)
         : scene(context, sceneData, perObject.counts),
           frameUniform(context, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload,
                        "frame"),
           // Sized to the lights this frame really uses; one slot when there are none.
           lights(context, std::max<size_t>(frameLights.packed.size(), 1) * sizeof(gpu::GpuPunctualLight),
                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "lights"),
-          depth(makeImage(context, DepthPrepass::kDepthFormat,
-                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                          settings, "depth")),
-          radiance(makeImage(context, ForwardPass::kRadianceFormat,
-                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, settings, "radiance")),
-          depthSampler(vk::createSampler(context.device(), VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE)),
-          grid(context, gridLayout, usesLightGrid(settings.method)),
           objectLights(storageWords(context, perObject.lights, "object lights")),
-          lightStats(context,
-                     settings.collectLightStats ? VkDeviceSize(settings.width) * settings.height * 16 : 16,
-                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                         VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                     vk::MemoryUse::DeviceLocal, "light stats"),
-          shadowDebug(context,
-                      settings.collectShadowFactors
-                          ? VkDeviceSize(settings.width) * settings.height *
-                                (PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS + PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS) * 4
-                          : 16,
-                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                          VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                      vk::MemoryUse::DeviceLocal, "shadow debug"),
-          cullLights(context, std::max<size_t>(frameLights.packed.size(), 1) * sizeof(gpu::CullLight),
-                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "cull lights"),
-          shadowViews(context, std::max<size_t>(shadowPlan.views.size(), 1) * sizeof(gpu::GpuShadowView),
-                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "shadow views"),
-          shadowMaps(context, shadowPlan, settings.shadows),
-          bindings(context, scene,
-                   FrameBindingResources{frameUniform, lights, depth.view(), depthSampler, grid.grid, grid.depthRange,
-                                         objectLights, lightStats, cullLights, shadowViews, shadowMaps.spots().view(),
-                                         shadowMaps.pointCubes().view(), shadowMaps.pointSlices().view(),
-                                         shadowMaps.sampler(), shadowDebug}),
-          depthPrepass(context, bindings, depth),
-          forwardPass(context, bindings, radiance, depth, forwardVariant(settings, gridLayout, false)),
-          tonemapPass(context, radiance, settings.exposure),
+          lightStats(debugOutput(context, settings.collectLightStats, VkDeviceSize(settings.width) * settings.height * 16,
+                                 "light stats")),
+          shadowDebug(debugOutput(context, settings.collectShadowFactors,
+                                  VkDeviceSize(settings.width) * settings.height *
+                                      (PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS + PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS) * 4,
+                                  "shadow debug")),
           readback(context, VkDeviceSize(settings.width) * settings.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                    vk::MemoryUse::Readback, "readback"),
           timer(context, 16) {
-        if (usesLightGrid(settings.method)) {
-            cullingPass = std::make_unique<LightCullingPass>(context, bindings, gridLayout, settings.width, settings.height);
+        vk::ImageDesc radianceDesc;
+        radianceDesc.format = ForwardPass::kRadianceFormat;
+        radianceDesc.width = settings.width;
+        radianceDesc.height = settings.height;
+        radianceDesc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+        radianceDesc.debugName = "radiance";
+        radiance = vk::Image(context, radianceDesc);
+        if (!frameLights.packed.empty()) {
+            lights.write(frameLights.packed.data(), frameLights.packed.size() * sizeof(gpu::GpuPunctualLight));
         }
+        // The culling shapes in view space, once per frame (the same function the culling tests
+        // of the CPU reference use).
+        std::vector<gpu::CullLight> cullLights;
+        for (const gpu::GpuPunctualLight& light : frameLights.packed) cullLights.push_back(gpu::makeCullLight(light, view));
+
+        // The frame, in order.
+        depth = addPass<DepthPrepass>(context, settings.width, settings.height);
+        culling = addPass<LightCullingPass>(context, gridLayout, usesLightGrid(settings.method), settings.width,
+                                            settings.height, cullLights);
+        shadows = addPass<ShadowPass>(context, shadowPlan, settings.shadows);
+        addPass<ForwardPass>(context, radiance, depth->depth(), forwardVariant(settings, gridLayout, false, false));
+        tonemap = addPass<TonemapPass>(context, radiance, settings.exposure);
         if (settings.collectLightStats) {
-            lightStatsVariant.pass = std::make_unique<ForwardPass>(context, bindings, radiance, depth,
-                                                                   forwardVariant(settings, gridLayout, true));
-            lightStatsVariant.output = &lightStats;
+            lightStatsPass = std::make_unique<ForwardPass>(context, radiance, depth->depth(),
+                                                           forwardVariant(settings, gridLayout, true, false), &lightStats);
         }
         if (settings.collectShadowFactors) {
-            shadowFactorsVariant.pass = std::make_unique<ForwardPass>(context, bindings, radiance, depth,
-                                                                      forwardVariant(settings, gridLayout, false, true));
-            shadowFactorsVariant.output = &shadowDebug;
+            shadowFactorsPass = std::make_unique<ForwardPass>(
+                context, radiance, depth->depth(), forwardVariant(settings, gridLayout, false, true), &shadowDebug);
         }
-        shadowPass = std::make_unique<ShadowPass>(context, bindings, shadowMaps, shadowPlan, settings.shadows);
+
+        // Set 0: the frame's own buffers, then what each pass owns.
+        BindingTable table;
+        table.addBuffer(PUNCTUAL_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kAllStages, frameUniform);
+        table.addBuffer(PUNCTUAL_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages, lights);
+        table.addBuffer(PUNCTUAL_BINDING_OBJECTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kRasterStages, scene.objectBuffer());
+        table.addBuffer(PUNCTUAL_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
+                        scene.materialBuffer());
+        table.addBuffer(PUNCTUAL_BINDING_OBJECT_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
+                        objectLights);
+        table.addBuffer(PUNCTUAL_BINDING_LIGHT_STATS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
+                        lightStats);
+        table.addBuffer(PUNCTUAL_BINDING_SHADOW_DEBUG, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
+                        shadowDebug);
+        for (const auto& pass : passes) pass->addBindings(table);
+        bindings = std::make_unique<FrameBindings>(context, scene, table);
+        for (const auto& pass : passes) pass->createPipelines(context, *bindings);
+        for (ForwardPass* variant : {lightStatsPass.get(), shadowFactorsPass.get()}) {
+            if (variant) variant->createPipelines(context, *bindings);
+        }
     }
 };
 
-namespace {
-
-void validateSettings(const RenderSettings& settings) {
-    constexpr uint32_t kMaxDimension = 8192;
-    if (settings.width == 0 || settings.height == 0 || settings.width > kMaxDimension ||
-        settings.height > kMaxDimension) {
-        throw Error("--size", "width and height must be between 1 and " + std::to_string(kMaxDimension));
+double PassTimings::of(std::string_view name) const {
+    for (const auto& [passName, ms] : passes) {
+        if (passName == name) return ms;
     }
-    if (!(settings.exposure > 0.0f) || !std::isfinite(settings.exposure)) {
-        throw Error("--exposure", "must be a finite number > 0");
-    }
-    if (settings.tileSize < 4 || settings.tileSize > 128) throw Error("--tile-size", "must be from 4 to 128 pixels");
-    if (settings.clusterSlices < 1 || settings.clusterSlices > PUNCTUAL_MAX_CLUSTER_SLICES) {
-        throw Error("--slices", "must be from 1 to " + std::to_string(PUNCTUAL_MAX_CLUSTER_SLICES));
-    }
+    return 0.0;
 }
+
+namespace {
 
 gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, const glm::mat4& view,
                         const glm::mat4& projection, const FrameLights& lights, const LightGridLayout& grid,
@@ -210,8 +211,7 @@ double median(std::vector<double> values) {
 
 Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSettings& settings)
     : context_(context), scene_(scene), settings_(settings) {
-    validateSettings(settings);
-    validateShadowSettings(settings.shadows);
+    validateRenderSettings(settings);
     view_ = scene.camera.view;
     projection_ = scene.camera.projection(float(settings.width) / float(settings.height));
     lights_ = setupFrameLights(scene, view_, projection_);
@@ -219,138 +219,109 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     if (settings.method == LightListMethod::PerObject) perObjectLists_ = buildPerObjectLightLists(scene, lights_);
     const uint32_t slices = settings.method == LightListMethod::Clustered ? settings.clusterSlices : 1u;
     gridLayout_ = LightGridLayout::forFrame(settings.width, settings.height, settings.tileSize, slices);
-    resources_ = std::make_unique<Resources>(context, scene, settings, lights_, perObjectLists_, gridLayout_, shadowPlan_);
-    if (!shadowPlan_.views.empty()) {
-        std::vector<gpu::GpuShadowView> views;
-        for (const ShadowView& view : shadowPlan_.views) views.push_back(view.gpu);
-        resources_->shadowViews.write(views.data(), views.size() * sizeof(gpu::GpuShadowView));
-    }
-
+    resources_ =
+        std::make_unique<Resources>(context, scene, settings, lights_, perObjectLists_, gridLayout_, shadowPlan_, view_);
+    Resources& r = *resources_;
     const gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_, gridLayout_, shadowPlan_);
-    resources_->frameUniform.write(&frame, sizeof(frame));
-    if (!lights_.packed.empty()) {
-        resources_->lights.write(lights_.packed.data(), lights_.packed.size() * sizeof(gpu::GpuPunctualLight));
-        // The culling shapes in view space, once per frame (the same function the culling tests
-        // of the CPU reference use).
-        std::vector<gpu::CullLight> cullLights;
-        for (const gpu::GpuPunctualLight& light : lights_.packed) cullLights.push_back(gpu::makeCullLight(light, view_));
-        resources_->cullLights.write(cullLights.data(), cullLights.size() * sizeof(gpu::CullLight));
-    }
+    r.frameUniform.write(&frame, sizeof(frame));
 
-    VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocInfo.commandPool = context.commandPool();
-    allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocInfo.commandBufferCount = 1;
-    vk::check(vkAllocateCommandBuffers(context.device(), &allocInfo, &resources_->commandBuffer),
-              "vkAllocateCommandBuffers");
-    for (Resources::DebugVariant* variant : {&resources_->lightStatsVariant, &resources_->shadowFactorsVariant}) {
-        if (!variant->pass) continue;
-        vk::check(vkAllocateCommandBuffers(context.device(), &allocInfo, &variant->commandBuffer),
-                  "vkAllocateCommandBuffers");
-    }
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence fence = VK_NULL_HANDLE;
     vk::check(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence), "vkCreateFence");
-    resources_->fence = vk::Handle<VkFence>(context.device(), fence, vkDestroyFence);
-    recordFrame(resources_->commandBuffer, nullptr);
-    for (Resources::DebugVariant* variant : {&resources_->lightStatsVariant, &resources_->shadowFactorsVariant}) {
-        if (variant->pass) recordFrame(variant->commandBuffer, variant);
+    r.fence = vk::Handle<VkFence>(context.device(), fence, vkDestroyFence);
+
+    std::vector<const Pass*> frameOrder;
+    for (const auto& pass : r.passes) frameOrder.push_back(pass.get());
+    r.commandBuffer = vk::CommandBuffer(context.device(), context.commandPool());
+    recordFrame(r.commandBuffer, frameOrder, /*timed=*/true);
+    // A debug frame: the passes before the forward pass, then the debug variant in its place (no
+    // tone mapping: the variants' outputs are buffers the caller reads back).
+    auto debugFrame = [&](const ForwardPass& variant) {
+        std::vector<const Pass*> passes;
+        for (const Pass* pass : frameOrder) {
+            if (std::string_view(pass->name()) == variant.name()) break;
+            passes.push_back(pass);
+        }
+        passes.push_back(&variant);
+        return passes;
+    };
+    if (r.lightStatsPass) {
+        r.lightStatsCommands = vk::CommandBuffer(context.device(), context.commandPool());
+        recordFrame(r.lightStatsCommands, debugFrame(*r.lightStatsPass), /*timed=*/false);
+    }
+    if (r.shadowFactorsPass) {
+        r.shadowFactorsCommands = vk::CommandBuffer(context.device(), context.commandPool());
+        recordFrame(r.shadowFactorsCommands, debugFrame(*r.shadowFactorsPass), /*timed=*/false);
     }
 }
 
 Renderer::~Renderer() {
-    if (resources_) {
-        vkDeviceWaitIdle(context_.device());
-        vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &resources_->commandBuffer);
-        for (Resources::DebugVariant* variant : {&resources_->lightStatsVariant, &resources_->shadowFactorsVariant}) {
-            if (variant->commandBuffer) vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &variant->commandBuffer);
-        }
-    }
+    // The command buffers may still be in flight after an error; nothing is freed before the
+    // device is idle.
+    if (resources_) vkDeviceWaitIdle(context_.device());
 }
 
-// One frame: depth prepass, light culling (tiled, clustered), forward, tone mapping, readback.
-// The statistics variant swaps in the forward shader that also writes per-pixel light counts
-// and skips tone mapping; it is never timed.
-void Renderer::recordFrame(VkCommandBuffer cmd, const DebugVariantBase* debugVariant) {
-    const auto* debug = static_cast<const Resources::DebugVariant*>(debugVariant);
-    const bool withStats = debug != nullptr;
+std::vector<std::string> Renderer::passNames() const {
+    std::vector<std::string> names;
+    for (const auto& pass : resources_->passes) names.emplace_back(pass->name());
+    return names;
+}
+
+void Renderer::recordFrame(VkCommandBuffer cmd, const std::vector<const Pass*>& passes, bool timed) {
     Resources& r = *resources_;
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     vk::check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
-    if (!withStats) r.timer.reset(cmd);
-    auto timed = [&](const char* name, auto&& work) {
-        if (withStats) return work();
-        const uint32_t scope = r.timer.begin(cmd, name);
-        work();
-        r.timer.end(cmd, scope);
-    };
-    const uint32_t total = withStats ? 0 : r.timer.begin(cmd, "total");
-
-    timed("depth", [&] { r.depthPrepass.record(cmd, r.scene, r.bindings); });
-    // Depth writes of the prepass must land before the culling kernel samples them and the
-    // forward pass's EQUAL test reads them.
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
-                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
-    if (r.cullingPass) timed("culling", [&] { r.cullingPass->record(cmd, r.bindings, r.grid); });
-    // With no shadowed light the stage only moves the placeholder maps into their layout: not
-    // a pass worth timing ("shadows" stays 0, as for a pass not run).
-    if (shadowPlan_.views.empty()) {
-        r.shadowPass->record(cmd, r.scene, r.bindings);
-    } else {
-        timed("shadows", [&] { r.shadowPass->record(cmd, r.scene, r.bindings); });
+    const FrameContext frame{cmd, r.scene, *r.bindings};
+    if (timed) r.timer.reset(cmd);
+    const uint32_t total = timed ? r.timer.begin(cmd, "total") : 0;
+    for (const Pass* pass : passes) {
+        if (timed && pass->timed()) {
+            const uint32_t scope = r.timer.begin(cmd, pass->name());
+            pass->record(frame);
+            r.timer.end(cmd, scope);
+        } else {
+            pass->record(frame);
+        }
     }
-
-    if (debug) {
-        vkCmdFillBuffer(cmd, debug->output->handle(), 0, VK_WHOLE_SIZE, 0u);
+    if (timed) {
+        r.timer.end(cmd, total);
+        // The tone-mapped pixels to the host (the tone-mapping pass made them visible to transfers).
+        const VkBufferCopy copy{0, 0, r.readback.size()};
+        vkCmdCopyBuffer(cmd, r.tonemap->output().handle(), r.readback.handle(), 1, &copy);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
-        debug->pass->record(cmd, r.scene, r.bindings);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-        vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-        return;
+                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
     }
-
-    timed("forward", [&] { r.forwardPass.record(cmd, r.scene, r.bindings); });
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-    timed("tonemap", [&] { r.tonemapPass.record(cmd); });
-    r.timer.end(cmd, total);
-
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    const VkBufferCopy copy{0, 0, r.readback.size()};
-    vkCmdCopyBuffer(cmd, r.tonemapPass.output().handle(), r.readback.handle(), 1, &copy);
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                      VK_ACCESS_HOST_READ_BIT);
     vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
 }
 
 FrameResult Renderer::render(uint32_t frames, uint32_t warmup) {
-    if (frames == 0) throw Error("--frames", "must be at least 1");
+    PUNCTUAL_CHECK(frames >= 1, "render() needs at least one timed frame");
     Resources& r = *resources_;
     FrameResult result;
     for (uint32_t i = 0; i < warmup; ++i) submitAndWait(r.commandBuffer);
     for (uint32_t i = 0; i < frames; ++i) {
         submitAndWait(r.commandBuffer);
-        const auto ms = r.timer.resolveMilliseconds();
-        auto get = [&](const char* name) {
+        const std::map<std::string, double> ms = r.timer.resolveMilliseconds();
+        auto get = [&](const std::string& name) {
             const auto it = ms.find(name);
             return it == ms.end() ? 0.0 : it->second;
         };
-        result.framesMs.push_back({get("depth"), get("culling"), get("shadows"), get("forward"), get("tonemap"),
-                                   get("total")});
+        PassTimings timings;
+        for (const std::string& name : passNames()) timings.passes.emplace_back(name, get(name));
+        timings.total = get("total");
+        result.framesMs.push_back(std::move(timings));
     }
-    auto medianOf = [&](double PassTimings::*field) {
+    // Per pass, the median over the timed frames.
+    auto medianOf = [&](auto&& value) {
         std::vector<double> values;
-        for (const PassTimings& t : result.framesMs) values.push_back(t.*field);
+        for (const PassTimings& t : result.framesMs) values.push_back(value(t));
         return median(values);
     };
-    result.medianMs = {medianOf(&PassTimings::depth),   medianOf(&PassTimings::culling),
-                       medianOf(&PassTimings::shadows), medianOf(&PassTimings::forward),
-                       medianOf(&PassTimings::tonemap), medianOf(&PassTimings::total)};
+    for (size_t i = 0; i < result.framesMs.front().passes.size(); ++i) {
+        result.medianMs.passes.emplace_back(result.framesMs.front().passes[i].first,
+                                            medianOf([&](const PassTimings& t) { return t.passes[i].second; }));
+    }
+    result.medianMs.total = medianOf([](const PassTimings& t) { return t.total; });
 
     r.readback.invalidate();
     result.image.width = settings_.width;
@@ -361,16 +332,7 @@ FrameResult Renderer::render(uint32_t frames, uint32_t warmup) {
 }
 
 void Renderer::submitAndWait(VkCommandBuffer cmd) {
-    Resources& r = *resources_;
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    VkFence fence = r.fence;
-    vk::check(vkResetFences(context_.device(), 1, &fence), "vkResetFences");
-    vk::check(vkQueueSubmit(context_.queue(), 1, &submit, fence), "vkQueueSubmit");
-    // A generous timeout turns a hung GPU into an error instead of a hung process.
-    constexpr uint64_t kTimeoutNs = 600ull * 1000 * 1000 * 1000;
-    vk::check(vkWaitForFences(context_.device(), 1, &fence, VK_TRUE, kTimeoutNs), "vkWaitForFences");
+    vk::submitAndWait(context_.device(), context_.queue(), cmd, resources_->fence);
 }
 
 std::vector<uint8_t> Renderer::readBuffer(const vk::Buffer& buffer) {
@@ -388,22 +350,22 @@ std::vector<uint8_t> Renderer::readBuffer(const vk::Buffer& buffer) {
 
 std::vector<uint32_t> Renderer::readLightGrid() {
     if (!usesLightGrid(settings_.method)) return {};
-    const std::vector<uint8_t> bytes = readBuffer(resources_->grid.grid);
+    const std::vector<uint8_t> bytes = readBuffer(resources_->culling->grid());
     std::vector<uint32_t> words(bytes.size() / sizeof(uint32_t));
     std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
     return words;
 }
 
 gpu::GpuDepthRange Renderer::readDepthRange() {
-    const std::vector<uint8_t> bytes = readBuffer(resources_->grid.depthRange);
+    const std::vector<uint8_t> bytes = readBuffer(resources_->culling->depthRange());
     gpu::GpuDepthRange range;
     std::memcpy(&range, bytes.data(), sizeof(range));
     return range;
 }
 
 LightStatsImage Renderer::readLightStats() {
-    if (!settings_.collectLightStats) throw Error("renderer", "light statistics were not requested");
-    submitAndWait(resources_->lightStatsVariant.commandBuffer);
+    PUNCTUAL_CHECK(settings_.collectLightStats, "light statistics were not requested (collectLightStats)");
+    submitAndWait(resources_->lightStatsCommands);
     const std::vector<uint8_t> bytes = readBuffer(resources_->lightStats);
     const size_t pixels = size_t(settings_.width) * settings_.height;
     std::vector<uint32_t> words(pixels * 4);
@@ -428,8 +390,8 @@ LightStatsImage Renderer::readLightStats() {
 }
 
 ShadowFactorImage Renderer::readShadowFactors() {
-    if (!settings_.collectShadowFactors) throw Error("renderer", "shadow factors were not requested");
-    submitAndWait(resources_->shadowFactorsVariant.commandBuffer);
+    PUNCTUAL_CHECK(settings_.collectShadowFactors, "shadow factors were not requested (collectShadowFactors)");
+    submitAndWait(resources_->shadowFactorsCommands);
     const std::vector<uint8_t> bytes = readBuffer(resources_->shadowDebug);
     const size_t pixels = size_t(settings_.width) * settings_.height;
     ShadowFactorImage image;
@@ -456,21 +418,21 @@ ShadowFactorImage Renderer::readShadowFactors() {
     return image;
 }
 
-uint64_t Renderer::shadowMemoryBytes() const { return resources_->shadowMaps.allocatedBytes(); }
+uint64_t Renderer::shadowMemoryBytes() const { return resources_->shadows->memoryBytes(); }
 
 std::vector<float> Renderer::readDepth() {
-    Resources& r = *resources_;
+    const vk::Image& depthImage = resources_->depth->depth();
     const VkDeviceSize bytes = VkDeviceSize(settings_.width) * settings_.height * sizeof(float);
     vk::Buffer staging(context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback, "depth readback");
     context_.submitAndWait([&](VkCommandBuffer cmd) {
-        vk::imageBarrier(cmd, r.depth, DepthPrepass::kFinalLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+        vk::imageBarrier(cmd, depthImage, DepthPrepass::kFinalLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                          VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
         VkBufferImageCopy copy{};
         copy.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
         copy.imageExtent = {settings_.width, settings_.height, 1};
-        vkCmdCopyImageToBuffer(cmd, r.depth.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1, &copy);
-        vk::imageBarrier(cmd, r.depth, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, DepthPrepass::kFinalLayout,
+        vkCmdCopyImageToBuffer(cmd, depthImage.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1, &copy);
+        vk::imageBarrier(cmd, depthImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, DepthPrepass::kFinalLayout,
                          VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT, 0);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);

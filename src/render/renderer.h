@@ -1,11 +1,13 @@
 #pragma once
-// One frame, end to end: light setup, depth prepass, (culling, shadows: later stages), forward
-// pass, tone mapping, readback. Owns every GPU resource of the frame, sized to the scene and the
-// output: nothing is allocated for lights, objects or textures the scene does not have.
+// One frame, end to end: light setup on the CPU, then the passes in frame order (depth prepass,
+// light culling, shadow stage, forward pass, tone mapping; see pass.h) and the readback. Owns every
+// GPU resource of the frame, sized to the scene and the output: nothing is allocated for lights,
+// objects or textures the scene does not have.
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -17,6 +19,7 @@
 #include "metrics/culling_stats.h"
 #include "render/light_culling_pass.h"
 #include "render/light_list_method.h"
+#include "render/render_settings.h"
 #include "scene/scene.h"
 
 #include <vulkan/vulkan.h>
@@ -27,19 +30,6 @@ class Context;
 }
 
 namespace punctual::render {
-
-struct RenderSettings {
-    uint32_t width = 1280;
-    uint32_t height = 720;
-    float exposure = 1.0f;  // linear multiplier before tone mapping
-    LightListMethod method = LightListMethod::Tiled;
-    uint32_t tileSize = 16;       // pixels, tiled and clustered
-    uint32_t clusterSlices = 16;  // depth slices, clustered only
-    bool collectLightStats = false;  // allocate what readLightStats() needs
-    bool collectShadowFactors = false;  // allocate what readShadowFactors() needs
-    ShadowSettings shadows;
-};
-
 
 // Per pixel, from the forward shader's validation variant (rows top to bottom): the surface it
 // shaded and each shadowed light's shadow factor there.
@@ -53,14 +43,14 @@ struct ShadowFactorImage {
     std::vector<uint8_t> factors;      // [pixel * slots + slot]: factor x 254, 255 = light does not reach
 };
 
-// GPU milliseconds per pass, by the names the stats JSON uses. A pass not run is 0.
+// GPU milliseconds per pass, in frame order, under the passes' own names (Pass::name(): "depth",
+// "culling", "shadows", "forward", "tonemap"). A pass without work this frame reports 0.
 struct PassTimings {
-    double depth = 0.0;
-    double culling = 0.0;
-    double shadows = 0.0;
-    double forward = 0.0;
-    double tonemap = 0.0;
+    std::vector<std::pair<std::string, double>> passes;
     double total = 0.0;  // first to last timestamp of the frame
+
+    // The time of the pass named `name`; 0 for a name not in the frame.
+    double of(std::string_view name) const;
 };
 
 struct FrameResult {
@@ -101,13 +91,14 @@ public:
     const glm::mat4& projection() const { return projection_; }
     const RenderSettings& settings() const { return settings_; }
 
+    // The names of the frame's passes, in frame order (the keys of PassTimings).
+    std::vector<std::string> passNames() const;
+
 private:
     struct Resources;
-    // A debug variant of the forward pass (statistics or shadow factors); defined in the .cpp.
-    struct DebugVariantBase {};
-    // `debugVariant`: null for the timed frame, else the debug variant to record instead of the
-    // timed forward pass and tone mapping.
-    void recordFrame(VkCommandBuffer cmd, const DebugVariantBase* debugVariant);
+    // Records `passes` in order into `cmd`. `timed`: the frame render() submits, with a timer scope
+    // per pass and the readback of the tone-mapped image; otherwise a debug frame (never timed).
+    void recordFrame(VkCommandBuffer cmd, const std::vector<const Pass*>& passes, bool timed);
     void submitAndWait(VkCommandBuffer cmd);
     std::vector<uint8_t> readBuffer(const vk::Buffer& buffer);
 

@@ -46,12 +46,17 @@ TonemapPass::TonemapPass(const vk::Context& context, const vk::Image& radiance, 
     pipeline_ = vk::createComputePipeline(device, pipelineLayout_, compute_tonemap_comp_spv);
 }
 
-void TonemapPass::record(VkCommandBuffer cmd) const {
+void TonemapPass::record(const FrameContext& frame) const {
+    const VkCommandBuffer cmd = frame.cmd;
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &descriptors_.set, 0, nullptr);
     const ToneMapConstants constants{width_, height_, exposure_};
     vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
     vkCmdDispatch(cmd, (width_ + kGroupSize - 1) / kGroupSize, (height_ + kGroupSize - 1) / kGroupSize, 1);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
 }
 
 }  // namespace punctual::render

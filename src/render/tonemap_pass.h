@@ -2,22 +2,28 @@
 // Tone mapping (compute): radiance -> exposure -> ACES -> sRGB -> packed RGBA8 words in a buffer.
 #include <vulkan/vulkan.h>
 
+#include "render/pass.h"
 #include "vk/buffer.h"
 #include "vk/descriptors.h"
 #include "vk/handle.h"
 
 namespace punctual::vk {
-class Context;
 class Image;
 }  // namespace punctual::vk
 
 namespace punctual::render {
 
-class TonemapPass {
+class TonemapPass final : public Pass {
 public:
-    // `radiance` must be in SHADER_READ_ONLY_OPTIMAL when the pass runs.
+    // `radiance` must be in SHADER_READ_ONLY_OPTIMAL when the pass runs. The pass has its own
+    // descriptor set (the radiance and its output), not set 0.
     TonemapPass(const vk::Context& context, const vk::Image& radiance, float exposure);
-    void record(VkCommandBuffer cmd) const;
+
+    const char* name() const override { return "tonemap"; }
+    // Waits for the forward pass's colour writes, then tone maps; its output is visible to
+    // transfers (the renderer's readback) when it ends.
+    void record(const FrameContext& frame) const override;
+    uint64_t memoryBytes() const override { return output_.size(); }
     // The packed pixels (width * height words), written by record().
     const vk::Buffer& output() const { return output_; }
 

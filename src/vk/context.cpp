@@ -222,7 +222,9 @@ Context::Context(const ContextOptions& options)
         VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
         poolInfo.queueFamilyIndex = queueFamily_;
-        check(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_), "vkCreateCommandPool");
+        VkCommandPool pool = VK_NULL_HANDLE;
+        check(vkCreateCommandPool(device_, &poolInfo, nullptr, &pool), "vkCreateCommandPool");
+        commandPool_ = Handle<VkCommandPool>(device_, pool, vkDestroyCommandPool);
     } catch (...) {
         release();
         throw;
@@ -234,7 +236,7 @@ Context::~Context() { release(); }
 void Context::release() {
     if (device_) {
         vkDeviceWaitIdle(device_);
-        if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);
+        commandPool_.reset();
         vkDestroyDevice(device_, nullptr);
     }
     if (messenger_) {
@@ -244,7 +246,6 @@ void Context::release() {
     }
     if (instance_) vkDestroyInstance(instance_, nullptr);
     device_ = VK_NULL_HANDLE;
-    commandPool_ = VK_NULL_HANDLE;
     messenger_ = VK_NULL_HANDLE;
     instance_ = VK_NULL_HANDLE;
 }
@@ -258,46 +259,26 @@ uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags requir
     throw Error("vulkan", "no memory type with the required properties");
 }
 
-VkCommandBuffer Context::beginOneShot() {
-    VkCommandBufferAllocateInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    info.commandPool = commandPool_;
-    info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    info.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    check(vkAllocateCommandBuffers(device_, &info, &cmd), "vkAllocateCommandBuffers");
+CommandBuffer Context::beginOneShot() {
+    CommandBuffer cmd(device_, commandPool_);
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    const VkResult result = vkBeginCommandBuffer(cmd, &begin);
-    if (result != VK_SUCCESS) {
-        vkFreeCommandBuffers(device_, commandPool_, 1, &cmd);
-        check(result, "vkBeginCommandBuffer");
-    }
+    check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
     return cmd;
 }
 
-void Context::endOneShot(VkCommandBuffer cmd) {
-    VkFence fence = VK_NULL_HANDLE;
-    auto cleanup = [&] {
-        if (fence) vkDestroyFence(device_, fence, nullptr);
-        vkFreeCommandBuffers(device_, commandPool_, 1, &cmd);
-    };
+void Context::endOneShot(const CommandBuffer& cmd) {
+    check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence rawFence = VK_NULL_HANDLE;
+    check(vkCreateFence(device_, &fenceInfo, nullptr, &rawFence), "vkCreateFence");
+    const Handle<VkFence> fence(device_, rawFence, vkDestroyFence);
     try {
-        check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-        VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        check(vkCreateFence(device_, &fenceInfo, nullptr, &fence), "vkCreateFence");
-        VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        submit.commandBufferCount = 1;
-        submit.pCommandBuffers = &cmd;
-        check(vkQueueSubmit(queue_, 1, &submit, fence), "vkQueueSubmit");
-        // A generous timeout turns a GPU hang into an error instead of a hung process.
-        constexpr uint64_t kTimeoutNs = 600ull * 1000 * 1000 * 1000;
-        check(vkWaitForFences(device_, 1, &fence, VK_TRUE, kTimeoutNs), "vkWaitForFences");
+        vk::submitAndWait(device_, queue_, cmd, fence);
     } catch (...) {
-        vkDeviceWaitIdle(device_);
-        cleanup();
+        vkDeviceWaitIdle(device_);  // the command buffer and fence are freed on the way out
         throw;
     }
-    cleanup();
 }
 
 size_t Context::validationMessageCount() const {

@@ -10,6 +10,9 @@
 
 #include <vulkan/vulkan.h>
 
+#include "vk/command_buffer.h"
+#include "vk/handle.h"
+
 namespace punctual::vk {
 
 struct ContextOptions {
@@ -52,13 +55,8 @@ public:
     // Allocates a primary command buffer, lets `record` fill it, submits and waits.
     template <typename Record>
     void submitAndWait(Record&& record) {
-        VkCommandBuffer cmd = beginOneShot();
-        try {
-            record(cmd);
-        } catch (...) {
-            vkFreeCommandBuffers(device_, commandPool_, 1, &cmd);
-            throw;
-        }
+        const CommandBuffer cmd = beginOneShot();
+        record(cmd.get());
         endOneShot(cmd);
     }
 
@@ -71,8 +69,8 @@ public:
 
 private:
     void release();
-    VkCommandBuffer beginOneShot();
-    void endOneShot(VkCommandBuffer cmd);
+    CommandBuffer beginOneShot();
+    void endOneShot(const CommandBuffer& cmd);
     static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
         VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
         const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
@@ -85,7 +83,7 @@ private:
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queueFamily_ = 0;
-    VkCommandPool commandPool_ = VK_NULL_HANDLE;
+    Handle<VkCommandPool> commandPool_;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceFeatures enabledFeatures_{};
     uint64_t timestampMask_ = ~0ull;

@@ -32,7 +32,8 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     std::getline(csv, header);
     EXPECT_EQ(header,
               "config,series,method,spot,point,shadows,shadow_res,shadow_filter,point_layout,frames,depth_ms,culling_ms,"
-              "shadows_ms,forward_ms,total_ms,forward_spread_ms,total_spread_ms,tested_per_pixel,affecting_per_pixel,"
+              "shadows_ms,forward_ms,tonemap_ms,total_ms,depth_spread_ms,culling_spread_ms,shadows_spread_ms,"
+              "forward_spread_ms,tonemap_spread_ms,total_spread_ms,tested_per_pixel,affecting_per_pixel,"
               "efficiency,missed_energy,image_error,pixels_off,shadow_misclassified,shadow_false_shadow,shadow_false_lit");
     const size_t columns = size_t(std::count(header.begin(), header.end(), ',')) + 1;
     size_t rows = 0;
@@ -55,6 +56,15 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     const nlohmann::json json = nlohmann::json::parse(readText(dir + "/results.json"));
     EXPECT_EQ(json["configurations"].size(), rows);
     EXPECT_TRUE(json["quick"].get<bool>());
+    // The names the chart scripts read instead of lists of their own: every pass has its columns.
+    EXPECT_EQ(json["passes"], nlohmann::json({"depth", "culling", "shadows", "forward", "tonemap"}));
+    EXPECT_EQ(json["methods"], nlohmann::json({"brute", "per-object", "tiled", "clustered"}));
+    EXPECT_EQ(json["shadow_filters"], nlohmann::json({"hw", "tent3", "tent5", "tent7", "disk"}));
+    EXPECT_EQ(json["point_layouts"], nlohmann::json({"cube", "slices"}));
+    for (const auto& pass : json["passes"]) {
+        EXPECT_NE(header.find(pass.get<std::string>() + "_ms,"), std::string::npos) << pass;
+        EXPECT_NE(header.find(pass.get<std::string>() + "_spread_ms,"), std::string::npos) << pass;
+    }
     EXPECT_TRUE(std::filesystem::exists(dir + "/images/heatmap-tiled.png"));
 
     // The failure study: every known failure measured against its parameter.

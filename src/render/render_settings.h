@@ -1,0 +1,34 @@
+#pragma once
+// What a frame is rendered with, and the one place that checks it: the command line parses
+// values, then hands them to validateRenderSettings, which the renderer calls again for callers
+// that build settings in code.
+#include <cstdint>
+
+#include "lights/shadow_setup.h"
+#include "render/light_list_method.h"
+
+namespace punctual::render {
+
+// Limits of the settings (the error messages name them).
+inline constexpr uint32_t kMaxImageSide = 8192;
+inline constexpr uint32_t kMinTileSize = 4;
+inline constexpr uint32_t kMaxTileSize = 128;
+
+struct RenderSettings {
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    float exposure = 1.0f;  // linear multiplier before tone mapping
+    LightListMethod method = LightListMethod::Tiled;
+    uint32_t tileSize = 16;       // pixels, tiled and clustered
+    uint32_t clusterSlices = 16;  // depth slices, clustered only
+    bool collectLightStats = false;  // allocate what readLightStats() needs
+    bool collectShadowFactors = false;  // allocate what readShadowFactors() needs
+    ShadowSettings shadows;
+};
+
+
+// Throws Error naming the option (--size, --exposure, --tile-size, --slices, the shadow options)
+// for a setting out of range.
+void validateRenderSettings(const RenderSettings& settings);
+
+}  // namespace punctual::render
