@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
+#include "core/check.h"
 #include "gpu_test_support.h"
 #include "lights/light_setup.h"
 #include "render/renderer.h"
@@ -38,6 +41,33 @@ TEST(RenderDefaultScene, IsLitDeterministicAndValidationClean) {
     EXPECT_EQ(first.lights().pointCount, 32u);
     EXPECT_GT(a.medianMs.of("forward"), 0.0);
     EXPECT_GE(a.medianMs.total, a.medianMs.of("depth") + a.medianMs.of("forward"));
+    testing::expectNoValidationMessages(*context);
+}
+
+// Every pass of the frame is timed under its own name, in frame order, and a pass with no work
+// (culling under brute force) reports 0. Asking for a debug output the settings did not request
+// is a caller's bug: an internal error, not a user error.
+TEST(RenderDefaultScene, TimesEveryPassByNameAndRejectsUnrequestedDebugOutputs) {
+    auto context = testing::makeValidatedContext();
+    const Scene scene = makeDefaultScene();
+    render::RenderSettings settings = smallSettings();
+    settings.method = render::LightListMethod::Brute;
+    render::Renderer renderer(*context, scene, settings);
+    const render::FrameResult result = renderer.render(1);
+    const std::vector<std::string> names = {"depth", "culling", "shadows", "forward", "tonemap"};
+    EXPECT_EQ(renderer.passNames(), names);
+    ASSERT_EQ(result.medianMs.passes.size(), names.size());
+    double sum = 0.0;
+    for (size_t i = 0; i < names.size(); ++i) {
+        EXPECT_EQ(result.medianMs.passes[i].first, names[i]);
+        sum += result.medianMs.passes[i].second;
+    }
+    EXPECT_EQ(result.medianMs.of("culling"), 0.0);  // brute force culls nothing
+    EXPECT_GT(result.medianMs.of("shadows"), 0.0);
+    EXPECT_EQ(result.medianMs.of("no such pass"), 0.0);
+    EXPECT_GE(result.medianMs.total, sum * 0.999);  // the passes lie inside the frame
+    EXPECT_THROW(renderer.readLightStats(), InternalError);
+    EXPECT_THROW(renderer.readShadowFactors(), InternalError);
     testing::expectNoValidationMessages(*context);
 }
 
