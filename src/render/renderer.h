@@ -15,6 +15,7 @@
 #include "lights/per_object_lights.h"
 #include "lights/shadow_setup.h"
 #include "metrics/culling_stats.h"
+#include "metrics/shadow_factor_image.h"
 #include "render/light_culling_pass.h"
 #include "render/light_list_method.h"
 #include "scene/scene.h"
@@ -40,18 +41,6 @@ struct RenderSettings {
     ShadowSettings shadows;
 };
 
-
-// Per pixel, from the forward shader's validation variant (rows top to bottom): the surface it
-// shaded and each shadowed light's shadow factor there.
-struct ShadowFactorImage {
-    uint32_t width = 0;
-    uint32_t height = 0;
-    uint32_t slots = 0;                // shadowed lights: spots first, then points (ShadowPlan order)
-    std::vector<glm::vec3> positions;  // world space
-    std::vector<glm::vec3> normals;    // unit shading normal, facing the viewer
-    std::vector<uint8_t> covered;      // 1 where geometry is
-    std::vector<uint8_t> factors;      // [pixel * slots + slot]: factor x 254, 255 = light does not reach
-};
 
 // GPU milliseconds per pass, by the names the stats JSON uses. A pass not run is 0.
 struct PassTimings {
