@@ -30,8 +30,10 @@ def read_studies(path):
     return studies
 
 
-def plot_study(name, study, charts):
-    """One chart: error (y) against the provoking parameter (x), a line per variant."""
+def study_figure(name, study):
+    """Error (y) against the provoking parameter (x), a line per variant of the CSV, in file
+    order: the variants (filters, layouts, methods) are whatever failures.csv holds, so a new
+    one is drawn with no edit here."""
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     for variant, points in study["variants"].items():
         points.sort()
@@ -42,6 +44,12 @@ def plot_study(name, study, charts):
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
+    return fig
+
+
+def plot_study(name, study, charts):
+    """One chart (study_figure) as charts/failure-NAME.png and .svg; returns the PNG's name."""
+    fig = study_figure(name, study)
     base = os.path.join(charts, "failure-" + name)
     fig.savefig(base + ".png", dpi=100, metadata={"Software": None})
     fig.savefig(base + ".svg", metadata={"Date": None})

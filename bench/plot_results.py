@@ -8,12 +8,19 @@ then DIR/index.html with every chart, every DIR/images/*.png and the CSV as a ta
 series or columns are missing or empty is skipped with a note in index.html, so the few rows of
 `--quick` work too. Output is deterministic: rerunning on the same CSV gives identical files.
 
+Nothing here names the methods, shadow filters or passes: DIR/results.json says them
+("methods" and "shadow_filters" in table order, "passes" in frame order), and the script draws
+whatever it lists, a method's colour and marker taken from a fixed palette by its position. The
+per-pass columns of results.csv are P_ms and P_spread_ms for every pass P. Without those keys (a
+folder from an older bench) the names come from the CSV itself, sorted.
+
 Needs Debian's /usr/bin/python3 with python3-matplotlib (no other packages).
 """
 
 import argparse
 import csv
 import html
+import json
 import math
 import os
 import sys
@@ -25,14 +32,25 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after selecting the backend)
 from matplotlib.ticker import FixedLocator, MaxNLocator, NullLocator, PercentFormatter  # noqa: E402
 
-COLUMNS = """config series method spot point shadows shadow_res shadow_filter point_layout frames
-    depth_ms culling_ms shadows_ms forward_ms total_ms forward_spread_ms total_spread_ms
-    tested_per_pixel affecting_per_pixel efficiency missed_energy image_error pixels_off
-    shadow_misclassified shadow_false_shadow shadow_false_lit""".split()
-METHODS = ["brute", "per-object", "tiled", "clustered"]
-METHOD_STYLE = {"brute": ("tab:red", "o"), "per-object": ("tab:orange", "s"),
-                "tiled": ("tab:blue", "^"), "clustered": ("tab:green", "D")}
-OTHER_STYLE = ("tab:gray", "x")  # a method this script does not know
+# The columns every row has besides the per-pass times (see pass_columns).
+LEADING_COLUMNS = """config series method spot point shadows shadow_res shadow_filter point_layout
+    frames""".split()
+TRAILING_COLUMNS = """total_ms total_spread_ms tested_per_pixel affecting_per_pixel efficiency
+    missed_energy image_error pixels_off shadow_misclassified shadow_false_shadow
+    shadow_false_lit""".split()
+# Method styles by position in results.json's "methods": the first four keep the colours the
+# charts have always had (brute, per-object, tiled, clustered). Grey and "x" are left out: they
+# mark a method that results.json does not list.
+METHOD_COLOURS = ["tab:red", "tab:orange", "tab:blue", "tab:green", "tab:purple", "tab:brown",
+                  "tab:pink", "tab:olive", "tab:cyan"]
+METHOD_MARKERS = ["o", "s", "^", "D", "v", "P", "*", "h"]  # 8 against 9 colours: 72 pairs
+OTHER_STYLE = ("tab:gray", "x")  # a method in the rows that results.json does not list
+# Pass colours by position in "passes" (a palette apart from the methods').
+PASS_COLOURS = ["#66c2a5", "#fc8d62", "#8da0cb", "#e78ac3", "#a6d854", "#ffd92f", "#e5c494",
+                "#b3b3b3"]
+PASS_HATCHES = [None, "//", "xx", ".."]  # beyond the palette, the colours repeat with a hatch
+# Errors are measured against brute force, so its own error cells are empty; it is drawn at 0.
+REFERENCE_METHOD = "brute"
 LIGHT_SERIES = [("mix", "mix (spot:point = 2:1)"), ("spot-only", "spot lights only"),
                 ("point-only", "point lights only")]
 WIDE_RATIO = 10.0  # a log axis once the largest value is this many times the smallest
@@ -43,6 +61,57 @@ class SkipChart(Exception):
 
 
 # ----------------------------------------------------------------------------------- data access
+
+NAME_KEYS = ("methods", "shadow_filters", "passes")
+
+
+def pass_columns(passes):
+    """The per-pass columns of results.csv: P_ms then P_spread_ms, for every pass in order."""
+    return [f"{p}_ms" for p in passes] + [f"{p}_spread_ms" for p in passes]
+
+
+def known_columns(passes):
+    """Every column a row of results.csv should have, for these passes."""
+    return LEADING_COLUMNS + pass_columns(passes) + TRAILING_COLUMNS
+
+
+def passes_in_header(header):
+    """Pass names of the P_ms columns in `header` (not total_ms, not the spreads), sorted."""
+    return sorted(c[:-len("_ms")] for c in header
+                  if c.endswith("_ms") and not c.endswith("_spread_ms") and c != "total_ms")
+
+
+def read_names(path, header, rows):
+    """{"methods", "shadow_filters", "passes": names in order} from results.json, and notes.
+
+    A key that results.json lacks (an older bench), or the whole file when it is absent or
+    unreadable, falls back to what results.csv holds, sorted: the methods and filters of the rows,
+    the passes of the P_ms columns. The notes say which keys fell back and why."""
+    document, notes = {}, []
+    try:
+        with open(path, encoding="utf-8") as f:
+            document = json.load(f)
+    except FileNotFoundError:
+        pass
+    except (OSError, ValueError) as err:
+        notes.append(f"results.json could not be read ({err}); names come from results.csv.")
+    if not isinstance(document, dict):
+        document = {}
+    fallback = {"methods": sorted({r.get("method", "") for r in rows} - {""}),
+                "shadow_filters": sorted({r.get("shadow_filter", "") for r in rows} - {""}),
+                "passes": passes_in_header(header)}
+    names, fell_back = {}, []
+    for key in NAME_KEYS:
+        listed = document.get(key)
+        if isinstance(listed, list) and all(isinstance(n, str) for n in listed):
+            names[key] = list(listed)
+        else:
+            names[key] = fallback[key]
+            fell_back.append(key)
+    if document and fell_back:
+        notes.append(f"results.json lacks {', '.join(fell_back)}; taken from results.csv, sorted.")
+    return names, notes
+
 
 def read_results(path):
     """Returns (header, rows) of the CSV; rows are dicts of strings, missing cells are ''."""
@@ -72,10 +141,23 @@ def series_rows(rows, series):
     return [r for r in rows if r.get("series") == series]
 
 
-def method_order(rows):
-    """The methods present, known ones first in their usual order, then any others sorted."""
-    present = {r.get("method", "") for r in rows}
-    return [m for m in METHODS if m in present] + sorted(present - set(METHODS))
+def method_order(rows, methods):
+    """The methods present in `rows`: those of `methods` in its order, then any others sorted."""
+    return ordered((r.get("method", "") for r in rows), methods)
+
+
+def method_style(method, methods):
+    """(colour, marker) of a method: by its position in `methods`, OTHER_STYLE when absent."""
+    if method not in methods:
+        return OTHER_STYLE
+    i = methods.index(method)
+    return METHOD_COLOURS[i % len(METHOD_COLOURS)], METHOD_MARKERS[i % len(METHOD_MARKERS)]
+
+
+def ordered(present, names):
+    """`present` values in the order of `names`, then any others sorted."""
+    present = set(present)
+    return [n for n in names if n in present] + sorted(present - set(names))
 
 
 def is_wide(values):
@@ -132,14 +214,14 @@ def set_count_axis(ax, counts):
     ax.set_xlabel("lights (spot + point)")
 
 
-def plot_per_method(ax, rows, column):
+def plot_per_method(ax, rows, column, methods):
     """One line per method of `column` against light count; returns the values drawn."""
     drawn = []
-    for method in method_order(rows):
+    for method in method_order(rows, methods):
         pts = sorted((light_count(r), number(r, column)) for r in rows
                      if r.get("method") == method and number(r, column) is not None)
         if pts:
-            colour, marker = METHOD_STYLE.get(method, OTHER_STYLE)
+            colour, marker = method_style(method, methods)
             ax.plot([p[0] for p in pts], [p[1] for p in pts], color=colour, marker=marker,
                     label=method)
             drawn += [p[1] for p in pts]
@@ -156,7 +238,7 @@ def draw_front(ax, points, front):
 
 # ---------------------------------------------------------------------------------------- charts
 
-def chart_pass_time(rows, column, what):
+def chart_pass_time(rows, names, column, what):
     """Median GPU time (forward pass, or whole frame) against light count, one line per method,
     one panel per light series (mix, spot-only, point-only). It shows how each method scales with
     the number of lights: brute force grows linearly, culled lists with the lights that actually
@@ -169,7 +251,7 @@ def chart_pass_time(rows, column, what):
                              squeeze=False)
     values = []
     for ax, (_, title, rs) in zip(axes[0], panels):
-        values += plot_per_method(ax, rs, column)
+        values += plot_per_method(ax, rs, column, names["methods"])
         set_count_axis(ax, [light_count(r) for r in rs if number(r, column) is not None])
         ax.set_title(title)
     if is_wide(values):
@@ -181,7 +263,7 @@ def chart_pass_time(rows, column, what):
     return fig
 
 
-def chart_culling_efficiency(rows):
+def chart_culling_efficiency(rows, names):
     """Culling efficiency (lights tested / lights affecting each pixel, 1 = perfect) against
     light count for the mix series, and next to it the two per-pixel counts it is made of. It
     shows how much wasted shading work each light list leaves as the lights get denser."""
@@ -189,14 +271,14 @@ def chart_culling_efficiency(rows):
     if not rs:
         raise SkipChart("no efficiency values in the mix series")
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4.0))
-    values = plot_per_method(left, rs, "efficiency")
+    values = plot_per_method(left, rs, "efficiency", names["methods"])
     left.axhline(1.0, color="black", linestyle=":", linewidth=1, label="perfect (1)")
     if is_wide(values + [1.0]):
         left.set_yscale("log")
     left.set_ylabel("efficiency = tested / affecting")
     left.set_title("culling efficiency (lower is better)")
     left.legend()
-    tested = plot_per_method(right, rs, "tested_per_pixel")
+    tested = plot_per_method(right, rs, "tested_per_pixel", names["methods"])
     # Exact counts, the same for every method at one light count.
     affecting = {light_count(r): number(r, "affecting_per_pixel") for r in rs
                  if number(r, "affecting_per_pixel") is not None}
@@ -217,7 +299,7 @@ def chart_culling_efficiency(rows):
     return fig
 
 
-def chart_shadow_pareto(rows):
+def chart_shadow_pareto(rows, names):
     """Whole-frame time against the fraction of shadow tests misclassified (outside the edge
     band, against the Embree reference), one point per shadow resolution and filter. The Pareto
     front marks the settings no other setting beats in both speed and accuracy."""
@@ -228,7 +310,7 @@ def chart_shadow_pareto(rows):
     points = [(number(r, "shadow_misclassified"), number(r, "total_ms")) for r in rs]
     front = pareto_front(points)
     fig, ax = plt.subplots(figsize=(8, 5.2))
-    filters = sorted({r.get("shadow_filter", "") for r in rs})
+    filters = ordered((r.get("shadow_filter", "") for r in rs), names["shadow_filters"])
     cmap = plt.get_cmap("tab10")
     for k, flt in enumerate(filters):
         pts = [p for p, r in zip(points, rs) if r.get("shadow_filter", "") == flt]
@@ -253,12 +335,12 @@ def chart_shadow_pareto(rows):
 def assignment_error_column(rows):
     """image_error when the non-brute rows have any, else pixels_off, else None."""
     for column in ("image_error", "pixels_off"):
-        if any(number(r, column) is not None for r in rows if r.get("method") != "brute"):
+        if any(number(r, column) is not None for r in rows if r.get("method") != REFERENCE_METHOD):
             return column
     return None
 
 
-def chart_assignment_pareto(rows):
+def chart_assignment_pareto(rows, names):
     """Whole-frame time against image error versus brute force, one panel per light count of the
     mix series, one point per method. Brute force is the reference (error 0 when its cell is
     empty); tiled and clustered should sit on 0 as well, and per-object's capped lists show as
@@ -270,7 +352,7 @@ def chart_assignment_pareto(rows):
 
     def error(r):
         value = number(r, column)
-        return 0.0 if value is None and r.get("method") == "brute" else value
+        return 0.0 if value is None and r.get("method") == REFERENCE_METHOD else value
 
     rs = [r for r in mix if number(r, "total_ms") is not None and error(r) is not None]
     counts = sorted({light_count(r) for r in rs})
@@ -280,10 +362,11 @@ def chart_assignment_pareto(rows):
     for ax in axes.flat[len(counts):]:
         ax.set_visible(False)
     for ax, count in zip(axes.flat, counts):
-        group = [r for r in rs if light_count(r) == count]
+        group = [r for m in method_order(rs, names["methods"]) for r in rs
+                 if light_count(r) == count and r.get("method") == m]
         points = [(error(r), number(r, "total_ms")) for r in group]
         for (x, y), r in zip(points, group):
-            colour, marker = METHOD_STYLE.get(r.get("method"), OTHER_STYLE)
+            colour, marker = method_style(r.get("method"), names["methods"])
             ax.scatter([x], [y], color=colour, marker=marker, s=45, zorder=2,
                        label=r.get("method", ""))
         draw_front(ax, points, pareto_front(points))
@@ -305,12 +388,83 @@ def chart_assignment_pareto(rows):
     return fig
 
 
+def pass_stack(ax, bars, passes, total_label):
+    """Stacked bars, one per (label, row) of `bars`, a segment per pass in frame order, with the
+    whole frame's time as a black tick; returns the legend handles of the passes drawn."""
+    handles = {}
+    for x, (_, r) in enumerate(bars):
+        bottom = 0.0
+        for k, name in enumerate(passes):
+            value = number(r, f"{name}_ms") or 0.0
+            bar = ax.bar(x, value, bottom=bottom, width=0.7, edgecolor="black", linewidth=0.4,
+                         color=PASS_COLOURS[k % len(PASS_COLOURS)],
+                         hatch=PASS_HATCHES[k // len(PASS_COLOURS) % len(PASS_HATCHES)],
+                         label=name)
+            handles.setdefault(name, bar)
+            bottom += value
+        total = number(r, "total_ms")
+        if total is not None:
+            tick = ax.scatter([x], [total], marker="_", s=500, color="black", zorder=3,
+                              label=total_label)
+            handles.setdefault(total_label, tick)
+    ax.set_xticks(range(len(bars)))
+    ax.set_xticklabels([label for label, _ in bars], rotation=30, ha="right")
+    return handles
+
+
+def chart_pass_breakdown(rows, names):
+    """Median GPU time of every pass, stacked in frame order, one bar per method: at the largest
+    light count of the mix series, and in the shadows series with shadows off and on. It shows
+    where each method spends the frame, and what the shadow pass adds; the black tick is the
+    whole frame (first to last timestamp), so the gap above a bar is time between passes."""
+    passes = names["passes"]
+    if not any(number(r, f"{p}_ms") is not None for p in passes for r in rows):
+        raise SkipChart("no per-pass time columns (results.json \"passes\" and P_ms columns)")
+    panels = []
+    mix = [r for r in series_rows(rows, "mix") if number(r, "total_ms") is not None]
+    if mix:
+        count = max(light_count(r) for r in mix)
+        largest = [r for r in mix if light_count(r) == count]
+        bars = [(m, r) for m in method_order(largest, names["methods"])
+                for r in largest if r.get("method") == m]
+        panels.append((f"mix series, {count} lights", bars))
+    shadow = [r for r in series_rows(rows, "shadows") if number(r, "total_ms") is not None]
+    if shadow:
+        bars = []
+        for m in method_order(shadow, names["methods"]):
+            own = sorted((r for r in shadow if r.get("method") == m),
+                         key=lambda r: number(r, "shadows") or 0)  # off, then on
+            bars += [(f"{m}, shadows {'on' if number(r, 'shadows') else 'off'}", r) for r in own]
+        count = max(light_count(r) for r in shadow)
+        panels.append((f"shadows series, {count} lights", bars))
+    if not panels:
+        raise SkipChart("no mix or shadows rows with total_ms")
+    widths = [len(bars) for _, bars in panels]
+    fig, axes = plt.subplots(1, len(panels), figsize=(2.0 + 0.55 * sum(widths) + 1.2 * len(panels),
+                                                      4.6), squeeze=False, sharey=True,
+                             gridspec_kw={"width_ratios": widths})
+    handles = {}
+    for ax, (title, bars) in zip(axes[0], panels):
+        for name, handle in pass_stack(ax, bars, passes, "whole frame").items():
+            handles.setdefault(name, handle)
+        ax.set_title(title)
+    axes[0][0].set_ylabel("median GPU ms")
+    # Legend top to bottom as the stack reads: the last pass on top.
+    entries = ([n for n in reversed(passes) if n in handles] +
+               [n for n in handles if n not in passes])
+    fig.legend([handles[n] for n in entries], entries, loc="center right", title="pass")
+    fig.suptitle("GPU time per pass (stacked in frame order)")
+    fig.tight_layout(rect=(0, 0, 1 - 1.3 / fig.get_figwidth(), 1))
+    return fig
+
+
 # (file name, title, function, extra arguments); the function's docstring is the caption.
 CHARTS = [
     ("forward_time", "Forward pass time against light count", chart_pass_time,
      ("forward_ms", "forward pass")),
     ("total_time", "Whole-frame time against light count", chart_pass_time,
      ("total_ms", "whole frame")),
+    ("pass_time", "GPU time per pass", chart_pass_breakdown, ()),
     ("culling_efficiency", "Culling efficiency against light count", chart_culling_efficiency, ()),
     ("pareto_shadows", "Shadows: speed against accuracy", chart_shadow_pareto, ()),
     ("pareto_light_assignment", "Light assignment: speed against accuracy",
@@ -318,14 +472,14 @@ CHARTS = [
 ]
 
 
-def draw_charts(rows, charts_dir):
+def draw_charts(rows, names, charts_dir):
     """Draws every chart; returns [(name, title, caption, skip reason or None)]."""
     os.makedirs(charts_dir, exist_ok=True)
     done = []
     for name, title, function, args in CHARTS:
         caption = " ".join((function.__doc__ or "").split())
         try:
-            fig = function(rows, *args)
+            fig = function(rows, names, *args)
         except SkipChart as reason:
             for ext in (".png", ".svg"):  # never leave a stale chart from an earlier run
                 stale = os.path.join(charts_dir, name + ext)
@@ -405,12 +559,12 @@ def main(argv=None):
     except OSError as err:
         print(f"plot_results: error: {csv_path}: {err.strerror or err}", file=sys.stderr)
         return 1
-    notes = []
-    missing = [c for c in COLUMNS if c not in header]
+    names, notes = read_names(os.path.join(args.out_dir, "results.json"), header, rows)
+    missing = [c for c in known_columns(names["passes"]) if c not in header]
     if missing:
         notes.append(f"results.csv lacks the columns {', '.join(missing)}; they count as empty.")
     configure_matplotlib()
-    charts = draw_charts(rows, os.path.join(args.out_dir, "charts"))
+    charts = draw_charts(rows, names, os.path.join(args.out_dir, "charts"))
     index = render_index(header, rows, charts, list_images(args.out_dir), notes)
     with open(os.path.join(args.out_dir, "index.html"), "w", encoding="utf-8") as f:
         f.write(index)

@@ -46,6 +46,22 @@ class PlotFailuresTest(unittest.TestCase):
             self.assertEqual(list(studies["acne-vs-bias"]["variants"]), ["hw", "tent5"])
             self.assertEqual(studies["acne-vs-bias"]["variants"]["hw"], [(0.0, 0.5), (1.0, 0.0)])
 
+    def test_every_variant_of_the_csv_is_drawn(self):
+        # A variant no script names (a new filter) is a line like the others, in file order.
+        extra = 'acne-vs-bias,"bias scale (x 1,1,1,0)",1,"pcss","false_shadow fraction",0.1,40\n'
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "failures.csv")
+            with open(path, "w") as f:
+                f.write(CSV + extra)
+            studies = plot_failures.read_studies(path)
+        fig = plot_failures.study_figure("acne-vs-bias", studies["acne-vs-bias"])
+        try:
+            ax = fig.axes[0]
+            self.assertEqual([line.get_label() for line in ax.lines], ["hw", "tent5", "pcss"])
+            self.assertEqual([t.get_text() for t in ax.get_legend().get_texts()], ["hw", "tent5", "pcss"])
+        finally:
+            plot_failures.plt.close(fig)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -1,11 +1,12 @@
-"""Tests of bench/plot_results.py on synthetic results.csv files.
+"""Tests of bench/plot_results.py on synthetic results.csv and results.json files.
 
-    cd /work/main && /usr/bin/python3 -m unittest bench/test_plot_results.py
+    /usr/bin/python3 -m unittest bench/test_plot_results.py      (from the repository root)
 """
 
 import contextlib
 import csv
 import io
+import json
 import os
 import sys
 import tempfile
@@ -13,10 +14,20 @@ import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import plot_results  # noqa: E402
+from matplotlib.colors import same_color  # noqa: E402  (plot_results selects the backend)
 
 ALL_CHARTS = [chart[0] for chart in plot_results.CHARTS]
+# What today's bench writes into results.json; the tests add names to these to prove that the
+# script draws whatever results.json lists.
 METHODS = ["brute", "per-object", "tiled", "clustered"]
-COST = {"brute": 12.0, "per-object": 1.6, "tiled": 1.8, "clustered": 1.7}
+FILTERS = ["hw", "tent3", "tent5", "tent7", "disk"]
+PASSES = ["depth", "culling", "shadows", "forward", "tonemap"]
+COLUMNS = plot_results.known_columns(PASSES)
+COST = {"brute": 12.0, "per-object": 1.6, "tiled": 1.8, "clustered": 1.7, "hybrid": 1.5,
+        "mystery": 2.5}
+# Charts with a line, point or bar per method.
+PER_METHOD_CHARTS = ["forward_time", "total_time", "pass_time", "culling_efficiency",
+                     "pareto_light_assignment"]
 
 
 def row(config, series, method, spot, point, **cells):
@@ -27,8 +38,8 @@ def row(config, series, method, spot, point, **cells):
         "config": config, "series": series, "method": method, "spot": spot, "point": point,
         "shadows": 0, "shadow_res": 1024, "shadow_filter": "tent5", "point_layout": "cube",
         "frames": 5, "depth_ms": 4.0, "culling_ms": 0.0 if method in ("brute", "per-object")
-        else 0.4 * lights, "shadows_ms": 0.0, "forward_ms": forward, "total_ms": forward + 15.0,
-        "forward_spread_ms": 0.1 * forward, "total_spread_ms": 0.1 * forward,
+        else 0.4 * lights, "shadows_ms": 0.0, "forward_ms": forward, "tonemap_ms": 1.5,
+        "total_ms": forward + 15.0, "total_spread_ms": 0.1 * forward,
         "tested_per_pixel": {"brute": lights, "per-object": min(lights, 8)}.get(
             method, 0.07 * lights + 1), "affecting_per_pixel": 0.05 * lights + 0.2,
         "missed_energy": 0.006 * lights if method == "per-object" else 0.0,
@@ -40,27 +51,29 @@ def row(config, series, method, spot, point, **cells):
     }
     values["efficiency"] = values["tested_per_pixel"] / values["affecting_per_pixel"]
     values.update(cells)
+    for name in PASSES:
+        values[f"{name}_spread_ms"] = 0.1 * values[f"{name}_ms"]
     return values
 
 
-def full_rows():
+def full_rows(methods=METHODS):
     """Every series, as `punctual bench` writes it (sizes as in a full run)."""
     rows = []
     for n in (3, 6, 12, 24, 48, 96):
-        for m in METHODS:
+        for m in methods:
             rows.append(row(f"mix-{m}-{n}", "mix", m, 2 * n // 3, n // 3))
     for n in (8, 32, 64):
-        for m in METHODS:
+        for m in methods:
             rows.append(row(f"spot-{m}-{n}", "spot-only", m, n, 0))
     for n in (4, 16, 32):
-        for m in METHODS:
+        for m in methods:
             rows.append(row(f"point-{m}-{n}", "point-only", m, 0, n))
-    for m in METHODS:
+    for m in methods:
         for on in (0, 1):
             rows.append(row(f"shadows-{m}-{on}", "shadows", m, 64, 32, shadows=on,
                             shadows_ms=60.0 * on))
     for i, res in enumerate((256, 512, 1024, 2048)):
-        for j, flt in enumerate(("hw", "tent3", "tent5", "tent7", "disk")):
+        for j, flt in enumerate(FILTERS):
             rows.append(row(f"sq-{res}-{flt}", "shadow-quality", "tiled", 64, 32, shadows=1,
                             shadow_res=res, shadow_filter=flt, total_ms=200 + res / 20 + 8 * j,
                             shadow_misclassified=0.04 / (i + 1) / (1 + 0.3 * j) + 0.002 * j,
@@ -77,11 +90,52 @@ def quick_mix_rows():
             for n in (3, 96) for m in METHODS]
 
 
-def write_csv(folder, rows, columns=plot_results.COLUMNS):
+def write_csv(folder, rows, columns=COLUMNS):
     with open(os.path.join(folder, "results.csv"), "w", newline="", encoding="utf-8") as f:
         writer = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
         writer.writeheader()
         writer.writerows(rows)
+
+
+def write_json(folder, methods=METHODS, filters=FILTERS, passes=PASSES):
+    """results.json's names, as the bench writes them (None leaves a key out, as older runs do)."""
+    document = {"scene": "synthetic", "configurations": []}
+    for key, names in (("methods", methods), ("shadow_filters", filters),
+                       ("point_layouts", ["cube", "slices"]), ("passes", passes)):
+        if names is not None:
+            document[key] = names
+    with open(os.path.join(folder, "results.json"), "w", encoding="utf-8") as f:
+        json.dump(document, f)
+
+
+def names(methods=METHODS, filters=FILTERS, passes=PASSES):
+    return {"methods": methods, "shadow_filters": filters, "passes": passes}
+
+
+def chart(name, rows, chart_names):
+    """The figure of one chart, drawn from `rows` as the CSV reader gives them (strings)."""
+    _, _, function, args = next(c for c in plot_results.CHARTS if c[0] == name)
+    plot_results.configure_matplotlib()
+    return function([{k: str(v) for k, v in r.items()} for r in rows], chart_names, *args)
+
+
+def drawn_labels(fig):
+    """Every label a figure shows for its data: lines, points, bars, legends and x tick labels."""
+    labels = set()
+    for ax in fig.axes:
+        labels.update(a.get_label() for a in ax.lines + ax.collections + ax.containers)
+        labels.update(t.get_text() for t in ax.get_xticklabels())
+        if ax.get_legend():
+            labels.update(t.get_text() for t in ax.get_legend().get_texts())
+    for legend in fig.legends:
+        labels.update(t.get_text() for t in legend.get_texts())
+    return labels
+
+
+def legend_texts(fig):
+    """The texts of the figure's legend (the first axes' one when the figure has none)."""
+    legend = fig.legends[0] if fig.legends else fig.axes[0].get_legend()
+    return [t.get_text() for t in legend.get_texts()]
 
 
 def write_png(path):
@@ -184,6 +238,146 @@ class PlotResultsTest(unittest.TestCase):
     def test_pareto_front(self):
         points = [(0.0, 10.0), (0.1, 5.0), (0.2, 6.0), (0.3, 1.0), (0.0, 12.0), (0.1, 5.0)]
         self.assertEqual(plot_results.pareto_front(points), [0, 1, 5, 3])
+
+
+class NamesFromResultsJsonTest(unittest.TestCase):
+    """Methods, filters and passes come from results.json: a name added there is drawn with no
+    edit to the script, and folders from older benches (without the keys) still plot."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+        plot_results.plt.close("all")
+
+    def index(self):
+        with open(os.path.join(self.dir, "index.html"), encoding="utf-8") as f:
+            return f.read()
+
+    def line_colours(self, fig):
+        """{label: colour} of the lines of the figure's first axes."""
+        return {line.get_label(): line.get_color() for line in fig.axes[0].lines}
+
+    def test_a_bench_folder_with_results_json_draws_everything_without_notes(self):
+        write_csv(self.dir, full_rows())
+        write_json(self.dir)
+        self.assertEqual(run(self.dir), 0)
+        index = self.index()
+        self.assertNotIn("not drawn", index)
+        self.assertNotIn("results.json", index)
+        self.assertNotIn("lacks", index)
+        for name in ALL_CHARTS:
+            self.assertIn(f'<img src="charts/{name}.png"', index)
+
+    def test_a_new_method_is_drawn_in_every_per_method_chart(self):
+        methods = METHODS + ["hybrid"]
+        rows = full_rows(methods)
+        for name in PER_METHOD_CHARTS:
+            fig = chart(name, rows, names(methods))
+            self.assertIn("hybrid", drawn_labels(fig), name)
+        # With a style of its own (the palette's fifth), not the grey of an unlisted method.
+        colour, marker = plot_results.method_style("hybrid", methods)
+        self.assertEqual((colour, marker),
+                         (plot_results.METHOD_COLOURS[4], plot_results.METHOD_MARKERS[4]))
+        self.assertNotIn(colour, [plot_results.method_style(m, methods)[0] for m in METHODS])
+        lines = self.line_colours(chart("forward_time", rows, names(methods)))
+        self.assertTrue(same_color(lines["hybrid"], colour))
+        # And through the command line: every chart drawn.
+        write_csv(self.dir, rows)
+        write_json(self.dir, methods=methods)
+        self.assertEqual(run(self.dir), 0)
+        self.assertNotIn("not drawn", self.index())
+
+    def test_method_order_and_colours_follow_results_json(self):
+        methods = ["clustered", "tiled", "per-object", "brute"]
+        fig = chart("forward_time", full_rows(), names(methods))
+        self.assertEqual(legend_texts(fig), methods)
+        colours = self.line_colours(fig)
+        for i, method in enumerate(methods):
+            self.assertTrue(same_color(colours[method], plot_results.METHOD_COLOURS[i]), method)
+        # Today's table order keeps today's colours.
+        self.assertEqual([plot_results.method_style(m, METHODS)[0] for m in METHODS],
+                         ["tab:red", "tab:orange", "tab:blue", "tab:green"])
+
+    def test_a_method_missing_from_results_json_is_still_drawn(self):
+        rows = full_rows(METHODS + ["mystery"])
+        fig = chart("total_time", rows, names())
+        self.assertEqual(legend_texts(fig), METHODS + ["mystery"])
+        self.assertTrue(same_color(self.line_colours(fig)["mystery"], plot_results.OTHER_STYLE[0]))
+        self.assertIn("mystery", drawn_labels(chart("pass_time", rows, names())))
+
+    def test_a_new_pass_is_stacked_in_frame_order(self):
+        passes = ["depth", "ssao", "culling", "shadows", "forward", "tonemap"]
+        rows = full_rows()
+        for r in rows:
+            r["ssao_ms"], r["ssao_spread_ms"] = 3.0, 0.3
+        fig = chart("pass_time", rows, names(passes=passes))
+        # The legend reads as the stack does, top (last pass) to bottom, then the whole frame.
+        self.assertEqual(legend_texts(fig), list(reversed(passes)) + ["whole frame"])
+        # Every bar holds a 3 ms segment, and its top is the sum of every pass, the new one too.
+        mix, shadows = fig.axes[0], fig.axes[1]
+        bars = {ax: {round(p.get_x() + p.get_width() / 2) for p in ax.patches} for ax in fig.axes}
+        self.assertEqual((len(bars[mix]), len(bars[shadows])), (len(METHODS), 2 * len(METHODS)))
+        for ax in (mix, shadows):
+            self.assertEqual(sum(p.get_height() == 3.0 for p in ax.patches), len(bars[ax]))
+        brute = next(r for r in rows if r["series"] == "mix" and r["method"] == "brute"
+                     and r["spot"] + r["point"] == 96)
+        top = max(p.get_y() + p.get_height() for p in mix.patches
+                  if abs(p.get_x() + p.get_width() / 2) < 0.01)  # the first bar: brute
+        self.assertAlmostEqual(top, sum(brute[f"{p}_ms"] for p in passes))
+        # Its columns are known ones: none is reported missing, and a missing one is named.
+        self.assertIn("ssao_ms", plot_results.known_columns(passes))
+        self.assertIn("ssao_spread_ms", plot_results.known_columns(passes))
+        write_json(self.dir, passes=passes)
+        write_csv(self.dir, rows, columns=plot_results.known_columns(passes))
+        self.assertEqual(run(self.dir), 0)
+        self.assertNotIn("lacks", self.index())
+        write_csv(self.dir, rows,
+                  columns=[c for c in plot_results.known_columns(passes) if c != "ssao_spread_ms"])
+        run(self.dir)
+        self.assertIn("results.csv lacks the columns ssao_spread_ms;", self.index())
+
+    def test_shadow_filters_follow_results_json(self):
+        filters = ["disk", "tent7", "tent5", "tent3", "hw", "pcss"]
+        rows = full_rows() + [row("sq-1024-pcss", "shadow-quality", "tiled", 64, 32, shadows=1,
+                                  shadow_res=1024, shadow_filter="pcss", total_ms=260,
+                                  shadow_misclassified=0.001)]
+        fig = chart("pareto_shadows", rows, names(filters=filters))
+        self.assertEqual(legend_texts(fig), filters + ["Pareto front"])
+
+    def test_an_older_folder_falls_back_to_the_csv_sorted(self):
+        # The columns of an older bench: no tonemap time, spreads of forward and total only.
+        old = [c for c in COLUMNS if c == "forward_spread_ms" or
+               not (c == "tonemap_ms" or c.endswith("_spread_ms") and not c.startswith("total"))]
+        write_csv(self.dir, full_rows(), columns=old)
+        expected = {"methods": sorted(METHODS), "shadow_filters": sorted(FILTERS),
+                    "passes": ["culling", "depth", "forward", "shadows"]}
+        header, rows = plot_results.read_results(os.path.join(self.dir, "results.csv"))
+        json_path = os.path.join(self.dir, "results.json")
+        # No results.json at all: no note about it.
+        self.assertEqual(plot_results.read_names(json_path, header, rows), (expected, []))
+        # One without the keys: the same names, and a note saying so.
+        write_json(self.dir, methods=None, filters=None, passes=None)
+        names, notes = plot_results.read_names(json_path, header, rows)
+        self.assertEqual(names, expected)
+        self.assertEqual(notes, ["results.json lacks methods, shadow_filters, passes; taken from "
+                                 "results.csv, sorted."])
+        self.assertEqual(run(self.dir), 0)
+        index = self.index()
+        self.assertNotIn("not drawn", index)
+        self.assertIn("results.csv lacks the columns culling_spread_ms, depth_spread_ms, "
+                      "shadows_spread_ms;", index)
+
+    def test_an_unreadable_results_json_is_a_note(self):
+        write_csv(self.dir, full_rows())
+        with open(os.path.join(self.dir, "results.json"), "w", encoding="utf-8") as f:
+            f.write("{ not json")
+        self.assertEqual(run(self.dir), 0)
+        index = self.index()
+        self.assertIn("results.json could not be read", index)
+        self.assertNotIn("not drawn", index)
 
 
 if __name__ == "__main__":

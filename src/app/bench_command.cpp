@@ -273,7 +273,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
             row["pixels_off"] = number(difference.pixelsOff);
         }
         if (config.validateShadows) {
-            const render::ShadowFactorImage factors = renderer.readShadowFactors();
+            const ShadowFactorImage factors = renderer.readShadowFactors();
             const reference::ShadowValidation validation =
                 reference::validateShadows(embree, factors, renderer.lights(), renderer.shadowPlan(), settings.shadows);
             row["shadow_misclassified"] = number(validation.overall.misclassifiedOutsideBand());

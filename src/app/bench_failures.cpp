@@ -28,7 +28,7 @@ struct Study {
 
 struct Frame {
     render::FrameResult result;
-    render::ShadowFactorImage factors;
+    ShadowFactorImage factors;
     reference::ShadowValidation validation;
 };
 

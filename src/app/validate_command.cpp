@@ -63,7 +63,7 @@ int runValidateCommand(const std::vector<std::string>& args) {
     settings.collectShadowFactors = true;
     render::Renderer renderer(context, scene, settings);
     const ImageRgba8 gpuImage = renderer.render(1, 0).image;
-    const render::ShadowFactorImage factors = renderer.readShadowFactors();
+    const ShadowFactorImage factors = renderer.readShadowFactors();
     if (context.validationMessageCount() > 0) {
         throw Error("vulkan", std::to_string(context.validationMessageCount()) +
                                   " validation message(s) (printed above); no output written");

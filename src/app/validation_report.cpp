@@ -144,7 +144,7 @@ std::string validationHtml(const nlohmann::json& report) {
     return html.str();
 }
 
-void addExrImages(OutputFiles& outputs, const std::string& folder, const render::ShadowFactorImage& factors) {
+void addExrImages(OutputFiles& outputs, const std::string& folder, const ShadowFactorImage& factors) {
     const size_t pixels = size_t(factors.width) * factors.height;
     const float nan = std::numeric_limits<float>::quiet_NaN();
     std::vector<float> positions(pixels * 3);

@@ -24,6 +24,6 @@ std::string validationHtml(const nlohmann::json& report);
 
 // Adds positions.exr (RGB = world position, NaN where no geometry) and shadow-factor-<slot>.exr
 // (the GPU factor, NaN where the light does not reach) to `outputs` under `folder`.
-void addExrImages(OutputFiles& outputs, const std::string& folder, const render::ShadowFactorImage& factors);
+void addExrImages(OutputFiles& outputs, const std::string& folder, const ShadowFactorImage& factors);
 
 }  // namespace punctual::app

@@ -44,7 +44,7 @@ float texelWorldSize(const gpu::GpuPunctualLight& light, const ShadowPlan& plan,
 
 }  // namespace
 
-ShadowValidation validateShadows(const EmbreeScene& embree, const render::ShadowFactorImage& factors,
+ShadowValidation validateShadows(const EmbreeScene& embree, const ShadowFactorImage& factors,
                                  const FrameLights& lights, const ShadowPlan& plan, const ShadowSettings& settings) {
     ShadowValidation result;
     result.width = factors.width;

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "lights/shadow_setup.h"
+#include "metrics/shadow_factor_image.h"
 #include "reference/embree_scene.h"
-#include "render/renderer.h"
 
 namespace punctual::reference {
 
@@ -58,7 +58,7 @@ struct ShadowValidation {
 };
 
 // Casts the rays in parallel (TBB); deterministic.
-ShadowValidation validateShadows(const EmbreeScene& embree, const render::ShadowFactorImage& factors,
+ShadowValidation validateShadows(const EmbreeScene& embree, const ShadowFactorImage& factors,
                                  const FrameLights& lights, const ShadowPlan& plan, const ShadowSettings& settings);
 
 }  // namespace punctual::reference

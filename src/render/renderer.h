@@ -17,6 +17,7 @@
 #include "lights/per_object_lights.h"
 #include "lights/shadow_setup.h"
 #include "metrics/culling_stats.h"
+#include "metrics/shadow_factor_image.h"
 #include "render/light_culling_pass.h"
 #include "render/light_list_method.h"
 #include "render/render_settings.h"
@@ -30,18 +31,6 @@ class Context;
 }
 
 namespace punctual::render {
-
-// Per pixel, from the forward shader's validation variant (rows top to bottom): the surface it
-// shaded and each shadowed light's shadow factor there.
-struct ShadowFactorImage {
-    uint32_t width = 0;
-    uint32_t height = 0;
-    uint32_t slots = 0;                // shadowed lights: spots first, then points (ShadowPlan order)
-    std::vector<glm::vec3> positions;  // world space
-    std::vector<glm::vec3> normals;    // unit shading normal, facing the viewer
-    std::vector<uint8_t> covered;      // 1 where geometry is
-    std::vector<uint8_t> factors;      // [pixel * slots + slot]: factor x 254, 255 = light does not reach
-};
 
 // GPU milliseconds per pass, in frame order, under the passes' own names (Pass::name(): "depth",
 // "culling", "shadows", "forward", "tonemap"). A pass without work this frame reports 0.

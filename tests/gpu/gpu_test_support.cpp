@@ -10,16 +10,6 @@
 
 namespace punctual::testing {
 
-void saveTestImage(const std::string& name, const ImageRgba8& image) {
-    const char* folder = std::getenv("PUNCTUAL_TEST_OUTPUT_DIR");
-    if (!folder || !*folder) return;
-    std::string file = name;
-    for (char& c : file) {
-        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '_';
-    }
-    writePng(std::string(folder) + "/" + file + ".png", image);
-}
-
 TempFolder::TempFolder() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string name = info ? std::string(info->test_suite_name()) + "_" + info->name() : "punctual";

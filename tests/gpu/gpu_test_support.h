@@ -1,6 +1,7 @@
 #pragma once
 // Shared by the GPU tests: a validation-enabled Vulkan context whose messages fail the test,
-// small image helpers, running the punctual binary, and writing small glTF files.
+// running the punctual binary, and writing small glTF files. The image helpers, which the CPU
+// tests use too, are in tests/support/image_test_support.h (included here).
 #include <gtest/gtest.h>
 
 #include <cstddef>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "image_test_support.h"
 #include "render/renderer.h"
 #include "vk/context.h"
 
@@ -36,28 +38,6 @@ inline render::RenderSettings renderSettings(uint32_t width, uint32_t height) {
     settings.height = height;
     return settings;
 }
-
-// Mean of the Rec. 709 luma of the 8-bit (sRGB-encoded) pixels, in [0, 1].
-inline double meanLuma(const ImageRgba8& image) {
-    double sum = 0.0;
-    for (size_t i = 0; i < image.pixels.size(); i += 4) {
-        sum += 0.2126 * image.pixels[i] + 0.7152 * image.pixels[i + 1] + 0.0722 * image.pixels[i + 2];
-    }
-    return sum / (255.0 * double(image.width) * image.height);
-}
-
-// Fraction of pixels with any channel above `threshold`.
-inline double fractionBrighterThan(const ImageRgba8& image, uint8_t threshold) {
-    size_t count = 0;
-    for (size_t i = 0; i < image.pixels.size(); i += 4) {
-        if (image.pixels[i] > threshold || image.pixels[i + 1] > threshold || image.pixels[i + 2] > threshold) ++count;
-    }
-    return double(count) / (double(image.width) * image.height);
-}
-
-// When PUNCTUAL_TEST_OUTPUT_DIR is set, writes `image` there as NAME.png (for looking at what a
-// test rendered); otherwise does nothing.
-void saveTestImage(const std::string& name, const ImageRgba8& image);
 
 // A folder under the system temp dir, unique per test, removed at the end.
 class TempFolder {

@@ -1,43 +1,16 @@
 #pragma once
 // Scenes built in code for the shadow tests, each aimed at one way shadow maps go wrong (acne on
 // grazing receivers, cube-face seams, very wide spots, casters nearer than the near plane), and
-// the one helper every shadow test needs: render a scene's shadow factors on the GPU and compare
-// them with Embree's visibility.
-#include <cstdint>
+// counting a validation's verdicts. CPU only: the CPU tests plan shadows for these scenes, the
+// GPU tests (tests/gpu/shadow_test_runs.h) render them.
 #include <cstddef>
-#include <string>
 
 #include <glm/glm.hpp>
 
-#include "core/image.h"
-#include "lights/light_setup.h"
-#include "lights/shadow_setup.h"
 #include "reference/shadow_validation.h"
-#include "render/renderer.h"
 #include "scene/scene.h"
-#include "vk/context.h"
 
 namespace punctual::testing {
-
-// Everything one validated frame produced; copies, so the Renderer can be gone.
-struct ShadowRun {
-    ImageRgba8 image;
-    render::ShadowFactorImage factors;
-    FrameLights lights;
-    ShadowPlan plan;
-    reference::ShadowValidation validation;
-};
-
-// Settings of a small frame with the shadow-factor readback on.
-render::RenderSettings shadowRenderSettings(uint32_t width, uint32_t height, const ShadowSettings& shadows);
-
-// Builds a Renderer, renders one frame (no warm-up: a single frame is all the factors need),
-// reads the shadow factors back and validates them against Embree's ray-cast visibility.
-ShadowRun renderAndValidateShadows(vk::Context& context, const Scene& scene, const render::RenderSettings& settings);
-
-// When PUNCTUAL_TEST_OUTPUT_DIR is set: NAME.png (the frame) and NAME-mismatch-SLOT.png per
-// shadowed light (the colours of `punctual validate`'s maps); otherwise nothing.
-void saveShadowRun(const std::string& name, const ShadowRun& run);
 
 // Pixels of one light with the given verdict; `outsideBandOnly` skips the edge band.
 size_t countVerdicts(const reference::LightShadowValidation& light, reference::PixelVerdict verdict,
