@@ -61,23 +61,14 @@ layout(location = 2) in vec2 inUv;
 
 layout(location = 0) out vec4 outRadiance;
 
-uvec2 pixelTile() { return uvec2(gl_FragCoord.xy) / TILE_SIZE; }
-
-// Clustered: the slice of this pixel, by a binary search for the last slice start at or before
-// its depth. The same exact comparisons as the culling kernel (light_culling.comp), so both pick
-// the same slice.
-uint pixelSlice() {
-    uint first = 1u;
-    for (uint count = SLICE_COUNT - 1u; count > 0u;) {
-        uint step = count / 2u;
-        if (depthRange.sliceStartDepth[first + step] <= gl_FragCoord.z) {
-            first += step + 1u;
-            count -= step + 1u;
-        } else {
-            count = step;
-        }
-    }
-    return first - 1u;
+// The light-grid cell of this pixel (tiled and clustered): cell = tile index x SLICE_COUNT +
+// the pixel's depth slice (culling.h: the culling kernel's search, so both pick the same slice).
+// Tiled grids are the one-slice case: SLICE_COUNT = 1, every depth in slice 0.
+uint pixelGridCell() {
+    uvec2 tile = uvec2(gl_FragCoord.xy) / TILE_SIZE;
+    uint slice;
+    PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, gl_FragCoord.z, depthRange.sliceStartDepth, SLICE_COUNT);
+    return (tile.y * frame.lightGrid.y + tile.x) * SLICE_COUNT + slice;
 }
 
 #include "shadow_sampling.glsl"
@@ -139,28 +130,14 @@ void main() {
             radiance += shadeLight(surface, lights[objectLights[first + k]]);
         }
         tested = count;
-    } else if (LIGHT_LIST == PUNCTUAL_LIGHT_LIST_TILED) {
-        uvec2 tile = pixelTile();
-        uint base = (tile.y * frame.lightGrid.y + tile.x) * PUNCTUAL_GRID_WORDS;
-        for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) {
-            uint bits = lightGrid[base + word];
-            uint firstLight = word < 2u ? word * 32u : spotCount;
-            while (bits != 0u) {
-                uint bit = uint(findLSB(bits));
-                bits &= bits - 1u;  // clear the lowest set bit: ascending order
-                radiance += shadeLight(surface, lights[firstLight + bit]);
-                ++tested;
-            }
-        }
     } else {
-        // Clustered: the set bits of this pixel's cluster. (Walking the tile's union of its
-        // clusters instead, testing membership per pixel, keeps SIMD lanes uniform but measured
-        // 10% slower on lavapipe; see bench/RESULTS.md.)
-        uvec2 tile = pixelTile();
-        uint base = ((tile.y * frame.lightGrid.y + tile.x) * SLICE_COUNT + pixelSlice()) * PUNCTUAL_GRID_WORDS;
+        // Tiled and clustered: the set bits of this pixel's cell. (Clustered: walking the tile's
+        // union of its clusters instead, testing membership per pixel, keeps SIMD lanes uniform
+        // but measured 10% slower on lavapipe; see bench/RESULTS.md.)
+        uint base = pixelGridCell() * PUNCTUAL_GRID_WORDS;
         for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) {
             uint bits = lightGrid[base + word];
-            uint firstLight = word < 2u ? word * 32u : spotCount;
+            uint firstLight = lightGridFirstLight(word, spotCount);
             while (bits != 0u) {
                 uint bit = uint(findLSB(bits));
                 bits &= bits - 1u;  // clear the lowest set bit: ascending order
