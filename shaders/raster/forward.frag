@@ -6,7 +6,10 @@
 //   tiled       the set bits of the pixel's tile masks, ascending;
 //   clustered   the set bits of the pixel's cluster masks, ascending.
 // All walk lights in the same ascending order and a light beyond its range adds exactly 0, so
-// tiled and clustered images are bit-identical to brute force.
+// tiled and clustered images are bit-identical to brute force. Every variant value (light list,
+// shadow filter, point-shadow layout) has its explicit case; a value without one (a C++ table
+// entry whose shader case is missing) shades magenta wherever it is used (every pixel for a light
+// list, every shadow lookup for a filter or layout) instead of passing for another variant.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_types.h"
 #include "shading.h"
@@ -60,6 +63,11 @@ layout(location = 1) in vec3 inWorldNormal;
 layout(location = 2) in vec2 inUv;
 
 layout(location = 0) out vec4 outRadiance;
+
+// Set by the default case of every variant switch: the pipeline's specialization value has no
+// case here. Constant false for every known value, so it costs nothing.
+bool unknownVariant = false;
+const vec3 kUnknownVariantRadiance = vec3(1.0e4, 0.0, 1.0e4);  // saturates to magenta
 
 // The light-grid cell of this pixel (tiled and clustered): cell = tile index x SLICE_COUNT +
 // the pixel's depth slice (culling.h: the culling kernel's search, so both pick the same slice).
@@ -118,35 +126,45 @@ void main() {
     uint spotCount = frame.lightCounts.x;
     uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
     uint tested = 0u;
-    if (LIGHT_LIST == PUNCTUAL_LIGHT_LIST_BRUTE) {
-        for (uint i = 0u; i < lightCount; ++i) {
-            radiance += shadeLight(surface, lights[i]);
-        }
-        tested = lightCount;
-    } else if (LIGHT_LIST == PUNCTUAL_LIGHT_LIST_PER_OBJECT) {
-        uint count = object.material.z;
-        uint first = draw.objectIndex * PUNCTUAL_MAX_LIGHTS_PER_OBJECT;
-        for (uint k = 0u; k < count; ++k) {
-            radiance += shadeLight(surface, lights[objectLights[first + k]]);
-        }
-        tested = count;
-    } else {
-        // Tiled and clustered: the set bits of this pixel's cell. (Clustered: walking the tile's
-        // union of its clusters instead, testing membership per pixel, keeps SIMD lanes uniform
-        // but measured 10% slower on lavapipe; see bench/RESULTS.md.)
-        uint base = pixelGridCell() * PUNCTUAL_GRID_WORDS;
-        for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) {
-            uint bits = lightGrid[base + word];
-            uint firstLight = lightGridFirstLight(word, spotCount);
-            while (bits != 0u) {
-                uint bit = uint(findLSB(bits));
-                bits &= bits - 1u;  // clear the lowest set bit: ascending order
-                radiance += shadeLight(surface, lights[firstLight + bit]);
-                ++tested;
+    switch (LIGHT_LIST) {
+        case PUNCTUAL_LIGHT_LIST_BRUTE:
+            for (uint i = 0u; i < lightCount; ++i) {
+                radiance += shadeLight(surface, lights[i]);
             }
+            tested = lightCount;
+            break;
+        case PUNCTUAL_LIGHT_LIST_PER_OBJECT: {
+            uint count = object.material.z;
+            uint first = draw.objectIndex * PUNCTUAL_MAX_LIGHTS_PER_OBJECT;
+            for (uint k = 0u; k < count; ++k) {
+                radiance += shadeLight(surface, lights[objectLights[first + k]]);
+            }
+            tested = count;
+            break;
         }
+        case PUNCTUAL_LIGHT_LIST_TILED:
+        case PUNCTUAL_LIGHT_LIST_CLUSTERED: {
+            // The set bits of this pixel's cell. (Clustered: walking the tile's union of its
+            // clusters instead, testing membership per pixel, keeps SIMD lanes uniform but
+            // measured 10% slower on lavapipe; see bench/RESULTS.md.)
+            uint base = pixelGridCell() * PUNCTUAL_GRID_WORDS;
+            for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) {
+                uint bits = lightGrid[base + word];
+                uint firstLight = lightGridFirstLight(word, spotCount);
+                while (bits != 0u) {
+                    uint bit = uint(findLSB(bits));
+                    bits &= bits - 1u;  // clear the lowest set bit: ascending order
+                    radiance += shadeLight(surface, lights[firstLight + bit]);
+                    ++tested;
+                }
+            }
+            break;
+        }
+        default:
+            unknownVariant = true;
+            break;
     }
-    outRadiance = vec4(radiance, 1.0);
+    outRadiance = vec4(unknownVariant ? kUnknownVariantRadiance : radiance, 1.0);
 
     if (WRITE_SHADOW_FACTORS) {
         uvec2 pixel = uvec2(gl_FragCoord.xy);

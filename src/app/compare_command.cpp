@@ -48,8 +48,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     std::printf("%-11s %9s %9s %9s %9s | %13s %11s | %13s\n", "", "ms", "ms", "ms", "ms", "(mean /255)", "(>2/255)",
                 "(vs Embree)");
     ImageRgba8 brute;
-    for (render::LightListMethod method : {render::LightListMethod::Brute, render::LightListMethod::PerObject,
-                                           render::LightListMethod::Tiled, render::LightListMethod::Clustered}) {
+    for (render::LightListMethod method : variantValues(render::kLightListMethods)) {
         render::RenderSettings settings = renderSettingsFrom(options);
         settings.method = method;
         settings.collectShadowFactors = options.shadows.enabled;
