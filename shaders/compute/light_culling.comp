@@ -45,10 +45,11 @@ shared uint tileMaxDistance;
 shared uint occupiedSlices[SLICE_COUNT];
 shared TileVolume occupiedVolumes[SLICE_COUNT];
 
-// Marks packed light `light` in the masks of `slice`: spots in words 0-1, points in word 2.
+// Marks packed light `light` in the masks of `slice` (spots in words 0-1, points in word 2; see
+// lightGridWord in culling.h).
 void setLightBit(uint slice, uint light) {
-    uint word = light < frame.lightCounts.x ? light >> 5u : 2u;
-    uint bit = light < frame.lightCounts.x ? light & 31u : light - frame.lightCounts.x;
+    uint word = lightGridWord(light, frame.lightCounts.x);
+    uint bit = lightGridBit(light, frame.lightCounts.x);
     atomicOr(sliceMasks[slice * PUNCTUAL_GRID_WORDS + word], 1u << bit);
 }
 
@@ -84,19 +85,10 @@ void main() {
             if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
             float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
             if (depth >= 1.0) continue;  // background: nothing to shade
-            // The pixel's slice: a binary search for the last slice start at or before its depth,
-            // the same exact comparisons as lightGridCell() in forward.frag.
-            uint first = 1u;
-            for (uint count = SLICE_COUNT - 1u; count > 0u;) {
-                uint step = count / 2u;
-                if (sliceStart[first + step] <= depth) {
-                    first += step + 1u;
-                    count -= step + 1u;
-                } else {
-                    count = step;
-                }
-            }
-            uint slice = first - 1u;
+            // The pixel's slice: the same search as pixelGridCell() in forward.frag (culling.h),
+            // so both pick the same slice.
+            uint slice;
+            PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, depth, sliceStart, SLICE_COUNT);
             uint distanceBits = floatBitsToUint(viewDistanceFromDepth(depth, frame.depthToView.xy));
             threadMin = min(threadMin, distanceBits);
             threadMax = max(threadMax, distanceBits);

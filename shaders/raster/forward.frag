@@ -6,7 +6,10 @@
 //   tiled       the set bits of the pixel's tile masks, ascending;
 //   clustered   the set bits of the pixel's cluster masks, ascending.
 // All walk lights in the same ascending order and a light beyond its range adds exactly 0, so
-// tiled and clustered images are bit-identical to brute force.
+// tiled and clustered images are bit-identical to brute force. Every variant value (light list,
+// shadow filter, point-shadow layout) has its explicit case; a value without one (a C++ table
+// entry whose shader case is missing) shades magenta wherever it is used (every pixel for a light
+// list, every shadow lookup for a filter or layout) instead of passing for another variant.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_types.h"
 #include "shading.h"
@@ -61,23 +64,19 @@ layout(location = 2) in vec2 inUv;
 
 layout(location = 0) out vec4 outRadiance;
 
-uvec2 pixelTile() { return uvec2(gl_FragCoord.xy) / TILE_SIZE; }
+// Set by the default case of every variant switch: the pipeline's specialization value has no
+// case here. Constant false for every known value, so it costs nothing.
+bool unknownVariant = false;
+const vec3 kUnknownVariantRadiance = vec3(1.0e4, 0.0, 1.0e4);  // saturates to magenta
 
-// Clustered: the slice of this pixel, by a binary search for the last slice start at or before
-// its depth. The same exact comparisons as the culling kernel (light_culling.comp), so both pick
-// the same slice.
-uint pixelSlice() {
-    uint first = 1u;
-    for (uint count = SLICE_COUNT - 1u; count > 0u;) {
-        uint step = count / 2u;
-        if (depthRange.sliceStartDepth[first + step] <= gl_FragCoord.z) {
-            first += step + 1u;
-            count -= step + 1u;
-        } else {
-            count = step;
-        }
-    }
-    return first - 1u;
+// The light-grid cell of this pixel (tiled and clustered): cell = tile index x SLICE_COUNT +
+// the pixel's depth slice (culling.h: the culling kernel's search, so both pick the same slice).
+// Tiled grids are the one-slice case: SLICE_COUNT = 1, every depth in slice 0.
+uint pixelGridCell() {
+    uvec2 tile = uvec2(gl_FragCoord.xy) / TILE_SIZE;
+    uint slice;
+    PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, gl_FragCoord.z, depthRange.sliceStartDepth, SLICE_COUNT);
+    return (tile.y * frame.lightGrid.y + tile.x) * SLICE_COUNT + slice;
 }
 
 #include "shadow_sampling.glsl"
@@ -127,49 +126,45 @@ void main() {
     uint spotCount = frame.lightCounts.x;
     uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
     uint tested = 0u;
-    if (LIGHT_LIST == PUNCTUAL_LIGHT_LIST_BRUTE) {
-        for (uint i = 0u; i < lightCount; ++i) {
-            radiance += shadeLight(surface, lights[i]);
-        }
-        tested = lightCount;
-    } else if (LIGHT_LIST == PUNCTUAL_LIGHT_LIST_PER_OBJECT) {
-        uint count = object.material.z;
-        uint first = draw.objectIndex * PUNCTUAL_MAX_LIGHTS_PER_OBJECT;
-        for (uint k = 0u; k < count; ++k) {
-            radiance += shadeLight(surface, lights[objectLights[first + k]]);
-        }
-        tested = count;
-    } else if (LIGHT_LIST == PUNCTUAL_LIGHT_LIST_TILED) {
-        uvec2 tile = pixelTile();
-        uint base = (tile.y * frame.lightGrid.y + tile.x) * PUNCTUAL_GRID_WORDS;
-        for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) {
-            uint bits = lightGrid[base + word];
-            uint firstLight = word < 2u ? word * 32u : spotCount;
-            while (bits != 0u) {
-                uint bit = uint(findLSB(bits));
-                bits &= bits - 1u;  // clear the lowest set bit: ascending order
-                radiance += shadeLight(surface, lights[firstLight + bit]);
-                ++tested;
+    switch (LIGHT_LIST) {
+        case PUNCTUAL_LIGHT_LIST_BRUTE:
+            for (uint i = 0u; i < lightCount; ++i) {
+                radiance += shadeLight(surface, lights[i]);
             }
-        }
-    } else {
-        // Clustered: the set bits of this pixel's cluster. (Walking the tile's union of its
-        // clusters instead, testing membership per pixel, keeps SIMD lanes uniform but measured
-        // 10% slower on lavapipe; see bench/RESULTS.md.)
-        uvec2 tile = pixelTile();
-        uint base = ((tile.y * frame.lightGrid.y + tile.x) * SLICE_COUNT + pixelSlice()) * PUNCTUAL_GRID_WORDS;
-        for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) {
-            uint bits = lightGrid[base + word];
-            uint firstLight = word < 2u ? word * 32u : spotCount;
-            while (bits != 0u) {
-                uint bit = uint(findLSB(bits));
-                bits &= bits - 1u;  // clear the lowest set bit: ascending order
-                radiance += shadeLight(surface, lights[firstLight + bit]);
-                ++tested;
+            tested = lightCount;
+            break;
+        case PUNCTUAL_LIGHT_LIST_PER_OBJECT: {
+            uint count = object.material.z;
+            uint first = draw.objectIndex * PUNCTUAL_MAX_LIGHTS_PER_OBJECT;
+            for (uint k = 0u; k < count; ++k) {
+                radiance += shadeLight(surface, lights[objectLights[first + k]]);
             }
+            tested = count;
+            break;
         }
+        case PUNCTUAL_LIGHT_LIST_TILED:
+        case PUNCTUAL_LIGHT_LIST_CLUSTERED: {
+            // The set bits of this pixel's cell. (Clustered: walking the tile's union of its
+            // clusters instead, testing membership per pixel, keeps SIMD lanes uniform but
+            // measured 10% slower on lavapipe; see bench/RESULTS.md.)
+            uint base = pixelGridCell() * PUNCTUAL_GRID_WORDS;
+            for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) {
+                uint bits = lightGrid[base + word];
+                uint firstLight = lightGridFirstLight(word, spotCount);
+                while (bits != 0u) {
+                    uint bit = uint(findLSB(bits));
+                    bits &= bits - 1u;  // clear the lowest set bit: ascending order
+                    radiance += shadeLight(surface, lights[firstLight + bit]);
+                    ++tested;
+                }
+            }
+            break;
+        }
+        default:
+            unknownVariant = true;
+            break;
     }
-    outRadiance = vec4(radiance, 1.0);
+    outRadiance = vec4(unknownVariant ? kUnknownVariantRadiance : radiance, 1.0);
 
     if (WRITE_SHADOW_FACTORS) {
         uvec2 pixel = uvec2(gl_FragCoord.xy);

@@ -46,15 +46,23 @@
 #define PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS ((PUNCTUAL_MAX_SHADOWED_LIGHTS + 3) / 4)
 #define PUNCTUAL_SHADOW_FACTOR_NOT_REACHED 255u
 
+// Variants chosen by specialization constant. Each kind has a C++ table with one entry per value
+// (names, help text, footprint): src/render/light_list_method.h, src/lights/shadow_filters.h. The
+// values are 0 .. COUNT - 1, the tables' indices; the tables static_assert their sizes against
+// the COUNT constants, and a unit test checks that every value has its explicit case in the
+// shaders (a value without one shades magenta rather than passing for another variant).
+//
 // Shadow filters (specialization constant PUNCTUAL_SPEC_SHADOW_FILTER).
 #define PUNCTUAL_SHADOW_FILTER_HW 0u     // one hardware 2x2 compare sample
 #define PUNCTUAL_SHADOW_FILTER_TENT3 1u  // tent over 3x3 texels
 #define PUNCTUAL_SHADOW_FILTER_TENT5 2u
 #define PUNCTUAL_SHADOW_FILTER_TENT7 3u
 #define PUNCTUAL_SHADOW_FILTER_DISK 4u   // N samples on a disk rotated per pixel by a hash
+#define PUNCTUAL_SHADOW_FILTER_COUNT 5u
 // Point-light shadow layouts (PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT).
 #define PUNCTUAL_POINT_SHADOW_CUBE 0u    // a cube depth array, hardware face selection
 #define PUNCTUAL_POINT_SHADOW_SLICES 1u  // six 2D layers with a widened field of view (URP)
+#define PUNCTUAL_POINT_SHADOW_LAYOUT_COUNT 2u
 
 // Words per light-grid cell: spot bits 0-31, spot bits 32-63, point bits 0-31.
 #define PUNCTUAL_GRID_WORDS 3
@@ -66,6 +74,7 @@
 #define PUNCTUAL_LIGHT_LIST_PER_OBJECT 1u
 #define PUNCTUAL_LIGHT_LIST_TILED 2u
 #define PUNCTUAL_LIGHT_LIST_CLUSTERED 3u
+#define PUNCTUAL_LIGHT_LIST_COUNT 4u
 
 // Specialization constant ids.
 #define PUNCTUAL_SPEC_LIGHT_LIST 1

@@ -1,6 +1,6 @@
-// Shadow lookups of the forward shader (GLSL only; included by forward.frag after its bindings
-// and specialization constants). The geometry (faces, depth mapping, bias) is in shadows.h,
-// shared with the C++ shadow setup.
+// Shadow lookups of the forward shader (GLSL only; included by forward.frag after its bindings,
+// specialization constants and unknownVariant flag). The geometry (faces, depth mapping, bias) is
+// in shadows.h, shared with the C++ shadow setup.
 
 // A per-pixel random angle for the disk filter: a hash of the position's bits (PCG), so the
 // pattern is fixed in the world and identical run to run.
@@ -12,37 +12,54 @@ float hashToUnit(vec3 p) {
     return float(h >> 8u) * (1.0 / 16777216.0);
 }
 
+// Each filter has its explicit case in every switch on SHADOW_FILTER below, checked against the
+// C++ table (lights/shadow_filters.h) by a unit test. A value without a case takes no samples and
+// sets unknownVariant (forward.frag), which shades magenta: it never passes for another filter.
+
 // Tent filters: (N - 1) x (N - 1) hardware bilinear compare taps one texel apart, weighted
 // 1, 2, ..., 2, 1 along each axis. Each tap already filters 2 x 2 texels, so the footprint is
-// N x N texels and the weights fall off linearly towards its edge.
+// N x N texels and the weights fall off linearly towards its edge. 0 for the other filters.
 const uint kTentTaps = SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_TENT3 ? 2u
                      : SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_TENT5 ? 4u
-                     : 6u;
+                     : SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_TENT7 ? 6u
+                     : 0u;
 
 float tentWeight(uint i) { return float(min(i + 1u, kTentTaps - i)); }
 
 // The filter's sample offsets in shadow-map UV units, one at a time: `count` samples with
 // weights, so 2D layers and cube faces share one loop.
 uint filterSampleCount() {
-    if (SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_HW) return 1u;
-    if (SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_DISK) return SHADOW_SAMPLES;
-    return kTentTaps * kTentTaps;
+    switch (SHADOW_FILTER) {
+        case PUNCTUAL_SHADOW_FILTER_HW: return 1u;
+        case PUNCTUAL_SHADOW_FILTER_TENT3:
+        case PUNCTUAL_SHADOW_FILTER_TENT5:
+        case PUNCTUAL_SHADOW_FILTER_TENT7: return kTentTaps * kTentTaps;
+        case PUNCTUAL_SHADOW_FILTER_DISK: return SHADOW_SAMPLES;
+        default: unknownVariant = true; return 0u;
+    }
 }
 
 // Offset (xy, UV units) and weight (z) of sample i. `angle` rotates the disk per pixel.
 vec3 filterSample(uint i, float angle) {
-    if (SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_HW) return vec3(0.0, 0.0, 1.0);
-    if (SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_DISK) {
-        // Vogel disk: radius sqrt((i + 0.5) / N) of the full radius, golden-angle steps, so
-        // samples cover the disk evenly for any N.
-        float r = sqrt((float(i) + 0.5) / float(SHADOW_SAMPLES)) * frame.shadowMap.z;
-        float a = float(i) * 2.39996323 + angle;
-        return vec3(r * cos(a), r * sin(a), 1.0);
+    switch (SHADOW_FILTER) {
+        case PUNCTUAL_SHADOW_FILTER_HW: return vec3(0.0, 0.0, 1.0);
+        case PUNCTUAL_SHADOW_FILTER_TENT3:
+        case PUNCTUAL_SHADOW_FILTER_TENT5:
+        case PUNCTUAL_SHADOW_FILTER_TENT7: {
+            uint x = i % kTentTaps;
+            uint y = i / kTentTaps;
+            vec2 offset = (vec2(x, y) - 0.5 * float(kTentTaps - 1u)) * frame.shadowMap.y;
+            return vec3(offset, tentWeight(x) * tentWeight(y));
+        }
+        case PUNCTUAL_SHADOW_FILTER_DISK: {
+            // Vogel disk: radius sqrt((i + 0.5) / N) of the full radius, golden-angle steps, so
+            // samples cover the disk evenly for any N.
+            float r = sqrt((float(i) + 0.5) / float(SHADOW_SAMPLES)) * frame.shadowMap.z;
+            float a = float(i) * 2.39996323 + angle;
+            return vec3(r * cos(a), r * sin(a), 1.0);
+        }
+        default: unknownVariant = true; return vec3(0.0);
     }
-    uint x = i % kTentTaps;
-    uint y = i / kTentTaps;
-    vec2 offset = (vec2(x, y) - 0.5 * float(kTentTaps - 1u)) * frame.shadowMap.y;
-    return vec3(offset, tentWeight(x) * tentWeight(y));
 }
 
 float filterLayer(sampler2DArrayShadow map, vec2 uv, float layer, float reference, float angle) {
@@ -99,13 +116,21 @@ float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3
         vec3 biasedDirection = biased - lightPosition;
         face = cubeFaceOfDirection(biasedDirection);
         GpuShadowView view = shadowViews[first + face];
-        if (POINT_SHADOW_LAYOUT == PUNCTUAL_POINT_SHADOW_CUBE) {
-            float reference = perspectiveDepth(abs(dot(biasedDirection, cubeFaceAxis(face))), view.params.z, view.params.w);
-            visibility = filterCube(biasedDirection, face, floor(view.params.x / 6.0), reference, angle);
-        } else {
-            vec4 clip = view.viewProjection * vec4(biased, 1.0);
-            vec3 ndc = clip.xyz / clip.w;
-            visibility = filterLayer(pointSlices, ndc.xy * 0.5 + 0.5, view.params.x, ndc.z, angle);
+        switch (POINT_SHADOW_LAYOUT) {
+            case PUNCTUAL_POINT_SHADOW_CUBE: {
+                float reference = perspectiveDepth(abs(dot(biasedDirection, cubeFaceAxis(face))), view.params.z, view.params.w);
+                visibility = filterCube(biasedDirection, face, floor(view.params.x / 6.0), reference, angle);
+                break;
+            }
+            case PUNCTUAL_POINT_SHADOW_SLICES: {
+                vec4 clip = view.viewProjection * vec4(biased, 1.0);
+                vec3 ndc = clip.xyz / clip.w;
+                visibility = filterLayer(pointSlices, ndc.xy * 0.5 + 0.5, view.params.x, ndc.z, angle);
+                break;
+            }
+            default:
+                unknownVariant = true;
+                break;
         }
     }
     return mix(1.0, visibility, light.angleOffsetShadow.w);

@@ -30,13 +30,19 @@
 namespace punctual::app {
 namespace {
 
-constexpr const char* kUsage = R"(usage: punctual bench [SCENE] [--quick] --out-dir DIR [--size WxH] [--frames N]
+// The method and filter lists come from their tables, as plan() sweeps them.
+std::string usage() {
+    std::vector<std::string> quickFilters;
+    for (const ShadowFilterInfo& filter : kShadowFilters) {
+        if (filter.quickBench) quickFilters.emplace_back(filter.name);
+    }
+    return R"(usage: punctual bench [SCENE] [--quick] --out-dir DIR [--size WxH] [--frames N]
 
 Sweeps, on SCENE (default: the built-in scene) with generated lights:
   light counts 0 .. 64 spot + 32 point (2:1 mix, spot-only and point-only series)
-  x the methods brute, per-object, tiled, clustered (shadows off);
+  x the methods )" + joinNames(render::methodNames(), ", ") + R"( (shadows off);
   shadows off and on at the largest count, per method;
-  shadow resolutions 256..2048 x the filters hw, tent3, tent5, tent7, disk (tiled),
+  shadow resolutions 256..2048 x the filters )" + joinNames(shadowFilterNames(), ", ") + R"( (tiled),
   each validated against Embree.
 Every configuration renders one warm-up frame and N timed frames (default 5, quick 3) and keeps
 the median and spread of each pass. Writes DIR/results.csv, DIR/results.json and DIR/images/.
@@ -44,10 +50,12 @@ Then the failure study (DIR/failures.csv): acne against bias, peter-panning agai
 seams against resolution and layout, the pancaking leak, spots widening towards 90 degrees, tile
 depth discontinuities (tiled against clustered), per-object lists on large objects, and light
 counts beyond the caps.
---quick: 320x180, fewer counts, resolutions 256 and 1024, filters hw and tent5 (under 3 minutes
+--quick: 320x180, fewer counts, resolutions 256 and 1024, filters )" +
+           joinNames(quickFilters, " and ") + R"( (under 3 minutes
 on 2 CPU cores). Default size: 1280x720 (quick: 320x180).
 Charts: /usr/bin/python3 bench/plot_results.py DIR && /usr/bin/python3 bench/plot_failures.py DIR
 )";
+}
 
 // The columns of results.csv (and the keys of each results.json row): the configuration, then
 // <pass>_ms and <pass>_spread_ms for every pass of the frame in frame order (so a new pass gets
@@ -131,8 +139,11 @@ std::string configName(const Config& c) {
 
 std::vector<Config> plan(bool quick) {
     const std::vector<uint32_t> counts = quick ? std::vector<uint32_t>{0, 16, 64} : std::vector<uint32_t>{0, 8, 16, 32, 48, 64};
-    const std::vector<render::LightListMethod> methods = {render::LightListMethod::Brute, render::LightListMethod::PerObject,
-                                                          render::LightListMethod::Tiled, render::LightListMethod::Clustered};
+    // Methods and filters in table order; --quick keeps the entries marked for it.
+    std::vector<render::LightListMethod> methods;
+    for (const render::LightListMethodInfo& method : render::kLightListMethods) {
+        if (!quick || method.quickBench) methods.push_back(method.value);
+    }
     std::vector<Config> configs;
     ShadowSettings off;
     off.enabled = false;
@@ -148,10 +159,10 @@ std::vector<Config> plan(bool quick) {
         configs.push_back({"shadows", method, 64, 32, ShadowSettings{}, false});
     }
     const std::vector<uint32_t> resolutions = quick ? std::vector<uint32_t>{256, 1024} : std::vector<uint32_t>{256, 512, 1024, 2048};
-    const std::vector<ShadowFilter> filters =
-        quick ? std::vector<ShadowFilter>{ShadowFilter::Hardware, ShadowFilter::Tent5}
-              : std::vector<ShadowFilter>{ShadowFilter::Hardware, ShadowFilter::Tent3, ShadowFilter::Tent5,
-                                          ShadowFilter::Tent7, ShadowFilter::Disk};
+    std::vector<ShadowFilter> filters;
+    for (const ShadowFilterInfo& filter : kShadowFilters) {
+        if (!quick || filter.quickBench) filters.push_back(filter.value);
+    }
     for (uint32_t resolution : resolutions) {
         for (ShadowFilter filter : filters) {
             ShadowSettings shadows;
@@ -171,7 +182,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
     bool quick = false;
     for (size_t i = 0; i < args.size(); ++i) {
         if (args[i] == "--help" || args[i] == "-h") {
-            std::fputs(kUsage, stdout);
+            std::fputs(usage().c_str(), stdout);
             return 0;
         } else if (args[i] == "--quick") {
             quick = true;

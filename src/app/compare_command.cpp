@@ -59,8 +59,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
         headerPrinted = true;
     };
     ImageRgba8 brute;
-    for (render::LightListMethod method : {render::LightListMethod::Brute, render::LightListMethod::PerObject,
-                                           render::LightListMethod::Tiled, render::LightListMethod::Clustered}) {
+    for (render::LightListMethod method : variantValues(render::kLightListMethods)) {
         render::RenderSettings settings = renderSettingsFrom(options);
         settings.method = method;
         settings.collectShadowFactors = options.shadows.enabled;

@@ -151,6 +151,10 @@ vk::ContextOptions contextOptionsFrom(const RenderOptions& options) {
 }
 
 std::string renderUsage() {
+    // The variant lists come from their tables (render/light_list_method.h, lights/shadow_filters.h),
+    // indented under their option; the defaults are those of RenderOptions.
+    const RenderOptions defaults;
+    constexpr size_t kListIndent = 25;
     return R"(usage: punctual render [SCENE.gltf|SCENE.glb] [options]
 
 Renders SCENE (or the built-in default scene) on the GPU and prints per-pass GPU times.
@@ -161,21 +165,23 @@ options:
   --size WxH           output size in pixels (default 1280x720)
   --out FILE.png       write the tone-mapped image
   --stats FILE.json    write per-pass GPU times, light counts and culling statistics
-  --culling METHOD     how each pixel finds its lights: brute (every light), per-object
-                       (at most 8 per object), tiled (default) or clustered
-  --tile-size N        tile size in pixels for tiled and clustered culling (default 16)
+  --culling METHOD     how each pixel finds its lights:
+)" + variantHelp(render::kLightListMethods, defaults.culling, kListIndent) +
+           R"(  --tile-size N        tile size in pixels for tiled and clustered culling (default 16)
   --slices N           depth slices for clustered culling, 1 to 32 (default 16)
   --heatmap FILE.png   draw the lights tested per pixel as a colour map with a legend
   --shadows on|off     spot and point shadows (default on: up to 32 spots, 8 points)
   --shadow-res N       shadow-map resolution, a power of two (default 1024)
-  --shadow-filter F    hw (2x2), tent3, tent5 (default), tent7, or disk
-  --shadow-samples N   disk filter samples, 1 to 64 (default 16)
+  --shadow-filter F    the shadow filter:
+)" + variantHelp(kShadowFilters, defaults.shadows.filter, kListIndent) +
+           R"(  --shadow-samples N   disk filter samples, 1 to 64 (default 16)
   --shadow-penumbra W  disk radius in shadow-map UV units (default 0.00244 = 2.5/1024)
   --shadow-bias D,S,N,SN  depth, slope-scaled, normal and sin-scaled normal bias, in texels
                        at the receiver (default 1,1,1,0)
   --shadow-strength S  0 (no shadow) to 1 (default 1), times each light's own strength
-  --point-shadow-layout cube|slices  cube map array (default) or six widened 2D slices
-  --exposure X         linear exposure before tone mapping (default 1)
+  --point-shadow-layout L  how point lights' shadow maps are stored:
+)" + variantHelp(kPointShadowLayouts, defaults.shadows.pointLayout, kListIndent) +
+           R"(  --exposure X         linear exposure before tone mapping (default 1)
   --frames N           render N frames and report the median GPU times (default 1)
   --device N           use Vulkan device N (see `punctual devices`); default: the best one
   --validate           enable the Vulkan validation layers; any message fails the run

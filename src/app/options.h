@@ -1,5 +1,6 @@
 #pragma once
-// Command-line options shared by the commands (render now; reference, validate and bench later).
+// Command-line options shared by the commands: render, compare and validate parse them all,
+// reference all but the GPU-only ones, bench the few it passes on.
 #include <cstdint>
 #include <optional>
 #include <string>

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "culling.h"
 #include "shading.h"
 
 namespace punctual {
@@ -26,33 +27,13 @@ float peakIntensity(const Light& light) {
 
 }  // namespace
 
-// Bounding sphere of a spot light.
-//
-// The lit region is the spherical sector {p : |p - P| <= r, angle(p - P, D) <= theta}: the cone of
-// apex P, axis D, half-angle theta and slant length r, plus the spherical cap that closes it. The
-// cone's rim is the circle of radius r sin(theta) centred at P + D r cos(theta).
-//
-// theta > 45 deg (cos theta < sqrt(2)/2): the sphere on the rim circle, centre P + D r cos(theta),
-//   radius r sin(theta), is the smallest sphere holding the rim, and it holds the apex too since
-//   the apex is r cos(theta) < r sin(theta) from its centre.
-// theta <= 45 deg: the apex would stick out of that sphere, so the smallest sphere passes through
-//   the apex and the rim. With its centre at P + D t: apex distance t; rim distance
-//   sqrt((r cos(theta) - t)^2 + r^2 sin^2(theta)). Equal when r^2 - 2 t r cos(theta) = 0, i.e.
-//   t = r / (2 cos(theta)), which is also the radius.
-// Both spheres hold the cap as well: a cap point at angle phi <= theta from the axis is at
-// distance^2 = r^2 + c^2 - 2 r c cos(phi) from a centre at distance c along the axis, which is
-//   <= t^2 (c = t) iff r <= 2 t cos(phi) = r cos(phi)/cos(theta), and
-//   <= r^2 sin^2(theta) (c = r cos(theta)) iff cos(theta) <= cos(phi),
-// both true for phi <= theta. At theta = 45 deg the two cases give the same sphere.
+// Points: the range sphere. Spots: the smallest sphere around the cone and its cap, derived at
+// gpu::spotBoundingSphere (culling.h), the one formula the GPU's tile culling also uses.
 BoundingSphere lightBoundingSphere(const Light& light) {
     if (light.type != LightType::Spot) return {light.position, light.range};
-    const glm::vec3 axis = unitDirection(light);
-    const float theta = clampedOuterAngle(light);
-    const float cosTheta = std::cos(theta);
-    const float r = light.range;
-    if (cosTheta < 0.70710678f) return {light.position + axis * (r * cosTheta), r * std::sin(theta)};
-    const float t = r / (2.0f * cosTheta);
-    return {light.position + axis * t, t};
+    const glm::vec4 sphere =
+        gpu::spotBoundingSphere(light.position, unitDirection(light), light.range, std::cos(clampedOuterAngle(light)));
+    return {glm::vec3(sphere), sphere.w};
 }
 
 bool Frustum::intersectsSphere(const glm::vec3& center, float radius) const {

@@ -32,8 +32,8 @@ struct BoundingSphere {
 };
 
 // Point: (position, range). Spot: the smallest sphere around its cone of slant length `range`
-// (see light_setup.cpp for the derivation); it also contains the cone's spherical cap. Not
-// meaningful for directional lights.
+// (gpu::spotBoundingSphere in shaders/shared/culling.h, with the derivation); it also contains
+// the cone's spherical cap. Not meaningful for directional lights.
 BoundingSphere lightBoundingSphere(const Light& light);
 
 // The six planes of a view frustum, each (n, d) with unit n pointing inside: a point p is inside

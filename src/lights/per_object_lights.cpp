@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "culling.h"
 #include "shading.h"
 
 namespace punctual {
@@ -64,17 +65,11 @@ float squaredDistanceToBox(const glm::vec3& point, const Bounds& box) {
 }
 
 // Bounding sphere of the spherical sector of apex P, unit axis D, half-angle theta (given by its
-// cosine, theta <= 90 deg) and radius r; the derivation is at lightBoundingSphere in
-// light_setup.cpp. In short: theta > 45 deg: the sphere through the rim circle, centre
-// P + D r cos(theta), radius r sin(theta); theta <= 45 deg: the sphere through apex and rim,
-// centre P + D t, radius t, t = r / (2 cos(theta)).
+// cosine, theta <= 90 deg) and radius r: gpu::spotBoundingSphere (culling.h, with the
+// derivation), the sphere lightBoundingSphere and the tile culling use.
 BoundingSphere sectorBoundingSphere(const glm::vec3& apex, const glm::vec3& axis, float radius, float cosTheta) {
-    if (cosTheta < 0.70710678f) {
-        const float sinTheta = std::sqrt(std::max(1.0f - cosTheta * cosTheta, 0.0f));
-        return {apex + axis * (radius * cosTheta), radius * sinTheta};
-    }
-    const float t = radius / (2.0f * cosTheta);
-    return {apex + axis * t, t};
+    const glm::vec4 sphere = gpu::spotBoundingSphere(apex, axis, radius, cosTheta);
+    return {glm::vec3(sphere), sphere.w};
 }
 
 // True when the box lies entirely on the positive side of the plane through `apex` with unit

@@ -76,43 +76,15 @@ glm::mat4 spotViewProjection(const glm::vec3& position, const glm::vec3& directi
 }  // namespace
 
 float ShadowSettings::penumbraTexels() const {
-    switch (filter) {
-        case ShadowFilter::Hardware: return 0.5f;
-        case ShadowFilter::Tent3: return 1.5f;
-        case ShadowFilter::Tent5: return 2.5f;
-        case ShadowFilter::Tent7: return 3.5f;
-        case ShadowFilter::Disk: return diskRadius * float(resolution);
-    }
-    return 0.5f;
+    const ShadowFilterInfo* info = findVariant(kShadowFilters, filter);
+    if (!info) return kShadowFilters[0].footprint.penumbraTexels;
+    return info->footprint.fromDiskSettings ? diskRadius * float(resolution) : info->footprint.penumbraTexels;
 }
 
-const char* shadowFilterName(ShadowFilter filter) {
-    switch (filter) {
-        case ShadowFilter::Hardware: return "hw";
-        case ShadowFilter::Tent3: return "tent3";
-        case ShadowFilter::Tent5: return "tent5";
-        case ShadowFilter::Tent7: return "tent7";
-        case ShadowFilter::Disk: return "disk";
-    }
-    return "unknown";
-}
-
-ShadowFilter parseShadowFilter(const std::string& name) {
-    for (ShadowFilter f : {ShadowFilter::Hardware, ShadowFilter::Tent3, ShadowFilter::Tent5, ShadowFilter::Tent7,
-                           ShadowFilter::Disk}) {
-        if (name == shadowFilterName(f)) return f;
-    }
-    throw Error("--shadow-filter", "expected hw, tent3, tent5, tent7 or disk, got '" + name + "'");
-}
-
-const char* pointShadowLayoutName(PointShadowLayout layout) {
-    return layout == PointShadowLayout::Cube ? "cube" : "slices";
-}
-
-PointShadowLayout parsePointShadowLayout(const std::string& name) {
-    if (name == "cube") return PointShadowLayout::Cube;
-    if (name == "slices") return PointShadowLayout::Slices;
-    throw Error("--point-shadow-layout", "expected cube or slices, got '" + name + "'");
+uint32_t ShadowSettings::filterTaps() const {
+    const ShadowFilterInfo* info = findVariant(kShadowFilters, filter);
+    if (!info) return kShadowFilters[0].footprint.taps;
+    return info->footprint.fromDiskSettings ? diskSamples : info->footprint.taps;
 }
 
 void validateShadowSettings(const ShadowSettings& settings) {

@@ -14,23 +14,10 @@
 
 #include "gpu_types.h"
 #include "lights/light_setup.h"
+#include "lights/shadow_filters.h"
 #include "scene/scene.h"
 
 namespace punctual {
-
-enum class ShadowFilter : uint32_t {
-    Hardware = PUNCTUAL_SHADOW_FILTER_HW,
-    Tent3 = PUNCTUAL_SHADOW_FILTER_TENT3,
-    Tent5 = PUNCTUAL_SHADOW_FILTER_TENT5,
-    Tent7 = PUNCTUAL_SHADOW_FILTER_TENT7,
-    Disk = PUNCTUAL_SHADOW_FILTER_DISK,
-};
-enum class PointShadowLayout : uint32_t { Cube = PUNCTUAL_POINT_SHADOW_CUBE, Slices = PUNCTUAL_POINT_SHADOW_SLICES };
-
-const char* shadowFilterName(ShadowFilter filter);  // "hw", "tent3", "tent5", "tent7", "disk"
-ShadowFilter parseShadowFilter(const std::string& name);  // throws Error("--shadow-filter", ...)
-const char* pointShadowLayoutName(PointShadowLayout layout);  // "cube", "slices"
-PointShadowLayout parsePointShadowLayout(const std::string& name);
 
 struct ShadowSettings {
     bool enabled = true;
@@ -47,8 +34,10 @@ struct ShadowSettings {
     bool pancaking = false;         // clamp caster vertices' depth onto the near plane (Unity's pancaking)
     float spotNearFraction = 0.0f;  // > 0: spot near plane at this fraction of the range, not fitted
 
-    // The filter's reach in texels, which widens the bias (the design notes' penumbra).
+    // The filter's reach in texels, which widens the bias (the design notes' penumbra), and its
+    // lookups per shadow test: the filter table's footprint, or the disk's settings.
     float penumbraTexels() const;
+    uint32_t filterTaps() const;
 };
 
 // Throws Error naming the option for out-of-range settings.

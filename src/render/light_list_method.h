@@ -1,9 +1,14 @@
 #pragma once
-// The four ways the forward pass finds the lights of a pixel, as users name them on the command
-// line (--culling) and in stats.
+// The ways the forward pass finds the lights of a pixel, one table entry each: the name users give
+// on the command line (--culling) and see in stats, the shader's value, and what --help and the
+// bench say about it. Adding a method is an entry here plus its case in forward.frag (see
+// core/variant_table.h).
+#include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
+#include "core/variant_table.h"
 #include "gpu_types.h"
 
 namespace punctual::render {
@@ -15,9 +20,46 @@ enum class LightListMethod : uint32_t {
     Clustered = PUNCTUAL_LIGHT_LIST_CLUSTERED,
 };
 
-const char* methodName(LightListMethod method);  // "brute", "per-object", "tiled", "clustered"
-// Throws Error("--culling", ...) for an unknown name.
-LightListMethod parseMethod(const std::string& name);
-inline bool usesLightGrid(LightListMethod m) { return m == LightListMethod::Tiled || m == LightListMethod::Clustered; }
+struct LightListMethodInfo {
+    LightListMethod value;
+    const char* name;
+    GpuConstant gpu;
+    bool usesLightGrid;  // a culling pass fills a light grid (per tile or per cluster) for the forward pass
+    bool quickBench;     // swept by `bench --quick` (the full bench sweeps every method)
+    const char* description;
+};
+
+inline constexpr std::array<LightListMethodInfo, 4> kLightListMethods = {{
+    {LightListMethod::Brute, "brute", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_BRUTE), false, true,
+     "every light"},
+    {LightListMethod::PerObject, "per-object", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_PER_OBJECT), false, true,
+     "the object's lights, at most 8, ranked on the CPU"},
+    {LightListMethod::Tiled, "tiled", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_TILED), true, true,
+     "the lights culled to its screen tile"},
+    {LightListMethod::Clustered, "clustered", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_CLUSTERED), true, true,
+     "the lights culled to its depth slice of the tile"},
+}};
+static_assert(kLightListMethods.size() == PUNCTUAL_LIGHT_LIST_COUNT, "one entry per PUNCTUAL_LIGHT_LIST_* value");
+static_assert(gpuValuesAreIndices(kLightListMethods), "entry i is the method of GPU value i");
+static_assert(namesAreUnique(kLightListMethods));
+
+// "brute", "per-object", ...; "unknown" for a value outside the table.
+inline const char* methodName(LightListMethod method) {
+    const LightListMethodInfo* info = findVariant(kLightListMethods, method);
+    return info ? info->name : "unknown";
+}
+
+// Every method's name, in table order.
+inline std::vector<std::string> methodNames() { return variantNames(kLightListMethods); }
+
+// Throws Error("--culling", "expected brute, per-object, tiled or clustered, got 'x'").
+inline LightListMethod parseMethod(const std::string& name) {
+    return parseVariant(kLightListMethods, name, "--culling").value;
+}
+
+inline bool usesLightGrid(LightListMethod method) {
+    const LightListMethodInfo* info = findVariant(kLightListMethods, method);
+    return info && info->usesLightGrid;
+}
 
 }  // namespace punctual::render

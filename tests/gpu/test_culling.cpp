@@ -29,21 +29,6 @@ ImageRgba8 renderImage(vk::Context& context, const Scene& scene, const render::R
     return renderer.render(1, 0).image;
 }
 
-// The slice of a depth in the frame's stored slice starts: the forward shader's binary search.
-uint32_t sliceOfDepth(float depth, const gpu::GpuDepthRange& range, uint32_t sliceCount) {
-    uint32_t first = 1;
-    for (uint32_t count = sliceCount - 1; count > 0;) {
-        const uint32_t step = count / 2;
-        if (range.sliceStartDepth[first + step] <= depth) {
-            first += step + 1;
-            count -= step + 1;
-        } else {
-            count = step;
-        }
-    }
-    return first - 1;
-}
-
 struct ReferenceCheck {
     size_t reachingPairs = 0;       // (pixel, light) with attenuation > 0
     size_t culledOnGpu = 0;         // of those, missing from the GPU's cell
@@ -69,13 +54,17 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
     const glm::mat4 inverseViewProjection = glm::inverse(projection * renderer.view());
     const uint32_t lightCount = lights.spotCount + lights.pointCount;
 
-    auto sliceOf = [&](float d) { return layout.slices > 1 ? sliceOfDepth(d, range, layout.slices) : 0u; };
+    // The slice of a depth in the frame's stored slice starts: the shaders' search (culling.h).
+    auto sliceOf = [&](float d) {
+        return layout.slices > 1 ? gpu::clusterSliceOfDepth(d, range.sliceStartDepth, layout.slices) : 0u;
+    };
     auto cellOf = [&](uint32_t x, uint32_t y) {
         return ((y / layout.tileSize) * layout.tilesX + x / layout.tileSize) * layout.slices + sliceOf(depth[size_t(y) * width + x]);
     };
+    // The word and bit of a light in a cell: the culling kernel's mapping (culling.h).
     auto bitOf = [&](uint32_t light, uint32_t& word) {
-        word = light < lights.spotCount ? light / 32 : 2;
-        return 1u << (light < lights.spotCount ? light % 32 : light - lights.spotCount);
+        word = gpu::lightGridWord(light, lights.spotCount);
+        return 1u << gpu::lightGridBit(light, lights.spotCount);
     };
 
     // Per-cell and per-tile depth extents, as the culling kernel finds them.

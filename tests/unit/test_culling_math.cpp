@@ -1,0 +1,208 @@
+// Known answers for the shared culling math (shaders/shared/culling.h), computed by hand: the
+// cluster slice search, the spot light's bounding sphere and the light grid's word/bit mapping.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "culling.h"
+
+namespace punctual {
+namespace {
+
+using gpu::clusterSliceOfDepth;
+using gpu::lightGridBit;
+using gpu::lightGridFirstLight;
+using gpu::lightGridWord;
+using gpu::spotBoundingSphere;
+
+// ---- cluster slice of a depth: the last slice whose start is <= depth ---------------------------
+
+// Starts 0, 1/4, 1/2, 3/4 (slices 0-3, all exact in binary); the unused slices start at 2, past
+// every depth, as cluster_slices.comp writes them.
+std::vector<float> quarterStarts() {
+    std::vector<float> starts(PUNCTUAL_MAX_CLUSTER_SLICES, 2.0f);
+    for (int s = 0; s < 4; ++s) starts[size_t(s)] = 0.25f * float(s);
+    return starts;
+}
+
+TEST(ClusterSlice, DepthsInsideSlices) {
+    const std::vector<float> starts = quarterStarts();
+    EXPECT_EQ(clusterSliceOfDepth(0.1f, starts.data(), 4), 0u);
+    EXPECT_EQ(clusterSliceOfDepth(0.3f, starts.data(), 4), 1u);
+    EXPECT_EQ(clusterSliceOfDepth(0.6f, starts.data(), 4), 2u);
+    EXPECT_EQ(clusterSliceOfDepth(0.9f, starts.data(), 4), 3u);
+}
+
+TEST(ClusterSlice, ASliceStartBelongsToTheSliceItStarts) {
+    // "at or before": depth 0.25 is slice 1's first depth; the float just below is still slice 0.
+    const std::vector<float> starts = quarterStarts();
+    EXPECT_EQ(clusterSliceOfDepth(0.0f, starts.data(), 4), 0u);
+    EXPECT_EQ(clusterSliceOfDepth(0.25f, starts.data(), 4), 1u);
+    EXPECT_EQ(clusterSliceOfDepth(std::nextafter(0.25f, 0.0f), starts.data(), 4), 0u);
+    EXPECT_EQ(clusterSliceOfDepth(0.75f, starts.data(), 4), 3u);
+}
+
+TEST(ClusterSlice, DepthsBeyondTheLastStartStayInTheLastSlice) {
+    // Only starts 1 .. sliceCount - 1 are read: depth 5 is past start[4] = 2 but slice 3 is the last.
+    const std::vector<float> starts = quarterStarts();
+    EXPECT_EQ(clusterSliceOfDepth(1.0f, starts.data(), 4), 3u);
+    EXPECT_EQ(clusterSliceOfDepth(5.0f, starts.data(), 4), 3u);
+}
+
+TEST(ClusterSlice, OneSliceIsAlwaysSliceZero) {
+    // Tiled grids: no start is read, every depth is slice 0.
+    const std::vector<float> starts = quarterStarts();
+    for (float depth : {0.0f, 0.5f, 0.99f, 3.0f}) EXPECT_EQ(clusterSliceOfDepth(depth, starts.data(), 1), 0u);
+}
+
+TEST(ClusterSlice, EqualStartsGoToTheLastOfThem) {
+    // Starts 0, 0.5, 0.5, 0.5, 0.75: depth 0.5 is at or past slices 1-3's start, so slice 3; a
+    // depth below 0.5 is slice 0.
+    std::vector<float> starts(PUNCTUAL_MAX_CLUSTER_SLICES, 2.0f);
+    starts[0] = 0.0f;
+    starts[1] = starts[2] = starts[3] = 0.5f;
+    starts[4] = 0.75f;
+    EXPECT_EQ(clusterSliceOfDepth(0.5f, starts.data(), 5), 3u);
+    EXPECT_EQ(clusterSliceOfDepth(0.6f, starts.data(), 5), 3u);
+    EXPECT_EQ(clusterSliceOfDepth(0.4f, starts.data(), 5), 0u);
+    EXPECT_EQ(clusterSliceOfDepth(0.8f, starts.data(), 5), 4u);
+}
+
+TEST(ClusterSlice, EverySliceOfEveryCountIsFound) {
+    // Starts s / 32 (exact): depth s / 32 is slice s, and s / 32 + 1/64 too, for every count, odd
+    // counts included (the search's halving then leaves uneven parts).
+    std::vector<float> starts(PUNCTUAL_MAX_CLUSTER_SLICES);
+    for (uint32_t s = 0; s < PUNCTUAL_MAX_CLUSTER_SLICES; ++s) starts[s] = float(s) / 32.0f;
+    for (uint32_t count = 1; count <= PUNCTUAL_MAX_CLUSTER_SLICES; ++count) {
+        for (uint32_t s = 0; s < count; ++s) {
+            EXPECT_EQ(clusterSliceOfDepth(float(s) / 32.0f, starts.data(), count), s) << count;
+            EXPECT_EQ(clusterSliceOfDepth(float(s) / 32.0f + 1.0f / 64.0f, starts.data(), count), s) << count;
+        }
+    }
+}
+
+// ---- spot bounding sphere, vec4(centre, radius) ------------------------------------------------
+
+TEST(SpotBoundingSphere, WideConeIsTheRimSphere) {
+    // cos = 0.6, sin = 0.8 (a 3-4-5 triangle), range 5: rim centre 5 x 0.6 = 3 along the axis,
+    // rim radius 5 x 0.8 = 4.
+    const glm::vec4 sphere = spotBoundingSphere({1.0f, 2.0f, 3.0f}, {0.0f, 0.0f, -1.0f}, 5.0f, 0.6f);
+    EXPECT_FLOAT_EQ(sphere.x, 1.0f);
+    EXPECT_FLOAT_EQ(sphere.y, 2.0f);
+    EXPECT_FLOAT_EQ(sphere.z, 0.0f);
+    EXPECT_FLOAT_EQ(sphere.w, 4.0f);
+}
+
+TEST(SpotBoundingSphere, SixtyDegrees) {
+    // cos 60 = 0.5, range 2: centre 1 along the axis, radius 2 sqrt(1 - 1/4) = sqrt(3), both
+    // exact to the float (sqrt(3) = 2 sqrt(3/4), a power-of-two scaling).
+    const glm::vec4 sphere = spotBoundingSphere({0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, 2.0f, 0.5f);
+    EXPECT_EQ(sphere.x, 1.0f);
+    EXPECT_EQ(sphere.y, 0.0f);
+    EXPECT_EQ(sphere.z, 0.0f);
+    EXPECT_EQ(sphere.w, std::sqrt(3.0f));
+}
+
+TEST(SpotBoundingSphere, NarrowConeIsTheSphereThroughApexAndRim) {
+    // cos = 0.8, range 4: t = 4 / (2 x 0.8) = 2.5, the centre's distance along the axis and the
+    // radius. Check: the rim (3.2 along, 2.4 across) is sqrt(0.7^2 + 2.4^2) = 2.5 from the centre.
+    const glm::vec4 sphere = spotBoundingSphere({0.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, 4.0f, 0.8f);
+    EXPECT_FLOAT_EQ(sphere.x, 0.0f);
+    EXPECT_FLOAT_EQ(sphere.y, -1.5f);
+    EXPECT_FLOAT_EQ(sphere.z, 0.0f);
+    EXPECT_FLOAT_EQ(sphere.w, 2.5f);
+}
+
+TEST(SpotBoundingSphere, ZeroAngleConeIsTheSegment) {
+    // cos = 1: the cone is the segment from the apex to range 6 along the axis; the sphere on it
+    // has centre 3 along the axis and radius 3.
+    const glm::vec4 sphere = spotBoundingSphere({0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 6.0f, 1.0f);
+    EXPECT_EQ(sphere.y, 3.0f);
+    EXPECT_EQ(sphere.w, 3.0f);
+}
+
+TEST(SpotBoundingSphere, HalfSpaceConeIsTheRangeSphere) {
+    // cos = 0 (90 degrees): the rim circle is the range circle through the apex, centre at the
+    // apex, radius the range. cos(pi/2) in float is -4.4e-8: the clamp keeps sin at 1.
+    const glm::vec4 sphere = spotBoundingSphere({1.0f, 1.0f, 1.0f}, {0.0f, 0.0f, 1.0f}, 3.0f, 0.0f);
+    EXPECT_EQ(sphere, glm::vec4(1.0f, 1.0f, 1.0f, 3.0f));
+    const glm::vec4 rounded = spotBoundingSphere({1.0f, 1.0f, 1.0f}, {0.0f, 0.0f, 1.0f}, 3.0f, std::cos(1.5707964f));
+    EXPECT_EQ(rounded.w, 3.0f);
+    EXPECT_NEAR(rounded.z, 1.0f, 1e-6f);
+}
+
+TEST(SpotBoundingSphere, BothCasesMeetAt45Degrees) {
+    // At cos = sin = sqrt(2)/2 both give centre and radius r / sqrt(2): r cos = r / (2 cos).
+    const float c = 0.70710678f;
+    const glm::vec4 narrow = spotBoundingSphere({0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, 2.0f, std::nextafter(c, 1.0f));
+    const glm::vec4 wide = spotBoundingSphere({0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, 2.0f, std::nextafter(c, 0.0f));
+    EXPECT_NEAR(narrow.x, std::sqrt(2.0f), 1e-6f);
+    EXPECT_NEAR(narrow.w, std::sqrt(2.0f), 1e-6f);
+    EXPECT_NEAR(wide.x, std::sqrt(2.0f), 1e-6f);
+    EXPECT_NEAR(wide.w, std::sqrt(2.0f), 1e-6f);
+}
+
+// ---- light grid: packed light <-> (word, bit) ---------------------------------------------------
+
+TEST(LightGrid, SpotsFillWordsZeroAndOnePointsWordTwo) {
+    // 40 spots (0-39), then points from 40.
+    EXPECT_EQ(lightGridWord(0, 40), 0u);
+    EXPECT_EQ(lightGridBit(0, 40), 0u);
+    EXPECT_EQ(lightGridWord(31, 40), 0u);
+    EXPECT_EQ(lightGridBit(31, 40), 31u);
+    EXPECT_EQ(lightGridWord(32, 40), 1u);
+    EXPECT_EQ(lightGridBit(32, 40), 0u);
+    EXPECT_EQ(lightGridWord(39, 40), 1u);
+    EXPECT_EQ(lightGridBit(39, 40), 7u);
+    EXPECT_EQ(lightGridWord(40, 40), 2u);  // the first point
+    EXPECT_EQ(lightGridBit(40, 40), 0u);
+    EXPECT_EQ(lightGridWord(71, 40), 2u);  // the 32nd point
+    EXPECT_EQ(lightGridBit(71, 40), 31u);
+}
+
+TEST(LightGrid, FullAndEmptySpotCaps) {
+    // 64 spots: the last spot is word 1 bit 31, light 64 the first point.
+    EXPECT_EQ(lightGridWord(63, 64), 1u);
+    EXPECT_EQ(lightGridBit(63, 64), 31u);
+    EXPECT_EQ(lightGridWord(64, 64), 2u);
+    EXPECT_EQ(lightGridBit(64, 64), 0u);
+    // No spots: every light is a point.
+    EXPECT_EQ(lightGridWord(5, 0), 2u);
+    EXPECT_EQ(lightGridBit(5, 0), 5u);
+}
+
+TEST(LightGrid, FirstLightOfEachWord) {
+    EXPECT_EQ(lightGridFirstLight(0, 40), 0u);
+    EXPECT_EQ(lightGridFirstLight(1, 40), 32u);
+    EXPECT_EQ(lightGridFirstLight(2, 40), 40u);
+    EXPECT_EQ(lightGridFirstLight(2, 0), 0u);
+}
+
+TEST(LightGrid, WalkingTheWordsVisitsEveryLightOnceInAscendingOrder) {
+    // For every spot count, with the most points: set every light's bit, then walk the words and
+    // their bits upwards as forward.frag does; the lights come back as 0, 1, 2, ...
+    for (uint32_t spots = 0; spots <= PUNCTUAL_MAX_SPOT_LIGHTS; ++spots) {
+        const uint32_t lights = spots + PUNCTUAL_MAX_POINT_LIGHTS;
+        uint32_t words[PUNCTUAL_GRID_WORDS] = {};
+        for (uint32_t light = 0; light < lights; ++light) {
+            ASSERT_LT(lightGridWord(light, spots), uint32_t(PUNCTUAL_GRID_WORDS));
+            ASSERT_LT(lightGridBit(light, spots), 32u);
+            const uint32_t bit = 1u << lightGridBit(light, spots);
+            EXPECT_EQ(words[lightGridWord(light, spots)] & bit, 0u) << "two lights share a bit";
+            words[lightGridWord(light, spots)] |= bit;
+        }
+        uint32_t expected = 0;
+        for (uint32_t word = 0; word < PUNCTUAL_GRID_WORDS; ++word) {
+            for (uint32_t bit = 0; bit < 32; ++bit) {
+                if (words[word] & (1u << bit)) {
+                    EXPECT_EQ(lightGridFirstLight(word, spots) + bit, expected++) << spots;
+                }
+            }
+        }
+        EXPECT_EQ(expected, lights);
+    }
+}
+
+}  // namespace
+}  // namespace punctual

@@ -1,0 +1,227 @@
+// The variant tables (light-list methods, shadow filters, point-shadow layouts): names round-trip,
+// unknown names fail with one line listing every name, --help lists every entry, the footprints,
+// and every entry has its explicit case in the shaders.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "core/error.h"
+#include "lights/shadow_filters.h"
+#include "lights/shadow_setup.h"
+#include "render/light_list_method.h"
+
+namespace punctual {
+namespace {
+
+using render::LightListMethod;
+
+std::string problemOf(void (*parse)(const std::string&), const std::string& name) {
+    try {
+        parse(name);
+    } catch (const Error& error) {
+        return error.what();
+    }
+    return "(no error)";
+}
+
+// ---- names ------------------------------------------------------------------------------------
+
+TEST(VariantTables, MethodNamesRoundTrip) {
+    EXPECT_EQ(render::methodNames(), (std::vector<std::string>{"brute", "per-object", "tiled", "clustered"}));
+    for (const render::LightListMethodInfo& method : render::kLightListMethods) {
+        EXPECT_EQ(render::parseMethod(method.name), method.value);
+        EXPECT_STREQ(render::methodName(method.value), method.name);
+    }
+    EXPECT_STREQ(render::methodName(LightListMethod(PUNCTUAL_LIGHT_LIST_COUNT)), "unknown");
+}
+
+TEST(VariantTables, ShadowFilterNamesRoundTrip) {
+    EXPECT_EQ(shadowFilterNames(), (std::vector<std::string>{"hw", "tent3", "tent5", "tent7", "disk"}));
+    for (const ShadowFilterInfo& filter : kShadowFilters) {
+        EXPECT_EQ(parseShadowFilter(filter.name), filter.value);
+        EXPECT_STREQ(shadowFilterName(filter.value), filter.name);
+    }
+    EXPECT_STREQ(shadowFilterName(ShadowFilter(PUNCTUAL_SHADOW_FILTER_COUNT)), "unknown");
+}
+
+TEST(VariantTables, PointShadowLayoutNamesRoundTrip) {
+    EXPECT_EQ(pointShadowLayoutNames(), (std::vector<std::string>{"cube", "slices"}));
+    for (const PointShadowLayoutInfo& layout : kPointShadowLayouts) {
+        EXPECT_EQ(parsePointShadowLayout(layout.name), layout.value);
+        EXPECT_STREQ(pointShadowLayoutName(layout.value), layout.name);
+    }
+    EXPECT_STREQ(pointShadowLayoutName(PointShadowLayout(PUNCTUAL_POINT_SHADOW_LAYOUT_COUNT)), "unknown");
+}
+
+TEST(VariantTables, UnknownNamesFailWithOneLineListingEveryName) {
+    EXPECT_EQ(problemOf([](const std::string& n) { render::parseMethod(n); }, "fast"),
+              "--culling: expected brute, per-object, tiled or clustered, got 'fast'");
+    EXPECT_EQ(problemOf([](const std::string& n) { parseShadowFilter(n); }, "box"),
+              "--shadow-filter: expected hw, tent3, tent5, tent7 or disk, got 'box'");
+    EXPECT_EQ(problemOf([](const std::string& n) { parsePointShadowLayout(n); }, "sphere"),
+              "--point-shadow-layout: expected cube or slices, got 'sphere'");
+    // Names are matched exactly: no case folding, no prefixes.
+    EXPECT_NE(problemOf([](const std::string& n) { render::parseMethod(n); }, "Tiled"), "(no error)");
+    EXPECT_NE(problemOf([](const std::string& n) { parseShadowFilter(n); }, "tent"), "(no error)");
+    EXPECT_NE(problemOf([](const std::string& n) { parsePointShadowLayout(n); }, ""), "(no error)");
+}
+
+TEST(VariantTables, JoinNames) {
+    EXPECT_EQ(joinNames({}), "");
+    EXPECT_EQ(joinNames({"a"}), "a");
+    EXPECT_EQ(joinNames({"a", "b"}), "a or b");
+    EXPECT_EQ(joinNames({"a", "b", "c"}, " and "), "a, b and c");
+}
+
+// ---- --help -----------------------------------------------------------------------------------
+
+// Every entry on its own line, indented, with its description; only the default marked.
+template <typename Entry, size_t N>
+void expectHelpListsEveryEntry(const std::array<Entry, N>& table, decltype(Entry::value) defaultValue) {
+    const std::string help = variantHelp(table, defaultValue, 4);
+    std::istringstream lines(help);
+    std::string line;
+    size_t count = 0;
+    while (std::getline(lines, line)) {
+        ASSERT_LT(count, N) << help;
+        const Entry& entry = table[count++];
+        EXPECT_EQ(line.rfind(std::string("    ") + entry.name + " ", 0), 0u) << line;
+        EXPECT_NE(line.find(entry.description), std::string::npos) << line;
+        EXPECT_EQ(line.find("(default)") != std::string::npos, entry.value == defaultValue) << line;
+    }
+    EXPECT_EQ(count, N) << help;
+}
+
+TEST(VariantTables, HelpListsEveryEntryAndTheDefault) {
+    expectHelpListsEveryEntry(render::kLightListMethods, LightListMethod::Tiled);
+    const ShadowSettings defaults;
+    expectHelpListsEveryEntry(kShadowFilters, defaults.filter);
+    expectHelpListsEveryEntry(kPointShadowLayouts, defaults.pointLayout);
+    // The descriptions line up in one column after the longest name.
+    EXPECT_EQ(variantHelp(kPointShadowLayouts, PointShadowLayout::Cube, 2).substr(0, 10), "  cube    ");
+}
+
+// ---- footprints and bench sweeps --------------------------------------------------------------
+
+TEST(VariantTables, ShadowFilterFootprints) {
+    // Reach: half the N x N footprint (hw: a 2 x 2 bilinear tap, half a texel); taps: (N - 1)^2.
+    ShadowSettings settings;
+    const std::pair<ShadowFilter, std::pair<float, uint32_t>> expected[] = {
+        {ShadowFilter::Hardware, {0.5f, 1u}}, {ShadowFilter::Tent3, {1.5f, 4u}}, {ShadowFilter::Tent5, {2.5f, 16u}},
+        {ShadowFilter::Tent7, {3.5f, 36u}}};
+    for (const auto& [filter, footprint] : expected) {
+        settings.filter = filter;
+        EXPECT_EQ(settings.penumbraTexels(), footprint.first) << shadowFilterName(filter);
+        EXPECT_EQ(settings.filterTaps(), footprint.second) << shadowFilterName(filter);
+    }
+    // The disk's come from its settings: radius 2.5/1024 of the map at 1024 texels is 2.5 texels.
+    settings.filter = ShadowFilter::Disk;
+    EXPECT_EQ(settings.penumbraTexels(), 2.5f);
+    EXPECT_EQ(settings.filterTaps(), 16u);
+    settings.resolution = 2048;
+    settings.diskSamples = 9;
+    EXPECT_EQ(settings.penumbraTexels(), 5.0f);
+    EXPECT_EQ(settings.filterTaps(), 9u);
+}
+
+TEST(VariantTables, QuickBenchSweepsEveryMethodAndTwoFilters) {
+    for (const render::LightListMethodInfo& method : render::kLightListMethods) EXPECT_TRUE(method.quickBench) << method.name;
+    std::vector<std::string> quickFilters;
+    for (const ShadowFilterInfo& filter : kShadowFilters) {
+        if (filter.quickBench) quickFilters.emplace_back(filter.name);
+    }
+    EXPECT_EQ(quickFilters, (std::vector<std::string>{"hw", "tent5"}));
+}
+
+TEST(VariantTables, LightGridMethods) {
+    EXPECT_FALSE(render::usesLightGrid(LightListMethod::Brute));
+    EXPECT_FALSE(render::usesLightGrid(LightListMethod::PerObject));
+    EXPECT_TRUE(render::usesLightGrid(LightListMethod::Tiled));
+    EXPECT_TRUE(render::usesLightGrid(LightListMethod::Clustered));
+}
+
+// ---- the shaders have a case for every entry ----------------------------------------------------
+
+std::string readShader(const std::string& path) {
+    std::ifstream file(std::string(PUNCTUAL_SHADER_DIR) + "/" + path);
+    EXPECT_TRUE(file) << path;
+    std::stringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+// The bodies of every `switch (selector) { ... }` in `source`, by brace matching.
+std::vector<std::string> switchBodies(const std::string& source, const std::string& selector) {
+    std::vector<std::string> bodies;
+    const std::string head = "switch (" + selector + ")";
+    for (size_t at = source.find(head); at != std::string::npos; at = source.find(head, at + 1)) {
+        const size_t open = source.find('{', at);
+        int depth = 0;
+        for (size_t i = open; i < source.size(); ++i) {
+            depth += source[i] == '{' ? 1 : source[i] == '}' ? -1 : 0;
+            if (depth == 0) {
+                bodies.push_back(source.substr(open, i - open + 1));
+                break;
+            }
+        }
+    }
+    return bodies;
+}
+
+// Every switch on `selector` names every entry's GPU constant in a `case` and has a default (which
+// flags an unknown value), and there are at least `minimumSwitches` of them.
+template <typename Entry, size_t N>
+void expectEveryEntryHasItsCase(const std::array<Entry, N>& table, const std::string& path, const std::string& selector,
+                                size_t minimumSwitches) {
+    const std::vector<std::string> bodies = switchBodies(readShader(path), selector);
+    EXPECT_GE(bodies.size(), minimumSwitches) << path << ": switch (" << selector << ")";
+    for (const std::string& body : bodies) {
+        for (const Entry& entry : table) {
+            EXPECT_NE(body.find(std::string("case ") + entry.gpu.name + ":"), std::string::npos)
+                << path << ": no case for " << entry.name << " (" << entry.gpu.name << ") in\n" << body;
+        }
+        EXPECT_TRUE(std::regex_search(body, std::regex("default:\\s*unknownVariant = true;")))
+            << path << ": an unknown value must set unknownVariant\n" << body;
+    }
+}
+
+TEST(VariantTables, EveryShadowFilterHasItsShaderCases) {
+    expectEveryEntryHasItsCase(kShadowFilters, "shared/shadow_sampling.glsl", "SHADOW_FILTER", 2);
+}
+
+TEST(VariantTables, EveryPointShadowLayoutHasItsShaderCase) {
+    expectEveryEntryHasItsCase(kPointShadowLayouts, "shared/shadow_sampling.glsl", "POINT_SHADOW_LAYOUT", 1);
+}
+
+TEST(VariantTables, EveryLightListMethodHasItsShaderCase) {
+    expectEveryEntryHasItsCase(render::kLightListMethods, "raster/forward.frag", "LIGHT_LIST", 1);
+}
+
+// Every value define of a kind in gpu_types.h (`#define PREFIX<NAME> <n>u`, the count aside) is
+// some entry's constant: a value added to the shaders without its table entry fails here.
+template <typename Entry, size_t N>
+void expectEveryDefineHasAnEntry(const std::array<Entry, N>& table, const std::string& prefix) {
+    const std::string source = readShader("shared/gpu_types.h");
+    const std::regex define("#define (" + prefix + "\\w+) \\d+u");
+    std::set<std::string> defines;
+    for (auto it = std::sregex_iterator(source.begin(), source.end(), define); it != std::sregex_iterator(); ++it) {
+        const std::string name = (*it)[1].str();
+        if (!name.ends_with("_COUNT")) defines.insert(name);
+    }
+    std::set<std::string> entries;
+    for (const Entry& entry : table) entries.insert(entry.gpu.name);
+    EXPECT_EQ(defines, entries) << prefix;
+}
+
+TEST(VariantTables, EveryGpuValueHasAnEntry) {
+    expectEveryDefineHasAnEntry(render::kLightListMethods, "PUNCTUAL_LIGHT_LIST_");
+    expectEveryDefineHasAnEntry(kShadowFilters, "PUNCTUAL_SHADOW_FILTER_");
+    expectEveryDefineHasAnEntry(kPointShadowLayouts, "PUNCTUAL_POINT_SHADOW_");
+}
+
+}  // namespace
+}  // namespace punctual
