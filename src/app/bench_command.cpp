@@ -74,22 +74,6 @@ std::vector<std::string> resultColumns(const std::vector<std::string>& passes) {
     return columns;
 }
 
-// TEMPORARY until the variant tables land: the names of every value of a variant kind.
-template <typename T>
-std::vector<std::string> variantNames();
-template <>
-std::vector<std::string> variantNames<render::LightListMethod>() {
-    return {"brute", "per-object", "tiled", "clustered"};
-}
-template <>
-std::vector<std::string> variantNames<ShadowFilter>() {
-    return {"hw", "tent3", "tent5", "tent7", "disk"};
-}
-template <>
-std::vector<std::string> variantNames<PointShadowLayout>() {
-    return {"cube", "slices"};
-}
-
 struct Config {
     std::string series;
     render::LightListMethod method = render::LightListMethod::Tiled;
@@ -276,7 +260,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
         }
         const std::string bruteKey = config.series + std::to_string(config.spot) + "," + std::to_string(config.point) +
                                      (config.shadows.enabled ? "s" : "");
-        if (config.method == render::LightListMethod::Brute && !config.validateShadows) {
+        if (config.method == render::referenceMethod() && !config.validateShadows) {
             bruteImages[bruteKey] = result.image;
         } else if (bruteImages.count(bruteKey)) {
             const ImageDifference difference = compareImages(result.image, bruteImages[bruteKey]);
@@ -327,9 +311,9 @@ int runBenchCommand(const std::vector<std::string>& args) {
                                {"device", context.deviceName()},
                                {"size", {{"width", options.width}, {"height", options.height}}},
                                {"quick", quick},
-                               {"methods", variantNames<render::LightListMethod>()},
-                               {"shadow_filters", variantNames<ShadowFilter>()},
-                               {"point_layouts", variantNames<PointShadowLayout>()},
+                               {"methods", render::methodNames()},
+                               {"shadow_filters", shadowFilterNames()},
+                               {"point_layouts", pointShadowLayoutNames()},
                                {"passes", passes},
                                {"configurations", json}};
     outputs.add(*outDir + "/results.csv", csv.str());

@@ -15,22 +15,26 @@
 namespace punctual::app {
 namespace {
 
-constexpr const char* kUsage = R"(usage: punctual compare [SCENE] [render options]
-
-Renders the frame with brute, per-object, tiled and clustered light lists (after one warm-up
-frame each, --frames N timed frames) and prints, side by side: the GPU time of every pass
-(depth, culling, shadows, forward, tonemap) and of the whole frame; the image error against brute force (mean
-absolute difference and the share of pixels more than 2/255 off); and, with shadows on, the
-share of (pixel, light) pairs whose shadow disagrees with Embree's ray-cast visibility outside
-the +-1 texel edge band. --culling is ignored: every method runs.
-)";
+std::string usage() {
+    return "usage: punctual compare [SCENE] [render options]\n\n"
+           "Renders the frame with every light-list method (" +
+           joinNames(render::methodNames(), " and ") +
+           ", after one warm-up frame each,\n"
+           "--frames N timed frames) and prints, side by side: the GPU time of every pass and of the\n"
+           "whole frame; the image error against " +
+           render::methodName(render::referenceMethod()) +
+           " (mean absolute difference and the share of pixels\n"
+           "more than 2/255 off); and, with shadows on, the share of (pixel, light) pairs whose shadow\n"
+           "disagrees with Embree's ray-cast visibility outside the +-1 texel edge band. --culling is\n"
+           "ignored: every method runs.\n";
+}
 
 }  // namespace
 
 int runCompareCommand(const std::vector<std::string>& args) {
     for (const std::string& arg : args) {
         if (arg == "--help" || arg == "-h") {
-            std::fputs(kUsage, stdout);
+            std::fputs(usage().c_str(), stdout);
             return 0;
         }
         if (arg == "--out" || arg == "--stats" || arg == "--heatmap") throw Error(arg, "not an option of compare");
@@ -66,7 +70,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
         render::Renderer renderer(context, scene, settings);
         if (!headerPrinted) printHeader(renderer.passNames());
         const render::FrameResult result = renderer.render(options.frames, 1);
-        if (method == render::LightListMethod::Brute) brute = result.image;
+        if (method == render::referenceMethod()) brute = result.image;
         const ImageDifference error = compareImages(result.image, brute);
         std::string shadowColumn = "-";
         if (embree) {

@@ -48,7 +48,7 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
         json["slices"] = grid.slices;
         json["cells"] = grid.cellCount();
     }
-    if (settings.method == render::LightListMethod::PerObject) {
+    if (render::methodInfo(settings.method).objectLists) {
         json["per_object"] = {{"objects_over_cap", renderer.perObjectLists().objectsOverCap},
                               {"max_candidates", renderer.perObjectLists().maxCandidates}};
     }

@@ -16,6 +16,15 @@ bool parseNumber(const std::string& text, T& value) {
     return ec == std::errc() && end == last && !text.empty();
 }
 
+// A whole number. Options that are render settings take any: their ranges are checked in one place,
+// validateRenderSettings (render/render_settings.h), once every option is read.
+uint32_t parseWhole(const std::string& option, const std::string& text) {
+    uint32_t value = 0;
+    if (!parseNumber(text, value)) throw Error(option, "expected a whole number, got '" + text + "'");
+    return value;
+}
+
+// A whole number of an option that is not a render setting (--device, --frames), in its range.
 uint32_t parseCount(const std::string& option, const std::string& text, uint32_t min, uint32_t max) {
     uint32_t value = 0;
     if (!parseNumber(text, value) || value < min || value > max) {
@@ -52,13 +61,9 @@ glm::vec4 parseBias(const std::string& text) {
 
 void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
     const auto x = text.find('x');
-    if (x == std::string::npos) throw Error("--size", "expected WxH (e.g. 1280x720), got '" + text + "'");
-    constexpr uint32_t kMax = 8192;
-    try {
-        width = parseCount("--size", text.substr(0, x), 1, kMax);
-        height = parseCount("--size", text.substr(x + 1), 1, kMax);
-    } catch (const Error&) {
-        throw Error("--size", "expected WxH with each side from 1 to " + std::to_string(kMax) + ", got '" + text + "'");
+    const std::string expected = "expected WxH (e.g. 1280x720), got '" + text + "'";
+    if (x == std::string::npos || !parseNumber(text.substr(0, x), width) || !parseNumber(text.substr(x + 1), height)) {
+        throw Error("--size", expected);
     }
 }
 
@@ -89,9 +94,9 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         } else if (arg == "--culling") {
             options.culling = render::parseMethod(value());
         } else if (arg == "--tile-size") {
-            options.tileSize = parseCount(arg, value(), 4, 128);
+            options.tileSize = parseWhole(arg, value());
         } else if (arg == "--slices") {
-            options.slices = parseCount(arg, value(), 1, PUNCTUAL_MAX_CLUSTER_SLICES);
+            options.slices = parseWhole(arg, value());
         } else if (arg == "--heatmap") {
             options.heatmapPath = value();
         } else if (arg == "--shadows") {
@@ -99,11 +104,11 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             if (text != "on" && text != "off") throw Error(arg, "expected on or off, got '" + text + "'");
             options.shadows.enabled = text == "on";
         } else if (arg == "--shadow-res") {
-            options.shadows.resolution = parseCount(arg, value(), 16, 8192);
+            options.shadows.resolution = parseWhole(arg, value());
         } else if (arg == "--shadow-filter") {
             options.shadows.filter = parseShadowFilter(value());
         } else if (arg == "--shadow-samples") {
-            options.shadows.diskSamples = parseCount(arg, value(), 1, 64);
+            options.shadows.diskSamples = parseWhole(arg, value());
         } else if (arg == "--shadow-bias") {
             options.shadows.bias = parseBias(value());
         } else if (arg == "--shadow-penumbra") {
@@ -113,12 +118,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         } else if (arg == "--point-shadow-layout") {
             options.shadows.pointLayout = parsePointShadowLayout(value());
         } else if (arg == "--exposure") {
-            const std::string& text = value();
-            float exposure = 0.0f;
-            if (!parseNumber(text, exposure) || !std::isfinite(exposure) || exposure <= 0.0f) {
-                throw Error(arg, "expected a number > 0, got '" + text + "'");
-            }
-            options.exposure = exposure;
+            options.exposure = parseFloat(arg, value());
         } else if (!arg.empty() && arg[0] == '-') {
             throw Error(arg, "unknown option (see punctual render --help)");
         } else if (!options.scenePath) {
@@ -127,7 +127,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             throw Error(arg, "unexpected argument: only one scene file can be given");
         }
     }
-    validateShadowSettings(options.shadows);
+    render::validateRenderSettings(renderSettingsFrom(options));
     return options;
 }
 

@@ -89,9 +89,11 @@ uint32_t ShadowSettings::filterTaps() const {
 
 void validateShadowSettings(const ShadowSettings& settings) {
     if (settings.resolution < 16 || settings.resolution > 8192 || (settings.resolution & (settings.resolution - 1)) != 0) {
-        throw Error("--shadow-res", "must be a power of two from 16 to 8192");
+        throw Error("--shadow-res", "must be a power of two from 16 to 8192, got " + std::to_string(settings.resolution));
     }
-    if (settings.diskSamples < 1 || settings.diskSamples > 64) throw Error("--shadow-samples", "must be from 1 to 64");
+    if (settings.diskSamples < 1 || settings.diskSamples > 64) {
+        throw Error("--shadow-samples", "must be from 1 to 64, got " + std::to_string(settings.diskSamples));
+    }
     for (int i = 0; i < 4; ++i) {
         if (!std::isfinite(settings.bias[i]) || settings.bias[i] < 0.0f || settings.bias[i] > 100.0f) {
             throw Error("--shadow-bias", "each of the four biases must be from 0 to 100");

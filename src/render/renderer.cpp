@@ -216,8 +216,9 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     projection_ = scene.camera.projection(float(settings.width) / float(settings.height));
     lights_ = setupFrameLights(scene, view_, projection_);
     shadowPlan_ = planShadows(scene, lights_, scene.camera.position(), settings.shadows);
-    if (settings.method == LightListMethod::PerObject) perObjectLists_ = buildPerObjectLightLists(scene, lights_);
-    const uint32_t slices = settings.method == LightListMethod::Clustered ? settings.clusterSlices : 1u;
+    const LightListMethodInfo& method = methodInfo(settings.method);
+    if (method.objectLists) perObjectLists_ = buildPerObjectLightLists(scene, lights_);
+    const uint32_t slices = method.depthSlices ? settings.clusterSlices : 1u;
     gridLayout_ = LightGridLayout::forFrame(settings.width, settings.height, settings.tileSize, slices);
     resources_ =
         std::make_unique<Resources>(context, scene, settings, lights_, perObjectLists_, gridLayout_, shadowPlan_, view_);
