@@ -144,6 +144,20 @@ TEST(VariantTables, LightGridMethods) {
     EXPECT_TRUE(render::usesLightGrid(LightListMethod::Clustered));
 }
 
+// What the renderer builds for each method comes from the table: depth slices only for clusters,
+// per-object lists only for per-object, and brute force is the reference the others are compared
+// against (rendered first).
+TEST(VariantTables, MethodPropertiesDecideWhatTheFrameBuilds) {
+    for (const render::LightListMethodInfo& info : render::kLightListMethods) {
+        EXPECT_EQ(info.depthSlices, info.value == LightListMethod::Clustered) << info.name;
+        EXPECT_EQ(info.objectLists, info.value == LightListMethod::PerObject) << info.name;
+        EXPECT_EQ(info.isReference, info.value == LightListMethod::Brute) << info.name;
+        EXPECT_TRUE(!info.depthSlices || info.usesLightGrid) << info.name << ": slices split a light grid";
+    }
+    EXPECT_EQ(render::referenceMethod(), LightListMethod::Brute);
+    EXPECT_THROW(render::methodInfo(static_cast<LightListMethod>(PUNCTUAL_LIGHT_LIST_COUNT)), InternalError);
+}
+
 // ---- the shaders have a case for every entry ----------------------------------------------------
 
 std::string readShader(const std::string& path) {
