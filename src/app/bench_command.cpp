@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -19,6 +18,7 @@
 #include "app/validation_report.h"
 #include "core/error.h"
 #include "core/output_files.h"
+#include "core/output_folder.h"
 #include "metrics/heatmap.h"
 #include "metrics/image_diff.h"
 #include "reference/embree_scene.h"
@@ -29,6 +29,12 @@
 
 namespace punctual::app {
 namespace {
+
+// Everything bench writes into --out-dir; results.json lists a run's files.
+const OutputFolderLayout kFolderLayout = {
+    "results.json",
+    {"results.csv", "results.json", "failures.csv", "images/heatmap-*.png", "images/mismatch-*.png"},
+    {"images"}};
 
 // The method and filter lists come from their tables, as plan() sweeps them.
 std::string usage() {
@@ -182,7 +188,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
         }
     }
     if (!outDir) throw Error("--out-dir", "bench needs an output folder (--out-dir DIR)");
-    checkOutputFolder(*outDir);
+    checkOutputFolder(*outDir, kFolderLayout);
 
     RenderOptions options = parseRenderOptions(renderArgs);
     const bool sizeGiven = std::find(renderArgs.begin(), renderArgs.end(), "--size") != renderArgs.end();
@@ -318,10 +324,12 @@ int runBenchCommand(const std::vector<std::string>& args) {
                                {"configurations", json}};
     outputs.add(*outDir + "/results.csv", csv.str());
     outputs.add(*outDir + "/failures.csv", failuresCsv(failures));
+    // results.json lists every file of this run, so the next run into DIR removes the images
+    // it does not write again (a full run's extra resolutions after a --quick one, say).
+    const std::vector<std::string> files = outputFolderFiles(outputs, *outDir, kFolderLayout);
+    document["files"] = files;
     outputs.add(*outDir + "/results.json", document.dump(2) + "\n");
-    std::error_code ec;
-    std::filesystem::create_directories(std::filesystem::path(*outDir) / "images", ec);
-    if (ec) throw Error(*outDir, "cannot create the folder: " + ec.message());
+    prepareOutputFolder(outputs, *outDir, kFolderLayout, files);
     outputs.commit();
     std::printf("bench: %zu configurations on %s at %ux%u, %u timed frames each; wrote %s/results.csv\n", rows.size(),
                 baseScene.source.c_str(), options.width, options.height, timedFrames, outDir->c_str());

@@ -1,29 +1,28 @@
 #include "app/output_paths.h"
 
-#include <filesystem>
-
+#include "core/concat.h"
 #include "core/error.h"
+#include "core/output_target.h"
 
 namespace punctual::app {
 
-void checkOutputPath(const std::optional<std::string>& path) {
-    if (!path) return;
-    namespace fs = std::filesystem;
-    if (path->empty()) throw Error("output", "empty file name");
-    const fs::path file(*path);
-    std::error_code ec;
-    if (fs::is_directory(file, ec)) throw Error(*path, "is a folder, expected a file name");
-    const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
-    if (!fs::is_directory(folder, ec)) throw Error(*path, "folder '" + folder.string() + "' does not exist");
+void checkOutputPaths(const std::vector<NamedOutput>& outputs) {
+    std::vector<std::pair<const NamedOutput*, OutputTarget>> targets;
+    for (const NamedOutput& output : outputs) {
+        if (!output.path) continue;
+        if (output.path->empty()) throw Error(output.option, "empty file name");
+        OutputTarget target = resolveOutputTarget(*output.path);
+        for (const auto& [other, otherTarget] : targets) {
+            if (target.sameFileAs(otherTarget)) {
+                throw Error(*output.path, concat(output.option, " names the same file as ", other->option, " '",
+                                                 *other->path, "'; two outputs cannot share a file"));
+            }
+        }
+        checkOutputTargetWritable(target);
+        targets.emplace_back(&output, std::move(target));
+    }
 }
 
-void checkOutputFolder(const std::string& path) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    if (fs::exists(path, ec) && !fs::is_directory(path, ec)) throw Error(path, "exists and is not a folder");
-    const fs::path folder(path);
-    const fs::path parent = folder.has_parent_path() ? folder.parent_path() : fs::path(".");
-    if (!fs::is_directory(parent, ec)) throw Error(path, "folder '" + parent.string() + "' does not exist");
-}
+void checkOutputPath(const std::optional<std::string>& path) { checkOutputPaths({{"output", path}}); }
 
 }  // namespace punctual::app

@@ -1,15 +1,25 @@
 #pragma once
-// Output files are checked before any work starts (so a typo in a folder name fails in a
-// second, not after a long render) and written atomically at the end.
+// Output paths are checked before any work starts, so a typo in a folder name, a read-only
+// folder or two options naming one file fail in a second, not after a long render. The rules
+// (what a symbolic link, /dev/null or a FIFO means) are core/output_target.h's; the files are
+// written all or nothing at the end by OutputFiles (core/output_files.h).
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace punctual::app {
 
-// Throws punctual::Error(path, ...) when the file's folder does not exist or the path is a folder.
+// An output file and the option that named it, for messages ("--stats").
+struct NamedOutput {
+    std::string option;
+    std::optional<std::string> path;  // absent: the option was not given
+};
+
+// Throws punctual::Error(path, ...) when a given path cannot be written (a missing folder, a
+// file used as a folder, a folder, a name too long, a read-only folder or file, a block device),
+// or when two of them name the same file, however spelt (./x.png, a symbolic link, a hard link).
+void checkOutputPaths(const std::vector<NamedOutput>& outputs);
+// One output file; see checkOutputPaths.
 void checkOutputPath(const std::optional<std::string>& path);
-// An output folder: it may not exist yet (it is created when the outputs are written), but its
-// parent must, and it must not be a file.
-void checkOutputFolder(const std::string& path);
 
 }  // namespace punctual::app

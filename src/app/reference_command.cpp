@@ -84,7 +84,7 @@ int runReferenceCommand(const std::vector<std::string>& args) {
         }
     }
     if (!options.outPath) throw Error("--out", "required: the file to write the reference image to");
-    checkOutputPath(options.outPath);
+    checkOutputPaths({{"--out", options.outPath}});
     const Scene scene = loadSceneForOptions(options);
 
     reference::ReferenceSettings settings;

@@ -40,9 +40,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
         }
     }
     const RenderOptions options = parseRenderOptions(args);
-    checkOutputPath(options.outPath);
-    checkOutputPath(options.statsPath);
-    checkOutputPath(options.heatmapPath);
+    checkOutputPaths({{"--out", options.outPath}, {"--stats", options.statsPath}, {"--heatmap", options.heatmapPath}});
     const Scene scene = loadSceneForOptions(options);
 
     vk::Context context(contextOptionsFrom(options));

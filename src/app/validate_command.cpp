@@ -1,7 +1,6 @@
 #include "app/validate_command.h"
 
 #include <cstdio>
-#include <filesystem>
 
 #include "app/options.h"
 #include "app/output_paths.h"
@@ -9,6 +8,7 @@
 #include "app/validation_report.h"
 #include "core/error.h"
 #include "core/output_files.h"
+#include "core/output_folder.h"
 #include "reference/reference_renderer.h"
 #include "reference/shadow_validation.h"
 #include "render/renderer.h"
@@ -26,7 +26,9 @@ visibility from the same surface point, and writes:
   DIR/report.html   the GPU image, the reference and per-light mismatch maps
   DIR/*.exr         with --export-exr: world positions (NaN for background) and each light's
                     GPU shadow factor (NaN where the light does not reach)
-DIR is created if missing (its parent must exist). All render options apply (see
+DIR is created if missing (its parent must exist). report.json lists the files written under
+"files"; a later run into DIR removes the listed files it does not write again (and nothing
+else). All render options apply (see
 `punctual render --help`): --shadow-filter, --shadow-res, --shadow-bias, --point-shadow-layout...
 )";
 
@@ -52,7 +54,8 @@ int runValidateCommand(const std::vector<std::string>& args) {
         }
     }
     if (!outDir) throw Error("--out-dir", "validate needs an output folder (--out-dir DIR)");
-    checkOutputFolder(*outDir);
+    const OutputFolderLayout& layout = validationFolderLayout();
+    checkOutputFolder(*outDir, layout);
 
     const RenderOptions options = parseRenderOptions(renderArgs);
     if (!options.shadows.enabled) throw Error("--shadows", "validate compares shadows: they must be on");
@@ -79,10 +82,9 @@ int runValidateCommand(const std::vector<std::string>& args) {
     const reference::ShadowValidation validation = reference::validateShadows(
         referenceRenderer.embree(), factors, renderer.lights(), renderer.shadowPlan(), settings.shadows);
 
-    const nlohmann::json report = validationJson(validation, scene, renderer);
+    nlohmann::json report = validationJson(validation, scene, renderer);
     OutputFiles outputs;
     const std::string dir = *outDir;
-    outputs.add(dir + "/report.json", report.dump(2) + "\n");
     outputs.add(dir + "/report.html", validationHtml(report));
     outputs.add(dir + "/gpu.png", encodePng(gpuImage));
     outputs.add(dir + "/reference.png", encodePng(referenceImage));
@@ -91,9 +93,12 @@ int runValidateCommand(const std::vector<std::string>& args) {
                     encodePng(mismatchMap(light, validation.width, validation.height)));
     }
     if (exportExr) addExrImages(outputs, dir, factors);
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throw Error(dir, "cannot create the folder: " + ec.message());
+    // report.json lists every file of this run, so the next run into DIR removes the ones it
+    // does not write again (a light that is gone leaves no mismatch map of its own behind).
+    const std::vector<std::string> files = outputFolderFiles(outputs, dir, layout);
+    report["files"] = files;
+    outputs.add(dir + "/report.json", report.dump(2) + "\n");
+    prepareOutputFolder(outputs, dir, layout, files);
     outputs.commit();
 
     auto line = [](const char* name, const reference::ShadowCounts& c) {

@@ -1,14 +1,10 @@
 #include "app/validation_report.h"
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
-#include <tinyexr.h>
-
-#include "core/error.h"
+#include "app/exr_encoding.h"
 
 namespace punctual::app {
 namespace {
@@ -27,25 +23,15 @@ nlohmann::json countsJson(const reference::ShadowCounts& c) {
     };
 }
 
-std::string exrBytes(const std::vector<float>& data, uint32_t width, uint32_t height, int components,
-                     const std::string& name) {
-    // tinyexr writes to a file; write to a temporary one and read its bytes, so the EXR goes
-    // through OutputFiles like every other output (all or nothing).
-    const std::string temporary = (std::filesystem::temp_directory_path() / ("punctual-" + name)).string();
-    const char* error = nullptr;
-    if (SaveEXR(data.data(), int(width), int(height), components, 0, temporary.c_str(), &error) != TINYEXR_SUCCESS) {
-        const std::string message = error ? error : "unknown error";
-        if (error) FreeEXRErrorMessage(error);
-        throw Error(name, "cannot encode OpenEXR: " + message);
-    }
-    std::ifstream in(temporary, std::ios::binary);
-    std::stringstream bytes;
-    bytes << in.rdbuf();
-    std::filesystem::remove(temporary);
-    return bytes.str();
-}
-
 }  // namespace
+
+const OutputFolderLayout& validationFolderLayout() {
+    static const OutputFolderLayout layout = {"report.json",
+                                              {"report.json", "report.html", "gpu.png", "reference.png",
+                                               "mismatch-*.png", "positions.exr", "shadow-factor-*.exr"},
+                                              {}};
+    return layout;
+}
 
 nlohmann::json validationJson(const reference::ShadowValidation& validation, const Scene& scene,
                               const render::Renderer& renderer) {
@@ -151,7 +137,7 @@ void addExrImages(OutputFiles& outputs, const std::string& folder, const ShadowF
     for (size_t i = 0; i < pixels; ++i) {
         for (int c = 0; c < 3; ++c) positions[i * 3 + c] = factors.covered[i] ? factors.positions[i][c] : nan;
     }
-    outputs.add(folder + "/positions.exr", exrBytes(positions, factors.width, factors.height, 3, "positions.exr"));
+    outputs.add(folder + "/positions.exr", encodeExr(positions, factors.width, factors.height, 3, "positions.exr"));
     for (uint32_t slot = 0; slot < factors.slots; ++slot) {
         std::vector<float> values(pixels);
         for (size_t i = 0; i < pixels; ++i) {
@@ -159,7 +145,7 @@ void addExrImages(OutputFiles& outputs, const std::string& folder, const ShadowF
             values[i] = f == PUNCTUAL_SHADOW_FACTOR_NOT_REACHED ? nan : float(f) / 254.0f;
         }
         const std::string name = "shadow-factor-" + std::to_string(slot) + ".exr";
-        outputs.add(folder + "/" + name, exrBytes(values, factors.width, factors.height, 1, name));
+        outputs.add(folder + "/" + name, encodeExr(values, factors.width, factors.height, 1, name));
     }
 }
 

@@ -7,11 +7,15 @@
 
 #include "core/image.h"
 #include "core/output_files.h"
+#include "core/output_folder.h"
 #include "reference/shadow_validation.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 
 namespace punctual::app {
+
+// Every file validate may write into its --out-dir (report.json lists a run's files).
+const OutputFolderLayout& validationFolderLayout();
 
 nlohmann::json validationJson(const reference::ShadowValidation& validation, const Scene& scene,
                               const render::Renderer& renderer);

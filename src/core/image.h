@@ -1,6 +1,6 @@
 #pragma once
-// 8-bit RGBA images and their PNG I/O. Writing is atomic: the PNG is written to a temporary file
-// beside the target and renamed over it, so a failed run never leaves a partial output file.
+// 8-bit RGBA images and their PNG I/O. Writing goes through OutputFiles (core/output_files.h):
+// atomic, and safe for whatever the path names (a symbolic link, /dev/null, a FIFO).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -22,7 +22,7 @@ void writePng(const std::string& path, const ImageRgba8& image);
 std::string encodePng(const ImageRgba8& image);
 ImageRgba8 readPng(const std::string& path);
 
-// Writes `contents` to `path` atomically (temporary file + rename).
+// Writes `contents` to `path` as OutputFiles does (atomically for a regular file).
 void writeFileAtomically(const std::string& path, const std::string& contents);
 
 }  // namespace punctual

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <sstream>
 #include <string>
@@ -23,6 +24,11 @@ using testing::runPunctual;
 TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     testing::TempFolder folder;
     const std::string dir = folder.file("bench");
+    // An earlier run's folder: its listed image that this run does not write goes, the user's stays.
+    std::filesystem::create_directories(dir + "/images");
+    std::ofstream(dir + "/results.json") << R"({"files": ["results.json", "images/mismatch-gone.png"]})";
+    std::ofstream(dir + "/images/mismatch-gone.png") << "an earlier run's";
+    std::ofstream(dir + "/images/mine.png") << "the user's";
     const RunResult run = runPunctual(folder, "bench --quick --validate --out-dir '" + dir + "'");
     ASSERT_EQ(run.exitCode, 0) << run.err;
     EXPECT_EQ(run.err, "");  // no validation messages, no progress bar (not a terminal)
@@ -66,6 +72,15 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
         EXPECT_NE(header.find(pass.get<std::string>() + "_spread_ms,"), std::string::npos) << pass;
     }
     EXPECT_TRUE(std::filesystem::exists(dir + "/images/heatmap-tiled.png"));
+    // results.json lists every file of the run (and only those), so the next run can tell its own.
+    ASSERT_TRUE(json.contains("files"));
+    std::set<std::string> listed;
+    for (const auto& name : json["files"]) listed.insert(name.get<std::string>());
+    EXPECT_TRUE(listed.count("results.json") && listed.count("results.csv") && listed.count("failures.csv"));
+    EXPECT_TRUE(listed.count("images/heatmap-tiled.png"));
+    for (const std::string& name : listed) EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/" + name)) << name;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/images/mismatch-gone.png"));
+    EXPECT_EQ(readText(dir + "/images/mine.png"), "the user's");
 
     // The failure study: every known failure measured against its parameter.
     std::istringstream failures(readText(dir + "/failures.csv"));
