@@ -19,7 +19,9 @@
 #include "app/options.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "app/output_paths.h"
 #include "core/output_files.h"
+#include "core/output_folder.h"
 #include "metrics/culling_stats.h"
 #include "metrics/heatmap.h"
 #include "render/renderer.h"
@@ -64,6 +66,10 @@ int main(int argc, char** argv) {
             else if (arg == "--slices") slices = uint32_t(std::stoul(value()));
             else throw punctual::Error(arg, "unknown option");
         }
+        // The output paths, before minutes of rendering (the heat map folder is created if missing).
+        const punctual::OutputFolderLayout heatmapLayout = {"", {"heatmap-*.png"}, {}};
+        if (!heatmapDir.empty()) punctual::checkOutputFolder(heatmapDir, heatmapLayout);
+        if (!jsonPath.empty()) punctual::app::checkOutputPaths({{"--json", jsonPath}});
         const punctual::Scene scene = punctual::makeDefaultScene();
         punctual::vk::Context context;
         std::vector<MethodRun> runs;
@@ -146,6 +152,7 @@ int main(int argc, char** argv) {
                           {"forward_clustered_over_tiled", clusteredForward / tiledForward},
                           {"culling_plus_forward_clustered_over_tiled", clusteredBoth / tiledBoth}};
         if (!jsonPath.empty()) outputs.add(jsonPath, json.dump(2) + "\n");
+        if (!heatmapDir.empty()) outputs.addFolder(heatmapDir);
         outputs.commit();
         return 0;
     } catch (const std::exception& error) {

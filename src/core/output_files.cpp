@@ -74,8 +74,9 @@ private:
 int openStream(const OutputTarget& target) {
     const int fd = ::open(target.file.c_str(), O_WRONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
     if (fd < 0) {
-        if (errno == ENXIO) throw Error(target.requested, "is a FIFO with no reader (start the reader first)");
-        throw Error(target.requested, concat("cannot open it for writing: ", std::strerror(errno)));
+        const int error = errno;
+        if (error == ENXIO) throw Error(target.requested, "is a FIFO with no reader (start the reader first)");
+        throw Error(target.requested, concat("cannot open it for writing: ", std::strerror(error)));
     }
     struct stat st {};
     if (::fstat(fd, &st) != 0 || !(S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))) {
@@ -227,13 +228,11 @@ void OutputFiles::commit() {
             const IgnoreSigpipe ignoreSigpipe;
             for (Step& step : steps) {
                 if (step.stream < 0) continue;
-                const int error = writeAll(step.stream, *step.contents);
-                const int closed = ::close(step.stream);
+                int error = writeAll(step.stream, *step.contents);
+                if (::close(step.stream) != 0 && error == 0) error = errno;
                 step.stream = -1;
                 if (error == EPIPE) throw Error(*step.path, "the reader closed it before everything was written");
-                if (error != 0 || closed != 0) {
-                    throw Error(*step.path, concat("cannot write to it: ", std::strerror(error ? error : errno)));
-                }
+                if (error != 0) throw Error(*step.path, concat("cannot write to it: ", std::strerror(error)));
             }
         }
     } catch (...) {

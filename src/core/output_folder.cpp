@@ -43,8 +43,9 @@ void checkExistingOutputs(const std::string& folder, const OutputFolderLayout& l
         if (!place.empty()) {
             struct stat st {};
             if (::stat(path.c_str(), &st) != 0) {
-                if (errno == ENOENT) continue;  // created at commit
-                throw Error(path.string(), std::strerror(errno));
+                const int error = errno;
+                if (error == ENOENT) continue;  // created at commit
+                throw Error(path.string(), std::strerror(error));
             }
             if (!S_ISDIR(st.st_mode)) throw Error(path.string(), "is a file, not a folder");
             checkFolderWritable(path.string(), path);

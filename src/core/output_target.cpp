@@ -73,8 +73,9 @@ void checkFolder(const std::string& subject, const fs::path& folder) {
         if (!S_ISDIR(st.st_mode)) throw Error(subject, concat(quotedPath(folder), " is a file, not a folder"));
         return;
     }
-    if (errno == ENOENT) throw Error(subject, concat("folder ", quotedPath(folder), " does not exist"));
-    throw Error(subject, lookupProblem(folder / "x", errno));
+    const int error = errno;  // read before anything else can change it
+    if (error == ENOENT) throw Error(subject, concat("folder ", quotedPath(folder), " does not exist"));
+    throw Error(subject, lookupProblem(folder / "x", error));
 }
 
 }  // namespace
@@ -102,8 +103,8 @@ OutputTarget resolveOutputTarget(const std::string& path) {
         }
         if (S_ISBLK(st.st_mode)) throw Error(path, "is a block device; refusing to write an output over it");
         if (!S_ISREG(st.st_mode)) throw Error(path, "is not a regular file (a socket?); refusing to replace it");
-    } else if (errno != ENOENT) {
-        throw Error(path, lookupProblem(path, errno));
+    } else if (const int error = errno; error != ENOENT) {
+        throw Error(path, lookupProblem(path, error));
     }
     // A regular file or a new name, perhaps behind symbolic links (a dangling one is written
     // through too, as the shell's '>' does): follow them to the name the rename must replace.
@@ -111,7 +112,7 @@ OutputTarget resolveOutputTarget(const std::string& path) {
     for (int hops = 0;; ++hops) {
         struct stat link {};
         if (::lstat(name.c_str(), &link) != 0) {
-            if (errno != ENOENT) throw Error(path, lookupProblem(name, errno));
+            if (const int error = errno; error != ENOENT) throw Error(path, lookupProblem(name, error));
             break;
         }
         if (!S_ISLNK(link.st_mode)) break;
@@ -139,8 +140,8 @@ OutputTarget resolveOutputTarget(const std::string& path) {
         target.kind = OutputTarget::Kind::Regular;
         target.device = st.st_dev;
         target.inode = st.st_ino;
-    } else if (errno != ENOENT) {
-        throw Error(path, lookupProblem(target.file, errno));
+    } else if (const int error = errno; error != ENOENT) {
+        throw Error(path, lookupProblem(target.file, error));
     }
     return target;
 }
@@ -166,7 +167,10 @@ int createTemporaryBeside(const fs::path& file, const std::string& subject, std:
     std::vector<char> buffer(pattern.begin(), pattern.end());
     buffer.push_back('\0');
     const int fd = ::mkostemp(buffer.data(), O_CLOEXEC);
-    if (fd < 0) throw Error(subject, folderWriteProblem(folder, errno));
+    if (fd < 0) {
+        const int error = errno;
+        throw Error(subject, folderWriteProblem(folder, error));
+    }
     temporary = buffer.data();
     return fd;
 }
@@ -174,7 +178,8 @@ int createTemporaryBeside(const fs::path& file, const std::string& subject, std:
 void checkOutputTargetWritable(const OutputTarget& target) {
     if (target.kind == OutputTarget::Kind::Stream) {
         if (::access(target.file.c_str(), W_OK) != 0) {
-            throw Error(target.requested, concat("cannot write to it: ", std::strerror(errno)));
+            const int error = errno;
+            throw Error(target.requested, concat("cannot write to it: ", std::strerror(error)));
         }
         return;
     }
