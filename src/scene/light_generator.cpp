@@ -132,15 +132,17 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
     };
 
     // A light that reaches nothing the camera sees is drawn again (all its parameters, from the
-    // same random sequence, so the result still depends on the seed alone), up to
-    // kPlacementAttempts times; if none reaches, the first draw is kept. Without any geometry in
-    // view there is nothing to test, and every first draw stands, as it always did.
+    // same random sequence, so the result still depends on the seed alone): first in the same
+    // region, so a scene whose camera is inside (a room) keeps its lights where they were meant to
+    // be, then in the widened one, which a closed model needs. After kPlacementAttempts draws
+    // that all fail, the first is kept. Without any geometry in view there is nothing to test, and
+    // every first draw stands, as it always did.
     const LightReach reach(scene);
     auto place = [&](auto&& draw, uint32_t i) {
         const Light firstDraw = draw(i, first);
         if (reach.empty() || reach.reaches(firstDraw)) return firstDraw;
         for (uint32_t attempt = 1; attempt < kPlacementAttempts; ++attempt) {
-            Light light = draw(i, widened);
+            Light light = draw(i, attempt < kPlacementAttempts / 2 ? first : widened);
             if (reach.reaches(light)) return light;
         }
         return firstDraw;
