@@ -16,6 +16,13 @@
 
 namespace {
 
+// Exit statuses (README, "Exit status"): a script can tell a bad scene or option (1) from a
+// command line that names no command at all (2) and from a bug in punctual (3).
+constexpr int kExitSuccess = 0;
+constexpr int kExitUserError = 1;  // punctual::Error: a bad file, option or light; one clear line
+constexpr int kExitUsage = 2;      // no command, or an unknown one: the usage text
+constexpr int kExitInternal = 3;   // anything else escaping a command: a bug, e.g. a PUNCTUAL_CHECK
+
 constexpr const char* kUsage = R"(usage: punctual <command> [options]
 
 commands:
@@ -36,7 +43,7 @@ int listDevices() {
         std::printf("%u: %s (%s)%s%s\n", device.index, device.name.c_str(), device.type.c_str(),
                     device.usable ? "" : " not usable: ", device.whyNotUsable.c_str());
     }
-    return 0;
+    return kExitSuccess;
 }
 
 }  // namespace
@@ -46,7 +53,7 @@ int main(int argc, char** argv) {
     try {
         if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
             std::fputs(kUsage, args.empty() ? stderr : stdout);
-            return args.empty() ? 2 : 0;
+            return args.empty() ? kExitUsage : kExitSuccess;
         }
         const std::vector<std::string> rest(args.begin() + 1, args.end());
         if (args[0] == "render") return punctual::app::runRenderCommand(rest);
@@ -56,12 +63,15 @@ int main(int argc, char** argv) {
         if (args[0] == "compare") return punctual::app::runCompareCommand(rest);
         if (args[0] == "devices") return listDevices();
         std::fprintf(stderr, "punctual: error: unknown command '%s' (try punctual help)\n", args[0].c_str());
-        return 2;
+        return kExitUsage;
     } catch (const punctual::Error& error) {
         std::fprintf(stderr, "punctual: error: %s\n", error.what());
-        return 1;
+        return kExitUserError;
     } catch (const std::exception& error) {
         std::fprintf(stderr, "punctual: internal error: %s\n", error.what());
-        return 3;
+        return kExitInternal;
+    } catch (...) {
+        std::fprintf(stderr, "punctual: internal error: an exception of unknown type\n");
+        return kExitInternal;
     }
 }

@@ -9,6 +9,7 @@
 #include "app/scene_source.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/log.h"
 #include "core/output_files.h"
 #include "metrics/heatmap.h"
 #include "render/renderer.h"
@@ -28,6 +29,23 @@ std::string heatmapTitle(const render::Renderer& renderer) {
         if (grid.slices > 1) title << " x " << grid.slices << " slices";
     }
     return title.str();
+}
+
+// Nothing emits light but the lights, and the background is black, so a frame no light
+// reaches (none in the scene, all out of view, all inside closed geometry) is black to the
+// last pixel: say why, in one line, rather than leave a black image unexplained.
+void warnIfNoLightReaches(const Scene& scene, const ImageRgba8& image, float exposure) {
+    for (size_t i = 0; i < image.pixels.size(); i += 4)
+        if (image.pixels[i] != 0 || image.pixels[i + 1] != 0 || image.pixels[i + 2] != 0) return;
+    std::ostringstream message;
+    message << scene.source << ": the image is black: ";
+    if (scene.lights.empty()) {
+        message << "the scene has no lights, not even a directional one (add some with --lights S,P)";
+    } else {
+        message << "none of the scene's " << scene.lights.size() << " light(s) reaches a surface the camera sees";
+        if (exposure < 1.0f) message << " (or too little of their light at --exposure " << exposure << ")";
+    }
+    log::warn(message.str());
 }
 
 }  // namespace
@@ -55,6 +73,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
         throw Error("vulkan", std::to_string(context.validationMessageCount()) +
                                   " validation message(s) (printed above); no output written");
     }
+    warnIfNoLightReaches(scene, result.image, settings.exposure);
 
     const FrameLights& lights = renderer.lights();
     std::printf("scene: %s (%zu triangles, %zu objects)\n", scene.source.c_str(), scene.triangleCount(),

@@ -3,11 +3,16 @@
 #include "scene/default_scene.h"
 #include "scene/gltf_loader.h"
 #include "scene/light_generator.h"
+#include "scene/texture_limit.h"
 
 namespace punctual::app {
 
 Scene loadSceneForOptions(const RenderOptions& options) {
-    Scene scene = options.scenePath ? loadGltf(*options.scenePath) : makeDefaultScene();
+    // Textures are fitted to the frame when decoded, so every command (GPU and CPU reference
+    // alike) samples the same texels.
+    GltfLoadOptions load;
+    load.textureLimit = textureLimitForFrame(options.width, options.height);
+    Scene scene = options.scenePath ? loadGltf(*options.scenePath, load) : makeDefaultScene();
     if (options.lights) {
         replaceLights(scene, options.lights->spot, options.lights->point, options.lights->seed);
     }

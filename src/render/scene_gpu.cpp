@@ -1,9 +1,12 @@
 #include "render/scene_gpu.h"
 
+#include <algorithm>
 #include <cstddef>
 
 #include "core/error.h"
+#include "core/log.h"
 #include "gpu_types.h"
+#include "scene/texture_limit.h"
 #include "vk/check.h"
 #include "vk/descriptors.h"
 #include "vk/context.h"
@@ -83,8 +86,21 @@ SceneGpu::SceneGpu(vk::Context& context, const Scene& scene, const std::vector<u
     if (materials.empty()) throw Error(scene.source, "scene has no materials");
     materials_ = deviceBuffer(context, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");
 
+    // Textures are already fitted to the frame when loaded (scene/texture_limit.h); the device
+    // may allow less (maxImageDimension2D is only guaranteed to be 4096). Beyond it image
+    // creation is invalid, so fit those here, once per texture.
+    const uint32_t deviceMaxSide = context.properties().limits.maxImageDimension2D;
     for (const Texture& texture : scene.textures) {
-        textures_.push_back(uploadTexture(context, texture.width, texture.height, texture.rgba.data(), texture.name));
+        if (std::max(texture.width, texture.height) <= deviceMaxSide) {
+            textures_.push_back(uploadTexture(context, texture.width, texture.height, texture.rgba.data(), texture.name));
+            continue;
+        }
+        const Texture fitted = fittedTexture(texture, deviceMaxSide);
+        log::warn(scene.source + ": " +
+                  downscaleWarning("texture '" + texture.name + "'", {texture.width, texture.height},
+                                   {fitted.width, fitted.height},
+                                   "the device's limit, maxImageDimension2D = " + std::to_string(deviceMaxSide)));
+        textures_.push_back(uploadTexture(context, fitted.width, fitted.height, fitted.rgba.data(), fitted.name));
     }
     const uint8_t white[4] = {255, 255, 255, 255};
     textures_.push_back(uploadTexture(context, 1, 1, white, "untextured"));

@@ -1,7 +1,8 @@
 #pragma once
 // The scene's GPU copy: one vertex and one index buffer for all meshes, the per-object and
-// per-material storage buffers, and the base-colour textures (sRGB, one sampler). Built once per
-// scene; every raster pass draws through drawObjects().
+// per-material storage buffers, and the base-colour textures (sRGB, one sampler; any larger than
+// the device's maxImageDimension2D downscaled to it, with a warning). Built once per scene; every
+// raster pass draws through drawObjects().
 #include <cstdint>
 #include <span>
 #include <vector>

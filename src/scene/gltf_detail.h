@@ -2,6 +2,7 @@
 // Internals of the glTF loader, shared by gltf_loader.cpp (scene graph, materials, cameras,
 // lights), gltf_source.cpp (file reading, checks tinygltf does not make, image decoding) and
 // gltf_primitives.cpp (validated accessor reads, triangle meshes).
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <set>
@@ -12,6 +13,7 @@
 #include <tiny_gltf.h>
 
 #include "scene/scene.h"
+#include "scene/texture_limit.h"
 
 namespace punctual::gltf_detail {
 
@@ -28,6 +30,25 @@ struct SourceFile {
 // truncated GLB and JSON syntax errors, so those get a clearer message than tinygltf gives.
 SourceFile readSource(const std::string& path);
 
+// A URI decoded exactly as tinygltf 2.7 decodes it before looking for the file: %XX escapes
+// (a non-hex digit counts as 0) and '+' as a space.
+std::string decodedUri(const std::string& uri);
+
+// Every file a URI names (buffers and images, in .gltf and .glb files alike) is read through
+// tinygltf's file callbacks, which this routes to readRegularFile (scene/input_file.h): only
+// regular files under the scene's folder, never anything larger than maxBytes. Must outlive the
+// load; pass callbacks() to TinyGLTF::SetFsCallbacks.
+struct UriFiles {
+    UriFiles(const nlohmann::json& gltf, std::string sceneBaseDir);
+    tinygltf::FsCallbacks callbacks();
+    // Why the file `uri` (as written in the glTF) could not be read; empty if it was not refused.
+    std::string problemWith(const std::string& uri) const;
+
+    std::string baseDir;
+    uint64_t maxBytes = 0;
+    std::map<std::string, std::string> problems;  // path tinygltf asked for -> readRegularFile's problem
+};
+
 // Checks tinygltf 2.7 does not make before it acts on the data: an image stored in a buffer
 // view is read from that view without a bounds check, and light properties of the wrong JSON
 // type are silently replaced by their defaults. Throws Error.
@@ -37,15 +58,19 @@ void preflight(const nlohmann::json& gltf, const std::string& path);
 // images we decode.
 std::set<int> baseColorImages(const nlohmann::json& gltf);
 
-// User data of decodeImage: which images to decode, and why decoding failed for the others.
+// User data of decodeImage: which images to decode, how large they may stay, and why decoding
+// failed for the others.
 struct ImageDecoding {
     std::set<int> wanted;
+    TextureLimit limit;                   // larger images are downscaled when decoded
+    std::string source;                   // the scene file, for the downscaling warning
     std::map<int, std::string> failures;  // image index -> stb's failure reason
 };
 
-// tinygltf::LoadImageDataFunction. Decodes wanted images to RGBA8 with stb. Never fails the
-// load: an undecodable image is recorded in ImageDecoding::failures and left empty, so its
-// materials fall back to their baseColorFactor.
+// tinygltf::LoadImageDataFunction. Decodes wanted images to RGBA8 with stb, downscaled under
+// ImageDecoding::limit (one warning each). Never fails the load: an undecodable image is
+// recorded in ImageDecoding::failures and left empty, so its materials fall back to their
+// baseColorFactor.
 bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* err, std::string* warn,
                  int requestedWidth, int requestedHeight, const unsigned char* bytes, int size,
                  void* userData);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -59,8 +60,9 @@ Material implicitDefaultMaterial() {
 
 class SceneBuilder {
 public:
-    SceneBuilder(const tinygltf::Model& model, const std::string& path, const ImageDecoding& decoding)
-        : model_(model), path_(path), decoding_(decoding) {}
+    SceneBuilder(const tinygltf::Model& model, const std::string& path, const ImageDecoding& decoding,
+                 const UriFiles& files)
+        : model_(model), path_(path), decoding_(decoding), files_(files) {}
 
     Scene build() {
         scene_.source = path_;
@@ -158,6 +160,8 @@ private:
             std::string reason = "has no pixel data";
             if (const auto failure = decoding_.failures.find(imageIndex); failure != decoding_.failures.end())
                 reason = "cannot be decoded (" + failure->second + ")";
+            else if (!image.uri.empty() && !files_.problemWith(image.uri).empty())
+                reason = "cannot be read (" + files_.problemWith(image.uri) + ")";
             else if (!image.uri.empty())
                 reason = "cannot be read (missing, empty or unreadable file)";
             // One warning per image, however many materials use it.
@@ -201,9 +205,10 @@ private:
                 light.outerConeAngle = float(source.spot.outerConeAngle);
             }
             if (light.type != LightType::Directional) {
-                // tinygltf reports an absent range as 0; the spec says absent means infinite. A
-                // negative range is kept so validateLights rejects it.
-                if (source.range == 0.0) {
+                // tinygltf reports an absent range as 0; the spec says absent means infinite
+                // (preflight has rejected a 0 or negative range written in the file). A range
+                // no float can hold is infinite for every scene a float can describe.
+                if (source.range == 0.0 || source.range > double(std::numeric_limits<float>::max())) {
                     light.range = derivedRange(light.intensity, light.color);
                     light.rangeDerived = true;
                 } else {
@@ -474,6 +479,7 @@ private:
     const tinygltf::Model& model_;
     const std::string& path_;
     const ImageDecoding& decoding_;
+    const UriFiles& files_;
     Scene scene_;
     std::map<int, int> textureOfImage_;  // image index -> Scene::textures index or -1
     std::map<std::pair<size_t, size_t>, std::optional<uint32_t>> primitiveMeshes_;
@@ -486,14 +492,18 @@ private:
 
 }  // namespace
 
-Scene loadGltf(const std::string& path) {
+Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
     const SourceFile source = readSource(path);
     preflight(source.json, path);
 
     ImageDecoding decoding;
     decoding.wanted = baseColorImages(source.json);
+    decoding.limit = options.textureLimit;
+    decoding.source = path;
+    UriFiles files(source.json, source.baseDir);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&decodeImage, &decoding);
+    loader.SetFsCallbacks(files.callbacks());
 
     // We already hold the bytes (to detect the format and pre-check the JSON), so hand them to
     // tinygltf instead of letting LoadASCIIFromFile/LoadBinaryFromFile read the file again.
@@ -511,7 +521,7 @@ Scene loadGltf(const std::string& path) {
     // tinygltf also appends non-fatal complaints to the error text of a successful load.
     for (const std::string& line : relevantWarnings(error)) log::warn(path + ": " + line);
 
-    return SceneBuilder(model, path, decoding).build();
+    return SceneBuilder(model, path, decoding, files).build();
 }
 
 }  // namespace punctual

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "scene/texture_limit.h"
 
 namespace punctual {
 
@@ -14,6 +15,12 @@ namespace punctual {
 // vertices, invalid lights, nothing to draw) throws punctual::Error(path, one-line problem).
 // Problems we can render around (an undecodable texture, non-triangle primitives, an
 // orthographic camera) log one warning each instead.
-Scene loadGltf(const std::string& path);
+//
+// Base-colour textures larger than options.textureLimit are downscaled as they are decoded, with
+// one warning each (scene/texture_limit.h).
+struct GltfLoadOptions {
+    TextureLimit textureLimit;  // none by default
+};
+Scene loadGltf(const std::string& path, const GltfLoadOptions& options = {});
 
 }  // namespace punctual

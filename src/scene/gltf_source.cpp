@@ -5,16 +5,20 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <tuple>
 
+#include <sys/stat.h>
+
 #include <stb_image.h>
 
 #include "core/error.h"
+#include "core/log.h"
 #include "scene/gltf_detail.h"
+#include "scene/input_file.h"
 
 namespace punctual::gltf_detail {
 namespace {
@@ -84,12 +88,24 @@ bool startsWith(const std::string& text, const std::string& prefix) {
     return text.compare(0, prefix.size(), prefix) == 0;
 }
 
-std::string percentDecoded(const std::string& uri) {
+unsigned char hexValue(unsigned char c) {
+    if (c >= '0' && c <= '9') return static_cast<unsigned char>(c - '0');
+    if (c >= 'a' && c <= 'f') return static_cast<unsigned char>(c - 'a' + 10);
+    if (c >= 'A' && c <= 'F') return static_cast<unsigned char>(c - 'A' + 10);
+    return 0;
+}
+
+}  // namespace
+
+std::string decodedUri(const std::string& uri) {
     std::string out;
     for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-            out.push_back(static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
+        if (uri[i] == '+') {
+            out.push_back(' ');
+        } else if (uri[i] == '%' && i + 2 < uri.size()) {
+            const auto high = hexValue(static_cast<unsigned char>(uri[i + 1]));
+            const auto low = hexValue(static_cast<unsigned char>(uri[i + 2]));
+            out.push_back(static_cast<char>((high << 4) | low));
             i += 2;
         } else {
             out.push_back(uri[i]);
@@ -97,6 +113,8 @@ std::string percentDecoded(const std::string& uri) {
     }
     return out;
 }
+
+namespace {
 
 // Index of the buffer whose URI is `file` (as tinygltf reports it: decoded, possibly with the
 // base directory in front), or -1.
@@ -106,7 +124,7 @@ int bufferWithUri(const nlohmann::json& gltf, const std::string& file) {
     for (size_t i = 0; i < buffers->size(); ++i) {
         const nlohmann::json& buffer = (*buffers)[i];
         if (!buffer.is_object() || !buffer.contains("uri") || !buffer["uri"].is_string()) continue;
-        const std::string uri = percentDecoded(buffer["uri"].get<std::string>());
+        const std::string uri = decodedUri(buffer["uri"].get<std::string>());
         if (uri.empty()) continue;
         const bool suffix = file.size() >= uri.size() && file.compare(file.size() - uri.size(), uri.size(), uri) == 0;
         if (file == uri || suffix) return static_cast<int>(i);
@@ -168,11 +186,22 @@ void checkLightPropertyTypes(const nlohmann::json& gltf, const std::string& path
     if (!lights->is_array()) throw Error(path, "KHR_lights_punctual: 'lights' is not an array");
     for (size_t i = 0; i < lights->size(); ++i) {
         const nlohmann::json& light = (*lights)[i];
-        const std::string who = "light " + std::to_string(i);
+        std::string who = "light " + std::to_string(i);
         if (!light.is_object()) throw Error(path, who + " is not a JSON object");
+        if (light.contains("name") && light["name"].is_string()) who += " '" + light["name"].get<std::string>() + "'";
         for (const char* key : {"intensity", "range"})
             if (light.contains(key) && !light[key].is_number())
                 throw Error(path, who + ": '" + key + "' is not a number");
+        // tinygltf reads an absent range as 0, and we read 0 as "absent: infinite". The spec
+        // requires range > 0 when it is given, so a 0 written in the file is an error here,
+        // where absent and 0 can still be told apart. (JSON has no NaN; a number too large for
+        // a float is an infinite range, see convertLights.)
+        if (light.contains("range") && !(light["range"].get<double>() > 0.0)) {
+            std::ostringstream value;
+            value << light["range"].get<double>();
+            throw Error(path, who + " has an invalid range " + value.str() +
+                                  " (KHR_lights_punctual requires range > 0; leave it out for an infinite range)");
+        }
         if (light.contains("color")) {
             const nlohmann::json& color = light["color"];
             if (!color.is_array() || color.size() != 3 ||
@@ -197,23 +226,10 @@ void checkLightPropertyTypes(const nlohmann::json& gltf, const std::string& path
 
 SourceFile readSource(const std::string& path) {
     namespace fs = std::filesystem;
-    std::error_code error;
-    const fs::file_status status = fs::status(path, error);
-    if (!fs::exists(status)) throw Error(path, "no such file");
-    if (fs::is_directory(status)) throw Error(path, "is a directory, not a glTF file");
-
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) throw Error(path, "cannot open the file for reading");
-    const std::streamoff size = in.tellg();
-    if (size < 0) throw Error(path, "cannot read the file");
-    // tinygltf takes the size as an unsigned int.
-    if (static_cast<uint64_t>(size) > std::numeric_limits<uint32_t>::max())
-        throw Error(path, "file is larger than 4 GiB, which tinygltf cannot load");
-
     SourceFile source;
-    source.bytes.resize(static_cast<size_t>(size));
-    in.seekg(0);
-    if (!in.read(reinterpret_cast<char*>(source.bytes.data()), size)) throw Error(path, "cannot read the file");
+    // tinygltf takes the size as an unsigned int.
+    const std::string problem = readRegularFile(path, std::numeric_limits<uint32_t>::max(), source.bytes);
+    if (!problem.empty()) throw Error(path, "cannot be read (" + problem + ")");
     source.baseDir = fs::path(path).parent_path().string();
 
     const bool magic = source.bytes.size() >= 4 && readLittleEndian32(source.bytes.data()) == kGlbMagic;
@@ -230,6 +246,67 @@ SourceFile readSource(const std::string& path) {
     }
     if (!source.json.is_object()) throw Error(path, "cannot parse JSON: the top level is not an object");
     return source;
+}
+
+namespace {
+
+// tinygltf::FsCallbacks, all through readRegularFile. `user` is the UriFiles.
+bool uriFileExists(const std::string& path, void* user) {
+    const auto& files = *static_cast<const UriFiles*>(user);
+    // tinygltf looks for a URI next to the scene, then in the current folder. A relative URI
+    // is relative to the scene's file (the glTF spec), so never fall back to another file
+    // that happens to have the name.
+    const std::string prefix = files.baseDir.empty() || files.baseDir.back() == '/' ? files.baseDir : files.baseDir + "/";
+    if (!startsWith(path, prefix)) return false;
+    // Anything that exists "exists": uriReadWholeFile then says what is wrong with it, which
+    // "not found" would hide.
+    struct stat info {};
+    return ::lstat(path.c_str(), &info) == 0;
+}
+
+std::string uriExpandFilePath(const std::string& path, void* /*user*/) { return path; }
+
+bool uriReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    auto& files = *static_cast<UriFiles*>(user);
+    const std::string problem = readRegularFile(path, files.maxBytes, *out);
+    if (problem.empty()) return true;
+    files.problems[path] = problem;
+    if (err) *err += problem;
+    return false;
+}
+
+bool uriWriteWholeFile(std::string* err, const std::string& /*path*/, const std::vector<unsigned char>& /*contents*/,
+                       void* /*user*/) {
+    if (err) *err += "punctual never writes glTF files";
+    return false;
+}
+
+// tinygltf's JoinPath: the path it asks the callbacks for.
+std::string joinedPath(const std::string& baseDir, const std::string& file) {
+    if (baseDir.empty()) return file;
+    return baseDir.back() == '/' ? baseDir + file : baseDir + "/" + file;
+}
+
+}  // namespace
+
+UriFiles::UriFiles(const nlohmann::json& gltf, std::string sceneBaseDir) : baseDir(std::move(sceneBaseDir)) {
+    // Images reach stb as an int-sized array; a buffer may be as large as its byteLength says
+    // (tinygltf then checks the file has exactly that size). Anything larger is refused by its
+    // size before it is read.
+    maxBytes = uint64_t(std::numeric_limits<int>::max());
+    const auto buffers = gltf.find("buffers");
+    if (buffers != gltf.end() && buffers->is_array())
+        for (const nlohmann::json& buffer : *buffers)
+            if (buffer.is_object()) maxBytes = std::max(maxBytes, unsignedMember(buffer, "byteLength").value_or(0));
+}
+
+tinygltf::FsCallbacks UriFiles::callbacks() {
+    return tinygltf::FsCallbacks{&uriFileExists, &uriExpandFilePath, &uriReadWholeFile, &uriWriteWholeFile, this};
+}
+
+std::string UriFiles::problemWith(const std::string& uri) const {
+    const auto found = problems.find(joinedPath(baseDir, decodedUri(uri)));
+    return found == problems.end() ? "" : found->second;
 }
 
 void preflight(const nlohmann::json& gltf, const std::string& path) {
@@ -269,19 +346,32 @@ bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* /*err*/, s
     int width = 0;
     int height = 0;
     int channelsInFile = 0;
-    stbi_uc* pixels = stbi_load_from_memory(bytes, size, &width, &height, &channelsInFile, STBI_rgb_alpha);
+    const std::unique_ptr<stbi_uc, void (*)(void*)> decoded(
+        stbi_load_from_memory(bytes, size, &width, &height, &channelsInFile, STBI_rgb_alpha), &stbi_image_free);
+    const stbi_uc* pixels = decoded.get();
     if (pixels == nullptr) {
         const char* reason = stbi_failure_reason();
         decoding.failures[imageIndex] = reason ? reason : "unknown error";
         return true;
     }
-    image->width = width;
-    image->height = height;
+    // Downscale here, straight from stb's pixels: a texture too large for the frame never
+    // exists twice at full size (stb's copy and tinygltf's).
+    const TextureSize from{uint32_t(width), uint32_t(height)};
+    const TextureSize to = fittedTextureSize(from.width, from.height, decoding.limit.maxSide);
+    if (to.width != from.width || to.height != from.height) {
+        image->image = resizedRgba8Srgb(pixels, from, to);
+        std::string what = "base colour image " + std::to_string(imageIndex);
+        if (!image->uri.empty()) what += " '" + image->uri + "'";
+        else if (!image->name.empty()) what += " '" + image->name + "'";
+        log::warn(decoding.source + ": " + downscaleWarning(what, from, to, decoding.limit.reason));
+    } else {
+        image->image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
+    }
+    image->width = int(to.width);
+    image->height = int(to.height);
     image->component = 4;
     image->bits = 8;
     image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image->image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
-    stbi_image_free(pixels);
     return true;
 }
 
@@ -294,9 +384,12 @@ std::string describeLoadError(const std::string& tinygltfError, const nlohmann::
             return describeFile(gltf, file) + " cannot be read (no such file)";
         }
         if (startsWith(line, "File read error : ")) {
+            // "File read error : dir/a.bin : <problem>": our ReadWholeFile's problems never
+            // contain " : ", so the last one ends the path.
             const std::string rest = line.substr(std::strlen("File read error : "));
-            const std::string file = rest.substr(0, rest.find(" : "));
-            return describeFile(gltf, file) + " cannot be read";
+            const size_t separator = rest.rfind(" : ");
+            if (separator == std::string::npos) return describeFile(gltf, rest) + " cannot be read";
+            return describeFile(gltf, rest.substr(0, separator)) + " cannot be read (" + rest.substr(separator + 3) + ")";
         }
         if (startsWith(line, "File is empty : ")) {
             const std::string file = line.substr(std::strlen("File is empty : "));

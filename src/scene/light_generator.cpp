@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "gpu_types.h"
+#include "scene/light_reach.h"
 
 namespace punctual {
 
@@ -14,6 +15,10 @@ namespace {
 constexpr uint32_t kMaxSpot = PUNCTUAL_MAX_SPOT_LIGHTS;
 constexpr uint32_t kMaxPoint = PUNCTUAL_MAX_POINT_LIGHTS;
 constexpr float kDegree = 0.0174532925f;  // pi / 180
+// Redraws go to the bounds widened by this fraction of their diagonal: at least the shortest
+// generated range (0.25 x the diagonal), so a light in the margin can still reach the model.
+constexpr float kRedrawMargin = 0.25f;
+constexpr uint32_t kPlacementAttempts = 32;
 
 [[noreturn]] void throwOverCaps(uint64_t spotCount, uint64_t pointCount) {
     throw Error("--lights", "at most " + std::to_string(kMaxSpot) + " spot and " + std::to_string(kMaxPoint) +
@@ -78,24 +83,28 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
         yLow = bounds.min.y + 0.05f * horizontal;
         yHigh = bounds.min.y + 0.2f * horizontal;
     }
+    // Where a light's first draw goes, and where its redraws go when the first cannot reach
+    // anything the camera sees: the bounds widened by a margin on every side but the bottom
+    // (below the lowest surface a light reaches nothing a camera above it sees), so that a
+    // closed model, which fills its own bounds, has lights around it.
+    const float margin = kRedrawMargin * diagonal;
+    const Bounds first{glm::vec3(bounds.min.x, yLow, bounds.min.z), glm::vec3(bounds.max.x, yHigh, bounds.max.z)};
+    const Bounds widened{glm::vec3(bounds.min.x - margin, bounds.min.y, bounds.min.z - margin),
+                         glm::vec3(bounds.max.x + margin, std::max(bounds.max.y, yHigh) + margin, bounds.max.z + margin)};
 
     PortableRandom random(seed);
-    auto randomPosition = [&]() {
-        const float x = random.uniform(bounds.min.x, bounds.max.x);
-        const float y = random.uniform(yLow, yHigh);
-        const float z = random.uniform(bounds.min.z, bounds.max.z);
-        // uniform(lo, hi) rounds once; clamp so "inside the bounds" holds exactly.
-        return glm::clamp(glm::vec3(x, y, z), glm::vec3(bounds.min.x, yLow, bounds.min.z),
-                          glm::vec3(bounds.max.x, yHigh, bounds.max.z));
+    auto randomPosition = [&](const Bounds& region) {
+        const float x = random.uniform(region.min.x, region.max.x);
+        const float y = random.uniform(region.min.y, region.max.y);
+        const float z = random.uniform(region.min.z, region.max.z);
+        // uniform(lo, hi) rounds once; clamp so "inside the region" holds exactly.
+        return glm::clamp(glm::vec3(x, y, z), region.min, region.max);
     };
-
-    std::vector<Light> lights;
-    lights.reserve(size_t(spotCount) + pointCount);
-    for (uint32_t i = 0; i < spotCount; ++i) {
+    auto drawSpot = [&](uint32_t i, const Bounds& region) {
         Light light;
         light.name = "generated spot " + std::to_string(i);
         light.type = LightType::Spot;
-        light.position = randomPosition();
+        light.position = randomPosition(region);
         light.direction = downwardDirection(random, 0.5f);  // tilt <= atan(0.5 * sqrt 2) = 35.3 deg
         light.color = randomLightColor(random);
         light.outerConeAngle = random.uniform(25.0f, 50.0f) * kDegree;
@@ -106,21 +115,43 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
         // 0.26-0.53 lux for I = (0.075-0.15) r^2.
         light.intensity = light.range * light.range * random.uniform(0.075f, 0.15f);
         light.castsShadow = true;
-        lights.push_back(light);
-    }
-    for (uint32_t i = 0; i < pointCount; ++i) {
+        return light;
+    };
+    auto drawPoint = [&](uint32_t i, const Bounds& region) {
         Light light;
         light.name = "generated point " + std::to_string(i);
         light.type = LightType::Point;
-        light.position = randomPosition();
+        light.position = randomPosition(region);
         light.direction = glm::vec3(0.0f, -1.0f, 0.0f);  // unused by points
         light.color = randomLightColor(random);
         light.range = diagonal * random.uniform(0.25f, 0.45f);
         // 0.09-0.18 lux at half the range (see above), since points overlap more.
         light.intensity = light.range * light.range * random.uniform(0.025f, 0.05f);
         light.castsShadow = true;
-        lights.push_back(light);
-    }
+        return light;
+    };
+
+    // A light that reaches nothing the camera sees is drawn again (all its parameters, from the
+    // same random sequence, so the result still depends on the seed alone): first in the same
+    // region, so a scene whose camera is inside (a room) keeps its lights where they were meant to
+    // be, then in the widened one, which a closed model needs. After kPlacementAttempts draws
+    // that all fail, the first is kept. Without any geometry in view there is nothing to test, and
+    // every first draw stands, as it always did.
+    const LightReach reach(scene);
+    auto place = [&](auto&& draw, uint32_t i) {
+        const Light firstDraw = draw(i, first);
+        if (reach.empty() || reach.reaches(firstDraw)) return firstDraw;
+        for (uint32_t attempt = 1; attempt < kPlacementAttempts; ++attempt) {
+            Light light = draw(i, attempt < kPlacementAttempts / 2 ? first : widened);
+            if (reach.reaches(light)) return light;
+        }
+        return firstDraw;
+    };
+
+    std::vector<Light> lights;
+    lights.reserve(size_t(spotCount) + pointCount);
+    for (uint32_t i = 0; i < spotCount; ++i) lights.push_back(place(drawSpot, i));
+    for (uint32_t i = 0; i < pointCount; ++i) lights.push_back(place(drawPoint, i));
     scene.lights = std::move(lights);
 }
 

@@ -45,6 +45,12 @@ glm::vec3 randomLightColor(PortableRandom& random);
 //    [min.y + 10% of the height, min.y + 90% of the height], i.e. above the lowest surfaces and
 //    below a ceiling. A flat scene (height < 10% of its larger horizontal side h) gets y in
 //    [min.y + 0.05 h, min.y + 0.2 h] instead, which is above the bounds.
+//  - every light must reach something the scene's camera sees (scene/light_reach.h: in range,
+//    in the cone, on the visible side, nothing in between). One that does not is drawn again:
+//    15 times as above, then 16 times anywhere in the bounds widened by 25% of their diagonal
+//    (not below them); if all fail, the first draw is kept. So a small closed model gets lights
+//    around it, not inside it, while a room modelled as one closed mesh, seen from inside, keeps
+//    its lights inside.
 //  - spots shine down, tilted randomly up to ~35 degrees from vertical; outer cone 25-50 degrees,
 //    inner cone 0.5-0.9 x outer.
 //  - ranges 0.25-0.45 x the bounds diagonal, so lights overlap whatever the scene's size.

@@ -64,9 +64,10 @@ json accessorJson(int bufferView, int componentType, size_t count, const char* t
     return {{"bufferView", bufferView}, {"componentType", componentType}, {"count", count}, {"type", type}};
 }
 
-std::vector<unsigned char> glbFile(const json& doc, const std::vector<unsigned char>& bin) {
+std::vector<unsigned char> glbFile(const json& doc, const std::vector<unsigned char>& bin, const json& moreBuffers) {
     json out = doc;
     out["buffers"] = json::array({json{{"byteLength", bin.size()}}});
+    for (const json& buffer : moreBuffers) out["buffers"].push_back(buffer);
     std::string text = out.dump();
     while (text.size() % 4 != 0) text += ' ';
     std::vector<unsigned char> payload = bin;

@@ -39,8 +39,9 @@ nlohmann::json bufferViewJson(size_t byteOffset, size_t byteLength);
 // An accessor without a byteOffset (the glTF default, 0).
 nlohmann::json accessorJson(int bufferView, int componentType, size_t count, const char* type);
 
-// A GLB file holding `doc`, its single buffer being the BIN chunk `bin` (any "buffers" in `doc`
-// are replaced).
-std::vector<unsigned char> glbFile(const nlohmann::json& doc, const std::vector<unsigned char>& bin);
+// A GLB file holding `doc`, its buffer 0 being the BIN chunk `bin`, followed by `moreBuffers`
+// (any "buffers" in `doc` are replaced).
+std::vector<unsigned char> glbFile(const nlohmann::json& doc, const std::vector<unsigned char>& bin,
+                                   const nlohmann::json& moreBuffers = nlohmann::json::array());
 
 }  // namespace punctual::unit_testing

@@ -1,14 +1,23 @@
 // loadGltf on broken files: each must throw punctual::Error naming the file and the problem,
 // never crash, hang or read out of bounds.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <future>
 #include <limits>
+#include <optional>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/image.h"
+#include "core/log.h"
 #include "gltf_test_files.h"
 #include "scene/gltf_loader.h"
 
@@ -52,6 +61,13 @@ struct QuadFile {
     }
     void setIndex(size_t i, uint16_t value) {
         std::memcpy(bin.data() + 12 * sizeof(float) + i * sizeof(uint16_t), &value, sizeof value);
+    }
+    // Gives the quad a material whose base colour texture is `image` (a glTF image object).
+    void addBaseColorImage(const json& image) {
+        doc["images"] = {image};
+        doc["textures"] = {{{"source", 0}}};
+        doc["materials"] = {{{"name", "textured"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+        doc["meshes"][0]["primitives"][0]["material"] = 0;
     }
     void addLight(const json& light) {
         doc["extensionsUsed"] = {"KHR_lights_punctual"};
@@ -284,6 +300,244 @@ TEST_F(GltfMalformed, EveryTruncationIsAnError) {
         writeFile(gltfPath, text.data(), length);
         EXPECT_THROW(loadGltf(gltfPath.string()), Error) << "JSON cut at " << length;
     }
+}
+
+// ---- files a URI names that are not regular files ----------------------------------------------
+
+// Captures warnings for the lifetime of the object, then restores the previous sink.
+class WarningCapture {
+public:
+    WarningCapture()
+        : previous_(log::setSink([this](const std::string& level, const std::string& message) {
+              if (level == "warning") warnings.push_back(message);
+          })) {}
+    ~WarningCapture() { log::setSink(previous_); }
+    WarningCapture(const WarningCapture&) = delete;
+    WarningCapture& operator=(const WarningCapture&) = delete;
+    std::vector<std::string> warnings;
+
+private:
+    log::Sink previous_;
+};
+
+struct LoadOutcome {
+    std::optional<std::string> error;  // what loadGltf threw, if it threw
+    std::vector<std::string> warnings;
+    std::optional<Scene> scene;
+};
+
+// loadGltf(path) on another thread, waiting at most 30 s. Opening a FIFO for reading blocks
+// until a writer appears: if the load is still running by then, the test becomes that writer
+// for `fifo` (which ends the blocked open or read) and fails, rather than hang the suite.
+LoadOutcome loadInBoundedTime(const std::string& path, const fs::path& fifo = {}) {
+    WarningCapture capture;
+    LoadOutcome outcome;
+    auto load = std::async(std::launch::async, [&path, &outcome]() {
+        try {
+            outcome.scene = loadGltf(path);
+        } catch (const Error& e) {
+            outcome.error = e.what();
+        } catch (const std::exception& e) {
+            outcome.error = std::string("internal error: ") + e.what();
+        }
+    });
+    if (load.wait_for(std::chrono::seconds(30)) != std::future_status::ready) {
+        ADD_FAILURE() << path << ": still loading after 30 s";
+        while (!fifo.empty() && load.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready) {
+            const int writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+            if (writer >= 0) ::close(writer);
+        }
+    }
+    load.get();
+    outcome.warnings = capture.warnings;
+    return outcome;
+}
+
+// The load failed with one line naming the scene file and containing `keyword`.
+void expectError(const LoadOutcome& outcome, const std::string& path, const std::string& keyword) {
+    ASSERT_TRUE(outcome.error.has_value()) << path << " loaded without an error";
+    const std::string& message = *outcome.error;
+    EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+    EXPECT_NE(message.find(keyword), std::string::npos) << "expected '" << keyword << "' in: " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
+}
+
+constexpr const char* kFolder = "a directory, not a regular file";
+constexpr const char* kFifo = "a named pipe (FIFO), not a regular file";
+
+TEST_F(GltfMalformed, BufferUriNamingAFolderIsRefused) {
+    fs::create_directory(dir.path() / "sub");
+    // Plain and percent-encoded ("%2E" is '.', "%2F" is '/').
+    for (const std::string uri : {".", "..", "sub", "%2E", "%2e%2E", "sub%2F"}) {
+        quad.doc["buffers"][0]["uri"] = uri;
+        const std::string path = quad.write(dir.path(), false);
+        expectError(loadInBoundedTime(path), path, "buffer 0: '" + uri + "' cannot be read (" + kFolder + ")");
+    }
+}
+
+TEST_F(GltfMalformed, BufferUriNamingAFifoIsRefusedWithoutOpeningIt) {
+    const fs::path fifo = dir.path() / "pipe.bin";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::string uri : {"pipe.bin", "pipe%2Ebin"}) {
+        quad.doc["buffers"][0]["uri"] = uri;
+        const std::string path = quad.write(dir.path(), false);
+        const auto start = std::chrono::steady_clock::now();
+        expectError(loadInBoundedTime(path, fifo), path, "buffer 0: '" + uri + "' cannot be read (" + kFifo + ")");
+        EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+    }
+}
+
+TEST_F(GltfMalformed, BufferUriNamingADeviceIsRefused) {
+    fs::create_symlink("/dev/zero", dir.path() / "zero.bin");
+    quad.doc["buffers"][0]["uri"] = "zero.bin";
+    const std::string path = quad.write(dir.path(), false);
+    expectError(loadInBoundedTime(path), path, "buffer 0: 'zero.bin' cannot be read (a device, not a regular file)");
+}
+
+TEST_F(GltfMalformed, GlbBufferUrisNamingAFolderOrFifoAreRefused) {
+    const fs::path fifo = dir.path() / "pipe.bin";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const fs::path glb = dir.path() / "scene.glb";
+    writeFile(glb, unit_testing::glbFile(quad.doc, quad.bin, json::array({{{"uri", "."}, {"byteLength", 4}}})));
+    expectError(loadInBoundedTime(glb.string()), glb.string(), std::string("buffer 1: '.' cannot be read (") + kFolder);
+    writeFile(glb, unit_testing::glbFile(quad.doc, quad.bin, json::array({{{"uri", "pipe%2Ebin"}, {"byteLength", 4}}})));
+    expectError(loadInBoundedTime(glb.string(), fifo), glb.string(),
+                std::string("buffer 1: 'pipe%2Ebin' cannot be read (") + kFifo);
+}
+
+// Images are not needed to draw (their materials fall back to the base colour factor, as for a
+// missing image): one warning naming the scene, the image's URI and the problem.
+TEST_F(GltfMalformed, ImageUriNamingAFolderOrFifoWarnsOnceAndFallsBack) {
+    const fs::path fifo = dir.path() / "pipe.png";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    struct Case {
+        std::string uri;
+        const char* problem;
+        bool binary;
+    };
+    for (const Case& c : {Case{".", kFolder, false}, Case{"%2E%2E", kFolder, true}, Case{"pipe.png", kFifo, false},
+                          Case{"pipe%2Epng", kFifo, true}}) {
+        QuadFile textured;
+        textured.addBaseColorImage({{"uri", c.uri}});
+        std::string path = (dir.path() / "textured.glb").string();
+        if (c.binary) writeFile(path, textured.glb());
+        else path = textured.write(dir.path());
+        const LoadOutcome outcome = loadInBoundedTime(path, fifo);
+        ASSERT_FALSE(outcome.error) << *outcome.error;
+        ASSERT_EQ(outcome.warnings.size(), 1u) << c.uri;
+        const std::string& warning = outcome.warnings[0];
+        EXPECT_EQ(warning.rfind(path + ": ", 0), 0u) << warning;
+        EXPECT_NE(warning.find("image 0 '" + c.uri + "' cannot be read (" + c.problem + ")"), std::string::npos) << warning;
+        EXPECT_TRUE(outcome.scene->textures.empty());
+        EXPECT_EQ(outcome.scene->materials[0].baseColorTexture, -1);
+    }
+}
+
+TEST_F(GltfMalformed, SceneFileThatIsAFolderOrFifoIsRefused) {
+    const fs::path folder = dir.path() / "folder.gltf";
+    fs::create_directory(folder);
+    expectError(loadInBoundedTime(folder.string()), folder.string(), std::string("cannot be read (") + kFolder);
+    const fs::path fifo = dir.path() / "pipe.glb";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    expectError(loadInBoundedTime(fifo.string(), fifo), fifo.string(), std::string("cannot be read (") + kFifo);
+}
+
+// A relative URI is relative to the glTF file: tinygltf also looks in the current folder, which
+// would read a file the scene never named.
+TEST_F(GltfMalformed, RelativeUriIsNeverLookedUpInTheCurrentFolder) {
+    fs::create_directory(dir.path() / "models");
+    quad.doc["buffers"][0]["uri"] = "elsewhere.bin";
+    quad.write(dir.path() / "models", false);
+    writeFile(dir.path() / "elsewhere.bin", quad.bin);
+    const fs::path previous = fs::current_path();
+    fs::current_path(dir.path());
+    const LoadOutcome outcome = loadInBoundedTime("models/scene.gltf");
+    fs::current_path(previous);
+    expectError(outcome, "models/scene.gltf", "buffer 0: 'elsewhere.bin' cannot be read (no such file)");
+}
+
+// ---- light ranges -----------------------------------------------------------------------------------
+
+// KHR_lights_punctual: "range ... must be > 0". An absent range is infinite, and tinygltf reads
+// it as 0, so a written 0 used to mean infinite too.
+TEST_F(GltfMalformed, LightRangeZeroIsRejectedNamingTheLight) {
+    quad.addLight({{"type", "point"}, {"name", "lamp"}, {"range", 0}});
+    expectQuadLoadError("light 0 'lamp' has an invalid range 0 (KHR_lights_punctual requires range > 0");
+    for (const char* type : {"spot", "directional"}) {
+        QuadFile other;
+        json light = {{"type", type}, {"range", 0.0}};
+        if (std::string(type) == "spot") light["spot"] = json::object();
+        other.addLight(light);
+        expectLoadError(other.write(dir.path()), "light 0 has an invalid range 0");
+    }
+    QuadFile negative;
+    negative.addLight({{"type", "spot"}, {"spot", json::object()}, {"range", -1e-30}});
+    expectLoadError(negative.write(dir.path()), "light 0 has an invalid range -1e-30");
+}
+
+TEST_F(GltfMalformed, LightRangeNanIsAJsonError) {
+    quad.addLight({{"type", "point"}, {"range", 12345}});
+    std::string text = quad.doc.dump();
+    text.replace(text.find("12345"), 5, "NaN");  // JSON has no NaN: nlohmann would write null
+    writeFile(dir.path() / "scene.bin", quad.bin);
+    writeFile(dir.path() / "scene.gltf", text);
+    expectLoadError((dir.path() / "scene.gltf").string(), "cannot parse JSON");
+}
+
+TEST_F(GltfMalformed, HugeLightRangesAreKeptOrInfinite) {
+    quad.addLight({{"type", "point"}, {"intensity", 4.0}, {"range", 1e30}});
+    Scene scene = loadGltf(quad.write(dir.path()));
+    ASSERT_EQ(scene.lights.size(), 1u);
+    EXPECT_EQ(scene.lights[0].range, 1e30f);
+    EXPECT_FALSE(scene.lights[0].rangeDerived);
+    // Beyond what a float holds: infinite, as if absent. Beyond a double, the JSON parser
+    // refuses the number.
+    for (const char* huge : {"1e300", "1e400"}) {
+        QuadFile far;
+        far.addLight({{"type", "point"}, {"intensity", 4.0}, {"range", 12345}});
+        std::string text = far.doc.dump();
+        text.replace(text.find("12345"), 5, huge);
+        writeFile(dir.path() / "scene.bin", far.bin);
+        const fs::path path = dir.path() / "scene.gltf";
+        writeFile(path, text);
+        if (std::string(huge) == "1e400") {
+            expectLoadError(path.string(), "cannot parse JSON: number overflow parsing '1e400'");
+            continue;
+        }
+        scene = loadGltf(path.string());
+        ASSERT_EQ(scene.lights.size(), 1u);
+        EXPECT_TRUE(scene.lights[0].rangeDerived);
+        EXPECT_EQ(scene.lights[0].range, derivedRange(4.0f, glm::vec3(1.0f)));
+    }
+}
+
+// ---- textures larger than the frame can use -----------------------------------------------------
+
+TEST_F(GltfMalformed, TextureOverTheLimitIsDownscaledOnLoadWithOneWarning) {
+    ImageRgba8 wide;
+    wide.width = 300;
+    wide.height = 100;
+    wide.pixels.assign(size_t(300) * 100 * 4, 200);
+    writeFile(dir.path() / "wide.png", encodePng(wide));
+    quad.addBaseColorImage({{"uri", "wide.png"}});
+    const std::string path = quad.write(dir.path());
+
+    WarningCapture capture;
+    const Scene full = loadGltf(path);
+    ASSERT_EQ(full.textures.size(), 1u);
+    EXPECT_EQ(full.textures[0].width, 300u);
+    EXPECT_TRUE(capture.warnings.empty());
+
+    GltfLoadOptions options;
+    options.textureLimit = {64, "a test's limit"};
+    const Scene fitted = loadGltf(path, options);
+    ASSERT_EQ(fitted.textures.size(), 1u);
+    EXPECT_EQ(fitted.textures[0].width, 64u);
+    EXPECT_EQ(fitted.textures[0].height, 21u);  // 100 x 64 / 300 = 21.3
+    EXPECT_EQ(fitted.textures[0].rgba, std::vector<uint8_t>(size_t(64) * 21 * 4, 200));  // a flat colour stays
+    ASSERT_EQ(capture.warnings.size(), 1u);
+    EXPECT_EQ(capture.warnings[0], path + ": base colour image 0 'wide.png' is 300x100 texels; downscaled to 64x21 "
+                                          "(a test's limit)");
 }
 
 }  // namespace

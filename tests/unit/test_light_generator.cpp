@@ -4,9 +4,13 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "core/error.h"
 #include "light_test_scenes.h"
 #include "scene/light_generator.h"
+#include "scene/light_reach.h"
+#include "scene/study_scenes.h"
 
 namespace punctual {
 namespace {
@@ -162,6 +166,84 @@ TEST(LightGen, RejectsOverCapsAndEmptyScenes) {
     EXPECT_THROW(replaceLights(scene, 0, 33, 1), Error);
     Scene empty;
     EXPECT_THROW(replaceLights(empty, 1, 1, 1), Error);
+}
+
+// ---- placement that reaches what the camera sees ----------------------------------------------
+
+// A closed 1 m cube standing on y = 0, alone, seen by the fitted camera: the first draws all fall
+// inside it (its bounds are the scene's), where they light nothing the camera sees.
+Scene closedCube() {
+    Scene scene;
+    study::addBox(scene, {0.0f, 0.5f, 0.0f}, {1.0f, 1.0f, 1.0f});
+    scene.materials.push_back(Material{});
+    scene.computeBounds();
+    scene.camera = fitCameraToBounds(scene.bounds);
+    return scene;
+}
+
+// A 10 x 4 x 10 m room modelled as one closed box, seen from inside: its lights must stay
+// inside, where the camera is (rejecting candidates inside any object's bounds would put
+// them all outside the walls).
+Scene closedRoom() {
+    Scene scene;
+    study::addBox(scene, {0.0f, 2.0f, 0.0f}, {10.0f, 4.0f, 10.0f});
+    study::addBox(scene, {1.0f, 0.5f, -1.0f}, {1.0f, 1.0f, 1.0f});  // a crate on the floor
+    scene.materials.push_back(Material{});
+    scene.computeBounds();
+    scene.camera.view = glm::lookAt(glm::vec3(0.0f, 1.7f, 4.5f), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    scene.camera.yfov = 1.0f;
+    scene.camera.znear = 0.05f;
+    scene.camera.zfar = 30.0f;
+    return scene;
+}
+
+bool strictlyInside(const glm::vec3& p, const Bounds& b) {
+    return glm::all(glm::greaterThan(p, b.min)) && glm::all(glm::lessThan(p, b.max));
+}
+
+TEST(LightGen, ClosedModelGetsLightsAroundItThatReachWhatTheCameraSees) {
+    Scene scene = closedCube();
+    replaceLights(scene, 16, 16, 1);
+    ASSERT_EQ(scene.lights.size(), 32u);
+    const LightReach reach(scene);
+    ASSERT_FALSE(reach.empty());
+    for (const Light& light : scene.lights) {
+        EXPECT_FALSE(strictlyInside(light.position, scene.bounds)) << light.name;
+        EXPECT_TRUE(reach.reaches(light)) << light.name;
+        EXPECT_GE(light.position.y, scene.bounds.min.y) << light.name;  // never below the model
+    }
+    EXPECT_NO_THROW(validateLights(scene.lights, "generated"));
+    Scene again = closedCube();
+    replaceLights(again, 16, 16, 1);
+    for (size_t i = 0; i < scene.lights.size(); ++i) EXPECT_TRUE(identical(scene.lights[i], again.lights[i])) << i;
+}
+
+TEST(LightGen, RoomSeenFromInsideKeepsItsLightsInside) {
+    Scene scene = closedRoom();
+    replaceLights(scene, 16, 16, 2);
+    const LightReach reach(scene);
+    ASSERT_FALSE(reach.empty());
+    for (const Light& light : scene.lights) {
+        EXPECT_TRUE(strictlyInside(light.position, scene.bounds)) << light.name;
+        EXPECT_TRUE(reach.reaches(light)) << light.name;
+    }
+}
+
+// Lights that reach what the camera sees at their first draw are exactly the lights generated
+// before placement was checked: a scene whose lights all reach keeps its images.
+TEST(LightGen, LightsThatReachAtTheirFirstDrawAreUnchanged) {
+    Scene checked = closedRoom();
+    Scene unchecked = closedRoom();
+    unchecked.objects.clear();  // nothing to test against: every first draw stands
+    replaceLights(checked, 8, 8, 3);
+    replaceLights(unchecked, 8, 8, 3);
+    const LightReach reach(checked);
+    size_t firstDrawsKept = 0;
+    for (size_t i = 0; i < checked.lights.size() && reach.reaches(unchecked.lights[i]); ++i) {
+        EXPECT_TRUE(identical(checked.lights[i], unchecked.lights[i])) << i;
+        ++firstDrawsKept;
+    }
+    EXPECT_GT(firstDrawsKept, 0u);
 }
 
 // ---- parseLightCounts --------------------------------------------------------------------------

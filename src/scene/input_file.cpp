@@ -1,0 +1,115 @@
+#include "scene/input_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace punctual {
+namespace {
+
+// What a stat() result is, when it is not a regular file; empty for a regular file.
+std::string typeProblem(const struct stat& info) {
+    if (S_ISREG(info.st_mode)) return "";
+    if (S_ISDIR(info.st_mode)) return "a directory, not a regular file";
+    if (S_ISFIFO(info.st_mode)) return "a named pipe (FIFO), not a regular file";
+    if (S_ISCHR(info.st_mode) || S_ISBLK(info.st_mode)) return "a device, not a regular file";
+    if (S_ISSOCK(info.st_mode)) return "a socket, not a regular file";
+    return "not a regular file";
+}
+
+std::string errnoProblem(int error) {
+    if (error == ENOENT) return "no such file";
+    if (error == EACCES) return "permission denied";
+    if (error == ENOTDIR) return "no such file (a folder on its path is a file)";
+    if (error == ELOOP) return "too many levels of symbolic links";
+    if (error == ENAMETOOLONG) return "the path is too long";
+    return std::strerror(error);
+}
+
+std::string sizeProblem(uint64_t size, uint64_t maxBytes) {
+    return std::to_string(size) + " bytes, more than the " + std::to_string(maxBytes) + " punctual can read";
+}
+
+std::string readProblem(int error, std::vector<unsigned char>& bytes) {
+    bytes.clear();
+    if (error == EISDIR) return "a directory, not a regular file";
+    return "read error: " + std::string(std::strerror(error));
+}
+
+// Closes the descriptor on every path out of readRegularFile.
+class FileDescriptor {
+public:
+    explicit FileDescriptor(int fd) : fd_(fd) {}
+    ~FileDescriptor() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    FileDescriptor(const FileDescriptor&) = delete;
+    FileDescriptor& operator=(const FileDescriptor&) = delete;
+    int get() const { return fd_; }
+
+private:
+    int fd_;
+};
+
+}  // namespace
+
+std::string regularFileProblem(const std::string& path, uint64_t maxBytes) {
+    if (path.empty()) return "no such file (the path is empty)";
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) {
+        const int error = errno;
+        struct stat link {};
+        if (error == ENOENT && ::lstat(path.c_str(), &link) == 0) return "a broken symbolic link";
+        return errnoProblem(error);
+    }
+    if (std::string problem = typeProblem(info); !problem.empty()) return problem;
+    if (uint64_t(info.st_size) > maxBytes) return sizeProblem(uint64_t(info.st_size), maxBytes);
+    return "";
+}
+
+std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vector<unsigned char>& bytes) {
+    bytes.clear();
+    // stat first, so a FIFO is never opened at all.
+    if (std::string problem = regularFileProblem(path, maxBytes); !problem.empty()) return problem;
+    // The path may have been replaced between the stat and the open: O_NONBLOCK keeps even a
+    // FIFO swapped in from blocking the open, and fstat checks what was really opened.
+    const FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK));
+    if (file.get() < 0) return errnoProblem(errno);
+    struct stat info {};
+    if (::fstat(file.get(), &info) != 0) return errnoProblem(errno);
+    if (std::string problem = typeProblem(info); !problem.empty()) return problem;
+    if (uint64_t(info.st_size) > maxBytes) return sizeProblem(uint64_t(info.st_size), maxBytes);
+
+    // st_size is a hint (a file may grow or shrink while we read, and some kernel files report
+    // 0): read what it announces, then on until end of file, but never past maxBytes.
+    bytes.resize(size_t(info.st_size));
+    size_t filled = 0;
+    while (filled < bytes.size()) {
+        const ssize_t got = ::read(file.get(), bytes.data() + filled, bytes.size() - filled);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) return readProblem(errno, bytes);
+        if (got == 0) break;  // shrank
+        filled += size_t(got);
+    }
+    bytes.resize(filled);
+    if (filled < size_t(info.st_size)) return "";
+    std::vector<unsigned char> chunk(65536);
+    while (true) {
+        const ssize_t got = ::read(file.get(), chunk.data(), chunk.size());
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) return readProblem(errno, bytes);
+        if (got == 0) break;
+        if (uint64_t(bytes.size()) + uint64_t(got) > maxBytes) {
+            const uint64_t size = uint64_t(bytes.size()) + uint64_t(got);
+            bytes.clear();
+            return sizeProblem(size, maxBytes);
+        }
+        bytes.insert(bytes.end(), chunk.begin(), chunk.begin() + got);
+    }
+    return "";
+}
+
+}  // namespace punctual
