@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -140,6 +141,61 @@ void validateShadowSettings(const ShadowSettings& settings) {
     if (!std::isfinite(settings.strength) || settings.strength < 0.0f || settings.strength > 1.0f) {
         throw Error("--shadow-strength", "must be from 0 to 1");
     }
+}
+
+namespace {
+
+// "20.0 GiB", "1.2 MiB", "80.0 KiB": the largest unit that shows the size as at least 0.1.
+std::string describeBytes(uint64_t bytes) {
+    const char* units[] = {"KiB", "MiB", "GiB"};
+    int unit = 2;
+    while (unit > 0 && double(bytes) < 0.1 * double(1ull << (10 * (unit + 1)))) --unit;
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.1f %s", double(bytes) / double(1ull << (10 * (unit + 1))), units[unit]);
+    return text;
+}
+
+}  // namespace
+
+uint64_t shadowMapBytes(const ShadowPlan& plan, uint32_t resolution) {
+    const uint64_t layers = uint64_t(plan.shadowedSpots) + 6ull * plan.shadowedPoints;
+    return layers * resolution * resolution * kShadowTexelBytes;
+}
+
+void checkShadowMapsFit(const ShadowPlan& plan, const ShadowSettings& settings, const ShadowMemoryLimits& limits) {
+    ShadowPlan spotsOnly;
+    spotsOnly.shadowedSpots = plan.shadowedSpots;
+    ShadowPlan pointsOnly;
+    pointsOnly.shadowedPoints = plan.shadowedPoints;
+    // The first limit the maps at `resolution` exceed, described; empty when they fit.
+    auto problemAt = [&](uint32_t resolution) -> std::string {
+        const uint64_t total = shadowMapBytes(plan, resolution);
+        if (total > limits.total) {
+            return "the shadow maps of " + std::to_string(plan.shadowedSpots) + " spot and " +
+                   std::to_string(plan.shadowedPoints) + " point lights need " + describeBytes(total) + ", " +
+                   limits.totalName + " has " + describeBytes(limits.total);
+        }
+        const uint64_t spots = shadowMapBytes(spotsOnly, resolution);
+        if (spots > limits.spotArray) {
+            return "the spot shadow array (" + std::to_string(plan.shadowedSpots) + " layers) needs " +
+                   describeBytes(spots) + ", the device's largest such image holds " + describeBytes(limits.spotArray);
+        }
+        const uint64_t points = shadowMapBytes(pointsOnly, resolution);
+        if (points > limits.pointArray) {
+            return "the point shadow array (" + std::to_string(6 * plan.shadowedPoints) + " layers) needs " +
+                   describeBytes(points) + ", the device's largest such image holds " + describeBytes(limits.pointArray);
+        }
+        return {};
+    };
+    std::string problem = problemAt(settings.resolution);
+    if (problem.empty()) return;
+    for (uint32_t resolution = settings.resolution / 2; resolution >= 16; resolution /= 2) {
+        if (problemAt(resolution).empty()) {
+            problem += " (at most --shadow-res " + std::to_string(resolution) + " fits)";
+            break;
+        }
+    }
+    throw Error("--shadow-res " + std::to_string(settings.resolution), problem);
 }
 
 glm::mat4 cubeFaceViewProjection(const glm::vec3& position, uint32_t face, float nearPlane, float farPlane,
