@@ -16,16 +16,18 @@ void main() {
     uint slice = gl_LocalInvocationIndex;
     if (slice >= PUNCTUAL_MAX_CLUSTER_SLICES) return;
     if (slice == 0u) depthRange.sliceCount = SLICE_COUNT;
-    // An empty frame (no geometry) leaves min > max: every slice starts at depth 0.
+    // Depth is reversed (culling.h): slice starts fall from 1 (the near plane) towards 0. An
+    // empty frame (no geometry) leaves min > max: every slice starts at depth 1. Slices past
+    // SLICE_COUNT start at -1, below every depth, so the search never picks them.
     if (depthRange.minDepthBits > depthRange.maxDepthBits || slice >= SLICE_COUNT) {
-        depthRange.sliceStartDepth[slice] = slice == 0u || depthRange.minDepthBits > depthRange.maxDepthBits ? 0.0 : 2.0;
+        depthRange.sliceStartDepth[slice] = slice == 0u || depthRange.minDepthBits > depthRange.maxDepthBits ? 1.0 : -1.0;
         return;
     }
-    float minDepth = uintBitsToFloat(depthRange.minDepthBits);
-    float maxDepth = uintBitsToFloat(depthRange.maxDepthBits);
-    float nearDistance = viewDistanceFromDepth(minDepth, frame.depthToView.xy);
-    float farDistance = viewDistanceFromDepth(maxDepth, frame.depthToView.xy);
-    float start = slice == 0u ? 0.0
+    float nearestDepth = uintBitsToFloat(depthRange.maxDepthBits);
+    float farthestDepth = uintBitsToFloat(depthRange.minDepthBits);
+    float nearDistance = viewDistanceFromDepth(nearestDepth, frame.depthToView.xy);
+    float farDistance = viewDistanceFromDepth(farthestDepth, frame.depthToView.xy);
+    float start = slice == 0u ? 1.0
                               : depthFromViewDistance(sliceStartDistance(slice, nearDistance, farDistance, SLICE_COUNT),
                                                       frame.depthToView.xy);
     depthRange.sliceStartDepth[slice] = start;

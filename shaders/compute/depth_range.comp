@@ -1,11 +1,13 @@
 #version 450
-// The nearest and farthest geometry depth of the frame, for clustered culling's depth slices.
-// Background pixels (depth 1) are ignored. Each of a group's 64 threads folds a 4x4 block in
+// The depth range of the frame's geometry, for clustered culling's depth slices: with the
+// reversed depth (culling.h) the largest depth is the nearest geometry, the smallest the
+// farthest. Background pixels (depth 0, the clear value) are ignored. Each of a group's 64 threads folds a 4x4 block in
 // registers (few invocations: their count, not the reads, is what costs on CPU drivers), the group
 // reduces in shared memory, and one thread merges into the global pair. Depths are non-negative
 // floats, whose bit patterns sort like the values, so integer atomicMin/Max order them correctly.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_types.h"
+#include "culling.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;  // one group covers 32x32 pixels
 
@@ -28,7 +30,7 @@ void main() {
         uvec2 pixel = gl_GlobalInvocationID.xy * 4u + uvec2(i & 3u, i >> 2u);
         if (pixel.x >= uint(frame.viewport.x) || pixel.y >= uint(frame.viewport.y)) continue;
         float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
-        if (depth < 1.0) {
+        if (!isBackgroundDepth(depth)) {
             threadMin = min(threadMin, floatBitsToUint(depth));
             threadMax = max(threadMax, floatBitsToUint(depth));
         }

@@ -84,7 +84,7 @@ void main() {
             uvec2 pixel = tile * TILE_SIZE + uvec2(x, y);
             if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
             float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
-            if (depth >= 1.0) continue;  // background: nothing to shade
+            if (isBackgroundDepth(depth)) continue;  // nothing to shade
             // The pixel's slice: the same search as pixelGridCell() in forward.frag (culling.h),
             // so both pick the same slice.
             uint slice;

@@ -15,15 +15,26 @@
 PUNCTUAL_NAMESPACE_BEGIN
 
 // Culling is conservative by a small margin, because the forward pass shades interpolated world
-// positions while culling sees positions rebuilt from the depth buffer. A 32-bit depth buffer
-// rebuilds the view distance to within ~2e-5 relative at 30 m with a 0.1 m near plane (depth
-// step 6e-8 times dD/ddepth = D^2/near); we widen depth ranges and light radii by 1e-3 relative,
-// which costs no measurable efficiency.
+// positions while culling sees positions rebuilt from the depth buffer. The camera's depth is
+// reversed (1 at the near plane n, 0 at the far plane, about n / D at view distance D: see
+// Camera::projection), so a 32-bit float depth holds n / D to 2^-24 relative and rebuilds D to
+// about 1e-7 relative at any distance and any near plane; we widen depth ranges and light radii
+// by 1e-3 relative, which costs no measurable efficiency.
 #define PUNCTUAL_CULL_RELATIVE_MARGIN 1e-3f
 
-// Perspective depth (Vulkan, 0 at near, 1 at far) to view distance. For a projection with
-// P[2][2] = b and P[3][2] = a (GLM's column-major perspectiveRH_ZO): depth = (b z + a) / (-z), so
-// D = -z = a / (depth + b). `depthToView` = (a, b).
+// The depth buffer is cleared to 0 (the far plane; the depth prepass keeps GREATER depths), so a
+// pixel that kept 0 shows no geometry. Geometry exactly at the far plane is clipped anyway.
+#define PUNCTUAL_DEPTH_CLEAR 0.0f
+
+PUNCTUAL_FN bool isBackgroundDepth(float depth) {
+    return depth <= PUNCTUAL_DEPTH_CLEAR;
+}
+
+// Perspective depth (Vulkan) to view distance. For a projection with P[2][2] = b and
+// P[3][2] = a (GLM's column-major layout): clip.z = b z + a and clip.w = -z at view-space z, so
+// depth = (b z + a) / (-z) and at z = -D, depth = a / D - b, i.e. D = a / (depth + b).
+// `depthToView` = (a, b). This holds for any such matrix; the camera's reversed one
+// (near n, far f) has a = f n / (f - n) and b = n / (f - n): depth 1 at D = n, 0 at D = f.
 PUNCTUAL_FN float viewDistanceFromDepth(float depth, vec2 depthToView) {
     return depthToView.x / (depth + depthToView.y);
 }
@@ -45,12 +56,14 @@ PUNCTUAL_FN float depthFromViewDistance(float distance, vec2 depthToView) {
     return depthToView.x / distance - depthToView.y;
 }
 
-// The cluster slice of a perspective depth: the last slice whose start is at or before it (slice 0
-// starts at depth 0, so every depth has one; slices at or past sliceCount are never returned).
-// A lower-bound binary search over the starts of slices 1 .. sliceCount - 1: `first` is one past
-// the last start known to be <= depth, `count` how many starts from `first` on are still unknown;
-// each step halves `count`, so ceil(log2(sliceCount)) comparisons. Pure comparisons of stored
-// values: the culling kernel, the forward shader and the tests pick the same slice bit for bit.
+// The cluster slice of a perspective depth: the last slice whose start is at or nearer than it.
+// Depth is reversed, so slices run near to far with falling start depths (slice 0 starts at depth
+// 1, the near plane, so every depth has one; slices at or past sliceCount start at -1 and are
+// never returned), and "at or nearer" is start >= depth. A lower-bound binary search over the
+// starts of slices 1 .. sliceCount - 1: `first` is one past the last start known to be >= depth,
+// `count` how many starts from `first` on are still unknown; each step halves `count`, so
+// ceil(log2(sliceCount)) comparisons. Pure comparisons of stored values: the culling kernel, the
+// forward shader and the tests pick the same slice bit for bit.
 //
 // A macro, not a function taking the array: GLSL passes arrays by value, and lavapipe copies the
 // whole array at every call (measured at 640x360 with 96 lights: the culling pass 2.4x slower,
@@ -62,7 +75,7 @@ PUNCTUAL_FN float depthFromViewDistance(float distance, vec2 depthToView) {
         uint sliceFirst_ = 1u;                                                   \
         for (uint sliceCount_ = (sliceCount) - 1u; sliceCount_ > 0u;) {          \
             uint sliceStep_ = sliceCount_ / 2u;                                  \
-            if ((sliceStart)[sliceFirst_ + sliceStep_] <= (depth)) {             \
+            if ((sliceStart)[sliceFirst_ + sliceStep_] >= (depth)) {             \
                 sliceFirst_ += sliceStep_ + 1u;                                  \
                 sliceCount_ -= sliceStep_ + 1u;                                  \
             } else {                                                             \

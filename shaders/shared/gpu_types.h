@@ -133,11 +133,15 @@ struct GpuShadowView {
 
 // Written on the GPU each frame (clustered culling): depth-range pass, then slice-boundaries pass.
 struct GpuDepthRange {
-    uint minDepthBits;  // float bits of the nearest geometry depth (non-negative floats sort as uints)
-    uint maxDepthBits;  // float bits of the farthest
+    // Float bits of the smallest and largest geometry depth (non-negative floats sort as uints).
+    // The depth is reversed (culling.h): the smallest is the farthest geometry, the largest the
+    // nearest.
+    uint minDepthBits;
+    uint maxDepthBits;
     uint sliceCount;
     uint reserved;
-    float sliceStartDepth[PUNCTUAL_MAX_CLUSTER_SLICES];  // depth where slice s begins; slice 0 = nearest
+    // Depth where slice s begins; slice 0 = nearest (depth 1), starts falling with s.
+    float sliceStartDepth[PUNCTUAL_MAX_CLUSTER_SLICES];
 };
 
 struct GpuObject {

@@ -147,8 +147,13 @@ PUNCTUAL_FN vec3 shadeDirectionalLight(Surface s, GpuDirectionalLight sun) {
 }
 
 // Tone mapping: exposure, then the ACES filmic fit of Narkowicz (2015), clamped to [0, 1].
+// The exposed value is capped first at PUNCTUAL_ACES_MAX_INPUT: the curve reaches 1 at x = 7.24
+// (0.08 x^2 - 0.56 x - 0.14 = 0) and stays above it, so the cap changes no output, but it keeps
+// x^2 finite. Without it a huge exposure (x > 1.8e19, or radiance x exposure overflowing to inf)
+// gives inf / inf = NaN, which the clamp turns to black where the image should be white.
+#define PUNCTUAL_ACES_MAX_INPUT 1e4f
 PUNCTUAL_FN vec3 toneMapAces(vec3 radiance, float exposure) {
-    vec3 x = radiance * exposure;
+    vec3 x = min(radiance * exposure, vec3(PUNCTUAL_ACES_MAX_INPUT));
     vec3 mapped = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
     return clamp(mapped, vec3(0.0f), vec3(1.0f));
 }

@@ -88,6 +88,11 @@ float filterCube(vec3 direction, uint face, float cube, float reference, float a
     return sum / weights;
 }
 
+// The receiver's depth to compare, at most 1: the far plane is fitted to the deepest object in the
+// view (shadow_setup.cpp), and a receiver the bias pushes beyond it lies behind every caster the
+// map holds, which is what comparing it at the far plane says (a cleared texel, 1, stays lit).
+float shadowReference(float depth) { return min(depth, 1.0); }
+
 // Fraction of `light` reaching `position` past the shadow casters (1 = lit), blended by the
 // light's shadow strength. Called only where the light's attenuation is non-zero.
 float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3 normal) {
@@ -105,7 +110,7 @@ float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3
         vec4 clip = view.viewProjection * vec4(biased, 1.0);
         if (clip.w <= 0.0) return 1.0;
         vec3 ndc = clip.xyz / clip.w;  // perspective: divide by w
-        visibility = filterLayer(spotShadows, ndc.xy * 0.5 + 0.5, view.params.x, ndc.z, angle);
+        visibility = filterLayer(spotShadows, ndc.xy * 0.5 + 0.5, view.params.x, shadowReference(ndc.z), angle);
     } else {
         // Point: the face is the major axis of the light-to-point direction.
         vec3 direction = position - lightPosition;
@@ -118,14 +123,15 @@ float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3
         GpuShadowView view = shadowViews[first + face];
         switch (POINT_SHADOW_LAYOUT) {
             case PUNCTUAL_POINT_SHADOW_CUBE: {
-                float reference = perspectiveDepth(abs(dot(biasedDirection, cubeFaceAxis(face))), view.params.z, view.params.w);
+                float reference = shadowReference(
+                    perspectiveDepth(abs(dot(biasedDirection, cubeFaceAxis(face))), view.params.z, view.params.w));
                 visibility = filterCube(biasedDirection, face, floor(view.params.x / 6.0), reference, angle);
                 break;
             }
             case PUNCTUAL_POINT_SHADOW_SLICES: {
                 vec4 clip = view.viewProjection * vec4(biased, 1.0);
                 vec3 ndc = clip.xyz / clip.w;
-                visibility = filterLayer(pointSlices, ndc.xy * 0.5 + 0.5, view.params.x, ndc.z, angle);
+                visibility = filterLayer(pointSlices, ndc.xy * 0.5 + 0.5, view.params.x, shadowReference(ndc.z), angle);
                 break;
             }
             default:

@@ -48,6 +48,8 @@ bool Frustum::intersectsSphere(const glm::vec3& center, float radius) const {
 //   left  row3 + row0 >= 0     right row3 - row0 >= 0
 //   bottom row3 + row1 >= 0    top   row3 - row1 >= 0   (a y flip in M just swaps these two)
 //   near  row2 >= 0            far   row3 - row2 >= 0   (OpenGL's near would be row3 + row2)
+// With the camera's reversed depth (1 at near, 0 at far) the same two rows bound it, with their
+// roles swapped: row2 >= 0 is its far plane, row3 - row2 >= 0 its near one.
 // Each is normalised by the length of its xyz so dot(n, p) + d is a distance in world units.
 Frustum extractFrustum(const glm::mat4& viewProjection) {
     auto row = [&](int i) {

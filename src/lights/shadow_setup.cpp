@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -29,41 +30,73 @@ bool boxMeetsFrustum(const Frustum& frustum, const Bounds& box) {
     return true;
 }
 
-// The smallest depth along `axis` (from `position`) of any corner of the box. The near plane is
-// a plane across the view's axis, so the casters' depths along that axis, not their distances,
-// decide what it would clip: a caster off the axis can be far from the light yet shallow along
-// it (up to 1.56x at a cube-face corner, 5x at an 80-degree spot edge).
-float nearestDepthAlong(const glm::vec3& position, const glm::vec3& axis, const Bounds& box) {
+// The smallest and largest depth along `axis` (from `position`) of the box's corners. The near
+// and far planes are planes across the view's axis, so the depths along that axis, not the
+// distances, decide what they would clip: a caster off the axis can be far from the light yet
+// shallow along it (up to 1.56x at a cube-face corner, 5x at an 80-degree spot edge).
+struct DepthSpan {
     float nearest = std::numeric_limits<float>::max();
+    float farthest = -std::numeric_limits<float>::max();
+
+    void extend(const DepthSpan& other) {
+        nearest = std::min(nearest, other.nearest);
+        farthest = std::max(farthest, other.farthest);
+    }
+};
+
+DepthSpan depthSpanAlong(const glm::vec3& position, const glm::vec3& axis, const Bounds& box) {
+    DepthSpan span;
     for (int corner = 0; corner < 8; ++corner) {
         const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
                           (corner & 4) ? box.max.z : box.min.z);
-        nearest = std::min(nearest, glm::dot(p - position, axis));
+        const float depth = glm::dot(p - position, axis);
+        span.nearest = std::min(span.nearest, depth);
+        span.farthest = std::max(span.farthest, depth);
     }
-    return nearest;
+    return span;
 }
 
-// Objects meeting the frustum of `viewProjection`, and the smallest depth along `axis` of their
-// bounds (see nearestDepthAlong).
+// Objects meeting the view of `viewProjection` (only its side planes count) between the light and
+// the range along `axis`, and the depth span along the axis of their bounds (see
+// depthSpanAlong). They are the view's casters and its receivers both. The matrix's near and far
+// planes are replaced by the plane through the light across its axis and the plane at the range:
+// a near plane at any fixed share of the range would miss the casters in front of it, and glTF
+// allows any range (1e6 m would put a 1/1000 one at 1 km).
 std::vector<uint32_t> findCasters(const Scene& scene, const glm::mat4& viewProjection, const glm::vec3& position,
-                                  const glm::vec3& axis, float& nearestDepth) {
-    const Frustum frustum = extractFrustum(viewProjection);
+                                  const glm::vec3& axis, float range, DepthSpan& span) {
+    Frustum frustum = extractFrustum(viewProjection);
+    frustum.planes[4] = glm::vec4(axis, -glm::dot(axis, position));           // depth along the axis >= 0
+    frustum.planes[5] = glm::vec4(-axis, glm::dot(axis, position) + range);   // depth along the axis <= range
     std::vector<uint32_t> casters;
-    nearestDepth = std::numeric_limits<float>::max();
+    span = DepthSpan{};
     for (uint32_t i = 0; i < scene.objects.size(); ++i) {
         if (!boxMeetsFrustum(frustum, scene.objects[i].worldBounds)) continue;
         casters.push_back(i);
-        nearestDepth = std::min(nearestDepth, nearestDepthAlong(position, axis, scene.objects[i].worldBounds));
+        span.extend(depthSpanAlong(position, axis, scene.objects[i].worldBounds));
     }
     return casters;
 }
 
+// The far plane from the objects in the view: the farthest depth any of them reaches along the
+// axis, and never beyond the range (the light reaches nothing further). Every receiver the light
+// reaches is in one of those objects, so lies in front of it; the forward shader clamps the
+// reference depth at 1, so a receiver pushed a little beyond it by the bias compares as at the
+// far plane. Fitting far to the geometry rather than to the range keeps the depth mapping, and
+// its precision, the same whatever the range: a range of 1e6 m over a 20 m room maps depth
+// exactly as a range of 20 m does.
+float farPlaneFor(const DepthSpan& span, float range) {
+    // 1% past the deepest corner: a caster there is never clipped by the rounding of its depth.
+    return span.farthest > 0.0f ? std::min(span.farthest * 1.01f, range) : range;
+}
+
 // Near plane from the casters: just short of the shallowest caster along the view's axis, never
-// closer than 1/1000 of the range (depth precision) nor beyond the range. No caster reaches in
-// front of it, so nothing is clipped, and receivers there (depth < 0) compare as lit, which they
-// are. A caster straddling the light's plane gives a depth <= 0 and the 1/1000 floor.
-float nearPlaneFor(float nearestCaster, float range) {
-    return std::clamp(nearestCaster * 0.9f, range * 1e-3f, range * 0.5f);
+// closer than 1/1000 of the far plane (depth precision: a 32-bit float depth buffer then resolves
+// about 6e-5 of the depth everywhere up to far) nor beyond half of it. No caster reaches in front
+// of it, so nothing is clipped, and receivers there (depth < 0) compare as lit, which they are.
+// A caster straddling the light's plane gives a depth <= 0 and the 1/1000 floor. The floor is
+// tied to the fitted far plane, not to the range: it is the scene's extent that sets it.
+float nearPlaneFor(float nearestCaster, float farPlane) {
+    return std::clamp(nearestCaster * 0.9f, farPlane * 1e-3f, farPlane * 0.5f);
 }
 
 glm::mat4 spotViewProjection(const glm::vec3& position, const glm::vec3& direction, float halfAngle, float nearPlane,
@@ -108,6 +141,61 @@ void validateShadowSettings(const ShadowSettings& settings) {
     if (!std::isfinite(settings.strength) || settings.strength < 0.0f || settings.strength > 1.0f) {
         throw Error("--shadow-strength", "must be from 0 to 1");
     }
+}
+
+namespace {
+
+// "20.0 GiB", "1.2 MiB", "80.0 KiB": the largest unit that shows the size as at least 0.1.
+std::string describeBytes(uint64_t bytes) {
+    const char* units[] = {"KiB", "MiB", "GiB"};
+    int unit = 2;
+    while (unit > 0 && double(bytes) < 0.1 * double(1ull << (10 * (unit + 1)))) --unit;
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.1f %s", double(bytes) / double(1ull << (10 * (unit + 1))), units[unit]);
+    return text;
+}
+
+}  // namespace
+
+uint64_t shadowMapBytes(const ShadowPlan& plan, uint32_t resolution) {
+    const uint64_t layers = uint64_t(plan.shadowedSpots) + 6ull * plan.shadowedPoints;
+    return layers * resolution * resolution * kShadowTexelBytes;
+}
+
+void checkShadowMapsFit(const ShadowPlan& plan, const ShadowSettings& settings, const ShadowMemoryLimits& limits) {
+    ShadowPlan spotsOnly;
+    spotsOnly.shadowedSpots = plan.shadowedSpots;
+    ShadowPlan pointsOnly;
+    pointsOnly.shadowedPoints = plan.shadowedPoints;
+    // The first limit the maps at `resolution` exceed, described; empty when they fit.
+    auto problemAt = [&](uint32_t resolution) -> std::string {
+        const uint64_t total = shadowMapBytes(plan, resolution);
+        if (total > limits.total) {
+            return "the shadow maps of " + std::to_string(plan.shadowedSpots) + " spot and " +
+                   std::to_string(plan.shadowedPoints) + " point lights need " + describeBytes(total) + ", " +
+                   limits.totalName + " has " + describeBytes(limits.total);
+        }
+        const uint64_t spots = shadowMapBytes(spotsOnly, resolution);
+        if (spots > limits.spotArray) {
+            return "the spot shadow array (" + std::to_string(plan.shadowedSpots) + " layers) needs " +
+                   describeBytes(spots) + ", the device's largest such image holds " + describeBytes(limits.spotArray);
+        }
+        const uint64_t points = shadowMapBytes(pointsOnly, resolution);
+        if (points > limits.pointArray) {
+            return "the point shadow array (" + std::to_string(6 * plan.shadowedPoints) + " layers) needs " +
+                   describeBytes(points) + ", the device's largest such image holds " + describeBytes(limits.pointArray);
+        }
+        return {};
+    };
+    std::string problem = problemAt(settings.resolution);
+    if (problem.empty()) return;
+    for (uint32_t resolution = settings.resolution / 2; resolution >= 16; resolution /= 2) {
+        if (problemAt(resolution).empty()) {
+            problem += " (at most --shadow-res " + std::to_string(resolution) + " fits)";
+            break;
+        }
+    }
+    throw Error("--shadow-res " + std::to_string(settings.resolution), problem);
 }
 
 glm::mat4 cubeFaceViewProjection(const glm::vec3& position, uint32_t face, float nearPlane, float farPlane,
@@ -169,19 +257,23 @@ ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3&
         const glm::vec3 direction(light.directionAngleScale);
         const float range = light.radiantColor.w;
         const float halfAngle = std::min(std::acos(std::clamp(light.angleOffsetShadow.z, -1.0f, 1.0f)), kMaxSpotShadowHalfAngle);
-        // Casters are found with the widest frustum (near at 1/1000 of the range), then the near
-        // plane moves out to just short of the shallowest one along the axis.
-        float nearest = 0.0f;
+        // Casters are found between the light's plane and the range (see findCasters), then the
+        // near and far planes move in to just short of the shallowest one and just past the
+        // deepest object along the axis.
+        DepthSpan span;
         ShadowView view;
-        view.casters = findCasters(scene, spotViewProjection(position, direction, halfAngle, range * 1e-3f, range),
-                                   position, direction, nearest);
-        const float nearPlane = settings.spotNearFraction > 0.0f ? range * settings.spotNearFraction
-                                                                 : nearPlaneFor(nearest, range);
-        view.gpu.viewProjection = spotViewProjection(position, direction, halfAngle, nearPlane, range);
+        // The side planes do not depend on the near and far planes given here (see findCasters).
+        view.casters = findCasters(scene, spotViewProjection(position, direction, halfAngle, 1.0f, 2.0f), position,
+                                   direction, range, span);
+        // The failure study's fixed near plane (a share of the range) keeps the range as far.
+        const bool fixedNear = settings.spotNearFraction > 0.0f;
+        const float farPlane = fixedNear ? range : farPlaneFor(span, range);
+        const float nearPlane = fixedNear ? range * settings.spotNearFraction : nearPlaneFor(span.nearest, farPlane);
+        view.gpu.viewProjection = spotViewProjection(position, direction, halfAngle, nearPlane, farPlane);
         view.layer = plan.shadowedSpots++;
         view.packedLight = index;
         view.gpu.params = glm::vec4(view.casters.empty() ? -1.0f : float(view.layer), 2.0f * std::tan(halfAngle),
-                                    nearPlane, range);
+                                    nearPlane, farPlane);
         (view.casters.empty() ? plan.viewsSkipped : plan.viewsRendered)++;
         light.angleOffsetShadow.y = float(plan.views.size());
         light.angleOffsetShadow.w = settings.strength * source.shadowStrength;
@@ -201,27 +293,28 @@ ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3&
         const uint32_t cube = plan.shadowedPoints++;
         light.angleOffsetShadow.y = float(plan.views.size());
         light.angleOffsetShadow.w = settings.strength * source.shadowStrength;
-        // One near plane for the whole cube: the hardware filters across face edges (seamless
-        // cube sampling), so every face must map depth the same way.
+        // One near and one far plane for the whole cube: the hardware filters across face edges
+        // (seamless cube sampling), so every face must map depth the same way.
         std::vector<ShadowView> faces(6);
-        float nearestOfAll = std::numeric_limits<float>::max();
+        DepthSpan cubeSpan;
         for (uint32_t face = 0; face < 6; ++face) {
-            float nearest = 0.0f;
-            faces[face].casters = findCasters(scene, cubeFaceViewProjection(position, face, range * 1e-3f, range, plan.sliceScale),
-                                              position, gpu::cubeFaceAxis(face), nearest);
-            nearestOfAll = std::min(nearestOfAll, nearest);
+            DepthSpan span;
+            faces[face].casters = findCasters(scene, cubeFaceViewProjection(position, face, 1.0f, 2.0f, plan.sliceScale),
+                                              position, gpu::cubeFaceAxis(face), range, span);
+            cubeSpan.extend(span);
         }
-        const float nearPlane = nearPlaneFor(nearestOfAll, range);
+        const float farPlane = farPlaneFor(cubeSpan, range);
+        const float nearPlane = nearPlaneFor(cubeSpan.nearest, farPlane);
         for (uint32_t face = 0; face < 6; ++face) {
             ShadowView& view = faces[face];
-            view.gpu.viewProjection = cubeFaceViewProjection(position, face, nearPlane, range, plan.sliceScale);
+            view.gpu.viewProjection = cubeFaceViewProjection(position, face, nearPlane, farPlane, plan.sliceScale);
             view.layer = cube * 6 + face;
             view.packedLight = index;
             view.face = face;
             view.isPoint = true;
             // Point faces without casters are still cleared (to "far"): filters and the cube's
             // seamless sampling may read across a face edge.
-            view.gpu.params = glm::vec4(float(view.layer), 2.0f * plan.sliceScale, nearPlane, range);
+            view.gpu.params = glm::vec4(float(view.layer), 2.0f * plan.sliceScale, nearPlane, farPlane);
             (view.casters.empty() ? plan.viewsSkipped : plan.viewsRendered)++;
             plan.views.push_back(std::move(view));
         }

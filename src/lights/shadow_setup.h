@@ -7,6 +7,7 @@
 // most 32 spots and 8 points are shadowed, chosen by rank. Every view lists the objects whose
 // bounds meet its frustum; a view with none is not rendered.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,30 @@ struct ShadowPlan {
 // (angleOffsetShadow.y and .w). Lights without a shadow keep y = -1.
 ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3& cameraPosition,
                        const ShadowSettings& settings);
+
+// Bytes of one shadow-map texel (ShadowMaps::kFormat, VK_FORMAT_D32_SFLOAT).
+constexpr uint64_t kShadowTexelBytes = 4;
+
+// Bytes the shadow maps of `plan` take at `resolution` texels a side: a layer per shadowed spot,
+// six per shadowed point (the placeholders of empty arrays, a few bytes, are left out). A lower
+// bound of what the device allocates (it may pad).
+uint64_t shadowMapBytes(const ShadowPlan& plan, uint32_t resolution);
+
+// What the device can hold of the shadow maps: all arrays together (`total`, named by
+// `totalName`, e.g. "the device's largest heap"), and each array alone (one image; Vulkan's
+// maxResourceSize for its format and usage).
+struct ShadowMemoryLimits {
+    uint64_t total = std::numeric_limits<uint64_t>::max();
+    std::string totalName = "the device's largest heap";
+    uint64_t spotArray = std::numeric_limits<uint64_t>::max();
+    uint64_t pointArray = std::numeric_limits<uint64_t>::max();  // the cube array, or the slice array
+};
+
+// Throws Error("--shadow-res N", ...) when the shadow maps of `plan` do not fit `limits`, saying
+// what they need, what the device has and the largest resolution that would fit. Called before
+// allocating, so that an oversized request fails with that line rather than with the driver's
+// out-of-memory code (or a validation error for an image over maxResourceSize).
+void checkShadowMapsFit(const ShadowPlan& plan, const ShadowSettings& settings, const ShadowMemoryLimits& limits);
 
 // The matrix of cube face `face` of a light at `position`: clip.x = dot(r, U) / scale,
 // clip.y = dot(r, V) / scale, clip.w = dot(r, axis) for r = p - position (see shadows.h), and a

@@ -133,13 +133,14 @@ ReferenceRenderer::ReferenceRenderer(const Scene& scene, const ReferenceSettings
 ReferenceRenderer::~ReferenceRenderer() = default;
 
 SurfaceHit ReferenceRenderer::traceSurface(uint32_t x, uint32_t y) const {
-    // Unproject the pixel centre at depth 0 (near plane) and 1 (far plane) with the inverse of
-    // the GPU's view-projection (Vulkan clip space: NDC y points down, depth 0..1). In double:
-    // the far point's w is tiny and a float inverse would bend the ray visibly at 8k pixels.
+    // Unproject the pixel centre at depth 1 (near plane) and 0 (far plane) with the inverse of
+    // the GPU's view-projection (Vulkan clip space: NDC y points down; reversed depth, see
+    // Camera::projection). In double: the far point's w is tiny and a float inverse would bend
+    // the ray visibly at 8k pixels.
     const double ndcX = (double(x) + 0.5) / settings_.width * 2.0 - 1.0;
     const double ndcY = (double(y) + 0.5) / settings_.height * 2.0 - 1.0;
-    const glm::dvec4 nearH = inverseViewProjection_ * glm::dvec4(ndcX, ndcY, 0.0, 1.0);
-    const glm::dvec4 farH = inverseViewProjection_ * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+    const glm::dvec4 nearH = inverseViewProjection_ * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+    const glm::dvec4 farH = inverseViewProjection_ * glm::dvec4(ndcX, ndcY, 0.0, 1.0);
     const glm::dvec3 nearPoint = glm::dvec3(nearH) / nearH.w;
     const glm::dvec3 farPoint = glm::dvec3(farH) / farH.w;
     const double length = glm::length(farPoint - nearPoint);

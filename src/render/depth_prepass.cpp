@@ -1,5 +1,6 @@
 #include "render/depth_prepass.h"
 
+#include "culling.h"
 #include "gpu_types.h"
 #include "render/frame_bindings.h"
 #include "render/scene_gpu.h"
@@ -51,13 +52,15 @@ void DepthPrepass::createPipelines(const vk::Context& context, const FrameBindin
     pipelineDesc.vertexSpirv = raster_mesh_vert_spv;
     pipelineDesc.vertexStride = SceneGpu::vertexStride();
     pipelineDesc.vertexAttributes = SceneGpu::vertexAttributes();
-    pipelineDesc.depthCompare = VK_COMPARE_OP_LESS;
+    // Reversed Z (Camera::projection): nearer is greater. Strictly greater, so that of two
+    // fragments at the same depth the first drawn stays, as LESS did with the usual mapping.
+    pipelineDesc.depthCompare = VK_COMPARE_OP_GREATER;
     pipeline_ = vk::createGraphicsPipeline(context.device(), pipelineDesc);
 }
 
 void DepthPrepass::record(const FrameContext& frame) const {
     VkClearValue clear{};
-    clear.depthStencil = {1.0f, 0};
+    clear.depthStencil = {PUNCTUAL_DEPTH_CLEAR, 0};  // the far plane of the reversed mapping
     vk::beginRenderPass(frame.cmd, renderPass_, framebuffer_, width_, height_, {&clear, 1});
     vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     frame.bindings.bind(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);

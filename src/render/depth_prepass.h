@@ -1,6 +1,8 @@
 #pragma once
-// Depth prepass: every object into a D32 depth buffer, no colour. The forward pass then shades
-// each pixel once (EQUAL test, no depth writes), and the culling passes read this depth (set 0,
+// Depth prepass: every object into a D32 (float) depth buffer, no colour. The depth is reversed
+// (1 at the near plane, cleared to 0 at the far one, GREATER wins; see Camera::projection and
+// culling.h), which keeps its precision at any near plane. The forward pass then shades each
+// pixel once (EQUAL test, no depth writes), and the culling passes read this depth (set 0,
 // PUNCTUAL_BINDING_DEPTH).
 #include <vulkan/vulkan.h>
 

@@ -188,8 +188,11 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     frame.exposure = glm::vec4(settings.exposure, 0.0f, 0.0f, 0.0f);
     frame.sun = lights.sun;
     frame.lightGrid = glm::uvec4(grid.tileSize, grid.tilesX, grid.tilesY, grid.slices);
-    // See culling.h: view distance = a / (depth + b) with a = P[3][2], b = P[2][2]; view rays
-    // through NDC use 1/P00, 1/P11 and the off-centre terms P20, P21.
+    // See culling.h: view distance = a / (depth + b) with a = P[3][2], b = P[2][2]. For the
+    // camera's reversed projection (Camera::projection, near n, far f): clip.z = b z + a with
+    // b = n / (f - n), a = f n / (f - n), and clip.w = -z = D, so depth = a / D - b, which is 1 at
+    // D = n and 0 at D = f, and D = a / (depth + b). View rays through NDC use 1/P00, 1/P11 and
+    // the off-centre terms P20, P21.
     frame.depthToView = glm::vec4(projection[3][2], projection[2][2], 0.0f, 0.0f);
     frame.ndcToView = glm::vec4(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
     const ShadowSettings& shadows = settings.shadows;

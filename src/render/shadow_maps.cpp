@@ -1,10 +1,16 @@
 #include "render/shadow_maps.h"
 
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
 #include "vk/check.h"
 #include "vk/context.h"
 
 namespace punctual::render {
 namespace {
+
+constexpr VkImageUsageFlags kUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
 
 vk::Image depthArray(const vk::Context& context, uint32_t resolution, uint32_t layers, bool cube, const char* name) {
     vk::ImageDesc desc;
@@ -12,16 +18,70 @@ vk::Image depthArray(const vk::Context& context, uint32_t resolution, uint32_t l
     desc.width = resolution;
     desc.height = resolution;
     desc.layers = layers;
-    desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    desc.usage = kUsage;
     desc.viewType = cube ? VK_IMAGE_VIEW_TYPE_CUBE_ARRAY : VK_IMAGE_VIEW_TYPE_2D_ARRAY;
     desc.flags = cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
     desc.debugName = name;
     return vk::Image(context, desc);
 }
 
+// maxResourceSize of one shadow array (a cube array when `cube`).
+uint64_t maxArrayBytes(const vk::Context& context, bool cube) {
+    VkImageFormatProperties properties{};
+    vk::check(vkGetPhysicalDeviceImageFormatProperties(context.physicalDevice(), ShadowMaps::kFormat, VK_IMAGE_TYPE_2D,
+                                                       VK_IMAGE_TILING_OPTIMAL, kUsage,
+                                                       cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0, &properties),
+              "vkGetPhysicalDeviceImageFormatProperties");
+    return properties.maxResourceSize;
+}
+
+bool supportsDeviceExtension(VkPhysicalDevice device, const char* name) {
+    uint32_t count = 0;
+    vk::check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr), "vkEnumerateDeviceExtensionProperties");
+    std::vector<VkExtensionProperties> extensions(count);
+    vk::check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()),
+              "vkEnumerateDeviceExtensionProperties");
+    return std::any_of(extensions.begin(), extensions.end(),
+                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
 }  // namespace
 
+ShadowMemoryLimits ShadowMaps::memoryLimits(const vk::Context& context, PointShadowLayout pointLayout) {
+    // A physical-device query: the budget structure needs the extension supported, not enabled.
+    VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
+    VkPhysicalDeviceMemoryProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2};
+    const bool hasBudget = supportsDeviceExtension(context.physicalDevice(), VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+    if (hasBudget) properties.pNext = &budget;
+    vkGetPhysicalDeviceMemoryProperties2(context.physicalDevice(), &properties);
+    const VkPhysicalDeviceMemoryProperties& memory = properties.memoryProperties;
+    bool anyDeviceLocal = false;
+    for (uint32_t i = 0; i < memory.memoryHeapCount; ++i) {
+        anyDeviceLocal |= (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) != 0;
+    }
+    ShadowMemoryLimits limits;
+    limits.total = 0;
+    for (uint32_t i = 0; i < memory.memoryHeapCount; ++i) {
+        if (anyDeviceLocal && (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) == 0) continue;
+        uint64_t bytes = memory.memoryHeaps[i].size;
+        const char* name = "the device's largest heap";
+        // A budget of 0 would be a driver that fills nothing in: keep the heap's size then.
+        if (hasBudget && budget.heapBudget[i] > 0 && budget.heapBudget[i] < bytes) {
+            bytes = budget.heapBudget[i];
+            name = "the device's memory budget";
+        }
+        if (bytes > limits.total) {
+            limits.total = bytes;
+            limits.totalName = name;
+        }
+    }
+    limits.spotArray = maxArrayBytes(context, false);
+    limits.pointArray = maxArrayBytes(context, pointLayout == PointShadowLayout::Cube);
+    return limits;
+}
+
 ShadowMaps::ShadowMaps(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings) {
+    checkShadowMapsFit(plan, settings, memoryLimits(context, settings.pointLayout));
     const uint32_t res = settings.resolution;
     const bool cubes = settings.pointLayout == PointShadowLayout::Cube;
     // Only what the frame uses: a 1x1 placeholder (six layers for a cube) for an empty array.

@@ -14,7 +14,15 @@ namespace punctual::render {
 
 class ShadowMaps {
 public:
+    // Throws Error("--shadow-res N", ...) (checkShadowMapsFit) before allocating anything when
+    // the arrays do not fit memoryLimits().
     ShadowMaps(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings);
+
+    // What the device can hold: all arrays together in the largest device-local heap (the
+    // largest heap, where none is device-local), or, where VK_EXT_memory_budget is supported,
+    // that heap's budget for this process when smaller; each array alone up to maxResourceSize
+    // for its format, usage and flags.
+    static ShadowMemoryLimits memoryLimits(const vk::Context& context, PointShadowLayout pointLayout);
 
     const vk::Image& spots() const { return spots_; }
     const vk::Image& pointCubes() const { return pointCubes_; }

@@ -24,7 +24,13 @@ Bounds Bounds::transformed(const glm::mat4& m) const {
 glm::vec3 Camera::position() const { return glm::vec3(glm::inverse(view)[3]); }
 
 glm::mat4 Camera::projection(float aspect) const {
-    glm::mat4 p = glm::perspectiveRH_ZO(yfov, aspect, znear, zfar);
+    // Reversed Z: GLM's 0..1 projection with the planes swapped maps the near plane to depth 1 and
+    // the far plane to 0, depth = n (f - D) / (D (f - n)) at view distance D, close to n / D
+    // wherever D << f. A float depth buffer resolves n / D to the same relative precision (2^-24)
+    // at every distance and for any n > 0. The usual mapping, 1 - n / D, crowds every distance
+    // into the few floats just below 1: with n = 1e-6 m all of them beyond ~17 m round to 1.0,
+    // the clear value.
+    glm::mat4 p = glm::perspectiveRH_ZO(yfov, aspect, zfar, znear);
     p[1][1] *= -1.0f;  // Vulkan's framebuffer y points down; flip so the image is upright.
     return p;
 }

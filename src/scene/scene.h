@@ -95,7 +95,8 @@ struct Camera {
     float zfar = 100.0f;    // always finite: derived from the scene bounds when glTF gives none
 
     glm::vec3 position() const;
-    glm::mat4 projection(float aspect) const;  // Vulkan clip space: depth 0..1, y down
+    // Vulkan clip space, y down, reversed Z: depth 1 at znear, 0 at zfar (see scene.cpp).
+    glm::mat4 projection(float aspect) const;
 };
 
 struct Scene {

@@ -149,4 +149,15 @@ Scene manyLightsScene(int spotCount, int pointCount) {
     return scene;
 }
 
+Scene longRangeScene(float range) {
+    Scene scene = floorScene("long-range lights");
+    addBox(scene, {-2.0f, 0.75f, 0.0f}, {1.5f, 1.5f, 1.5f});  // stands on the floor
+    addBox(scene, {1.0f, 1.0f, -1.5f}, {0.3f, 2.0f, 0.3f});   // a post
+    addBox(scene, {0.5f, 1.6f, 1.5f}, {1.4f, 0.1f, 1.0f});    // a slab hanging in the air
+    scene.lights.push_back(spotLight({-2.0f, 4.5f, -3.0f}, {0.3f, -1.0f, 0.7f}, range, 60.0f, 0.8f, 1.0f));
+    scene.lights.push_back(pointLight({2.0f, 2.5f, 1.0f}, range, 25.0f));
+    scene.computeBounds();
+    return scene;
+}
+
 }  // namespace punctual::study

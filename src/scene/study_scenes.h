@@ -37,5 +37,9 @@ Scene postsScene();
 Scene largeFloorScene(int lightCount);
 // The floor under `spotCount` spots and `pointCount` points, all in view (beyond the caps).
 Scene manyLightsScene(int spotCount, int pointCount);
+// A spot and a point light, both of range `range`, over a box, a post and a hanging slab. Every
+// object lies within 18 m of both lights, so any range from 20 m up reaches the same geometry
+// (shadow near and far planes fitted to the range rather than to the casters fail at long ones).
+Scene longRangeScene(float range);
 
 }  // namespace punctual::study

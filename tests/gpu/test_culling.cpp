@@ -73,7 +73,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
     for (uint32_t y = 0; y < height; ++y) {
         for (uint32_t x = 0; x < width; ++x) {
             const float d = depth[size_t(y) * width + x];
-            if (d >= 1.0f) continue;
+            if (gpu::isBackgroundDepth(d)) continue;
             const uint32_t cell = cellOf(x, y);
             const float distance = gpu::viewDistanceFromDepth(d, depthToView);
             cellNear[cell] = std::min(cellNear[cell], distance);
@@ -124,7 +124,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
     for (uint32_t y = 0; y < height; ++y) {
         for (uint32_t x = 0; x < width; ++x) {
             const float d = depth[size_t(y) * width + x];
-            if (d >= 1.0f) continue;
+            if (gpu::isBackgroundDepth(d)) continue;
             const glm::vec4 ndc((float(x) + 0.5f) / float(width) * 2.0f - 1.0f, (float(y) + 0.5f) / float(height) * 2.0f - 1.0f, d, 1.0f);
             const glm::vec4 world = inverseViewProjection * ndc;
             const glm::vec3 position = glm::vec3(world) / world.w;

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "culling.h"
 #include "culling_test_scenes.h"
 #include "gpu_test_support.h"
 #include "reference/reference_renderer.h"
@@ -51,7 +52,7 @@ Agreement compare(const ImageRgba8& gpu, const std::vector<float>& depth, const 
             for (int dx = -1; dx <= 1; ++dx) {
                 const int nx = std::clamp(x + dx, 0, width - 1), ny = std::clamp(y + dy, 0, height - 1);
                 const size_t i = size_t(ny) * size_t(width) + size_t(nx);
-                if (depth[i] >= 1.0f || depth[centre] >= 1.0f || !hits[i].hit || !hits[centre].hit) return true;
+                if (gpu::isBackgroundDepth(depth[i]) || gpu::isBackgroundDepth(depth[centre]) || !hits[i].hit || !hits[centre].hit) return true;
                 if (std::abs(viewDistance(i) - viewDistance(centre)) > 0.03f * viewDistance(centre)) return true;
                 if (hits[i].object != hits[centre].object) return true;
                 if (glm::dot(hits[i].geometricNormal, hits[centre].geometricNormal) < 0.99f) return true;

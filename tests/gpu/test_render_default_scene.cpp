@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/check.h"
+#include "culling.h"
 #include "gpu_test_support.h"
 #include "lights/light_setup.h"
 #include "render/renderer.h"
@@ -89,7 +90,7 @@ TEST(RenderDefaultScene, AtLeastFourLightsReachEachLitPixelOnAverage) {
     for (uint32_t y = 0; y < height; ++y) {
         for (uint32_t x = 0; x < width; ++x) {
             const float d = depth[size_t(y) * width + x];
-            if (d >= 1.0f) continue;  // background
+            if (gpu::isBackgroundDepth(d)) continue;  // background (the clear value)
             const glm::vec4 ndc((float(x) + 0.5f) / float(width) * 2.0f - 1.0f,
                                 (float(y) + 0.5f) / float(height) * 2.0f - 1.0f, d, 1.0f);
             const glm::vec4 world = inverseViewProjection * ndc;

@@ -1,11 +1,13 @@
 // Known answers for the shared culling math (shaders/shared/culling.h), computed by hand: the
-// cluster slice search, the spot light's bounding sphere and the light grid's word/bit mapping.
+// cluster slice search, the camera's (reversed) depth mapping, the spot light's bounding sphere
+// and the light grid's word/bit mapping.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
 #include "culling.h"
+#include "scene/scene.h"
 
 namespace punctual {
 namespace {
@@ -16,69 +18,116 @@ using gpu::lightGridFirstLight;
 using gpu::lightGridWord;
 using gpu::spotBoundingSphere;
 
-// ---- cluster slice of a depth: the last slice whose start is <= depth ---------------------------
+// ---- cluster slice of a depth: the last slice whose start is >= depth ---------------------------
+// The camera's depth is reversed (1 at the near plane, 0 at the far one), so slices run near to far
+// with falling start depths and a depth belongs to the last slice starting at or nearer than it.
 
-// Starts 0, 1/4, 1/2, 3/4 (slices 0-3, all exact in binary); the unused slices start at 2, past
+// Starts 1, 3/4, 1/2, 1/4 (slices 0-3, all exact in binary); the unused slices start at -1, below
 // every depth, as cluster_slices.comp writes them.
 std::vector<float> quarterStarts() {
-    std::vector<float> starts(PUNCTUAL_MAX_CLUSTER_SLICES, 2.0f);
-    for (int s = 0; s < 4; ++s) starts[size_t(s)] = 0.25f * float(s);
+    std::vector<float> starts(PUNCTUAL_MAX_CLUSTER_SLICES, -1.0f);
+    for (int s = 0; s < 4; ++s) starts[size_t(s)] = 1.0f - 0.25f * float(s);
     return starts;
 }
 
 TEST(ClusterSlice, DepthsInsideSlices) {
     const std::vector<float> starts = quarterStarts();
-    EXPECT_EQ(clusterSliceOfDepth(0.1f, starts.data(), 4), 0u);
-    EXPECT_EQ(clusterSliceOfDepth(0.3f, starts.data(), 4), 1u);
-    EXPECT_EQ(clusterSliceOfDepth(0.6f, starts.data(), 4), 2u);
-    EXPECT_EQ(clusterSliceOfDepth(0.9f, starts.data(), 4), 3u);
+    EXPECT_EQ(clusterSliceOfDepth(0.9f, starts.data(), 4), 0u);
+    EXPECT_EQ(clusterSliceOfDepth(0.7f, starts.data(), 4), 1u);
+    EXPECT_EQ(clusterSliceOfDepth(0.4f, starts.data(), 4), 2u);
+    EXPECT_EQ(clusterSliceOfDepth(0.1f, starts.data(), 4), 3u);
 }
 
 TEST(ClusterSlice, ASliceStartBelongsToTheSliceItStarts) {
-    // "at or before": depth 0.25 is slice 1's first depth; the float just below is still slice 0.
+    // "at or nearer": depth 0.75 is slice 1's first depth; the float just above is still slice 0.
     const std::vector<float> starts = quarterStarts();
-    EXPECT_EQ(clusterSliceOfDepth(0.0f, starts.data(), 4), 0u);
-    EXPECT_EQ(clusterSliceOfDepth(0.25f, starts.data(), 4), 1u);
-    EXPECT_EQ(clusterSliceOfDepth(std::nextafter(0.25f, 0.0f), starts.data(), 4), 0u);
-    EXPECT_EQ(clusterSliceOfDepth(0.75f, starts.data(), 4), 3u);
+    EXPECT_EQ(clusterSliceOfDepth(1.0f, starts.data(), 4), 0u);
+    EXPECT_EQ(clusterSliceOfDepth(0.75f, starts.data(), 4), 1u);
+    EXPECT_EQ(clusterSliceOfDepth(std::nextafter(0.75f, 1.0f), starts.data(), 4), 0u);
+    EXPECT_EQ(clusterSliceOfDepth(0.25f, starts.data(), 4), 3u);
 }
 
 TEST(ClusterSlice, DepthsBeyondTheLastStartStayInTheLastSlice) {
-    // Only starts 1 .. sliceCount - 1 are read: depth 5 is past start[4] = 2 but slice 3 is the last.
+    // Only starts 1 .. sliceCount - 1 are read: depth -4 is past start[4] = -1 but slice 3 is the last.
     const std::vector<float> starts = quarterStarts();
-    EXPECT_EQ(clusterSliceOfDepth(1.0f, starts.data(), 4), 3u);
-    EXPECT_EQ(clusterSliceOfDepth(5.0f, starts.data(), 4), 3u);
+    EXPECT_EQ(clusterSliceOfDepth(0.0f, starts.data(), 4), 3u);
+    EXPECT_EQ(clusterSliceOfDepth(-4.0f, starts.data(), 4), 3u);
 }
 
 TEST(ClusterSlice, OneSliceIsAlwaysSliceZero) {
     // Tiled grids: no start is read, every depth is slice 0.
     const std::vector<float> starts = quarterStarts();
-    for (float depth : {0.0f, 0.5f, 0.99f, 3.0f}) EXPECT_EQ(clusterSliceOfDepth(depth, starts.data(), 1), 0u);
+    for (float depth : {1.0f, 0.5f, 0.01f, -2.0f}) EXPECT_EQ(clusterSliceOfDepth(depth, starts.data(), 1), 0u);
 }
 
 TEST(ClusterSlice, EqualStartsGoToTheLastOfThem) {
-    // Starts 0, 0.5, 0.5, 0.5, 0.75: depth 0.5 is at or past slices 1-3's start, so slice 3; a
-    // depth below 0.5 is slice 0.
-    std::vector<float> starts(PUNCTUAL_MAX_CLUSTER_SLICES, 2.0f);
-    starts[0] = 0.0f;
+    // Starts 1, 0.5, 0.5, 0.5, 0.25: depth 0.5 is at or past slices 1-3's start, so slice 3; a
+    // depth above 0.5 is slice 0.
+    std::vector<float> starts(PUNCTUAL_MAX_CLUSTER_SLICES, -1.0f);
+    starts[0] = 1.0f;
     starts[1] = starts[2] = starts[3] = 0.5f;
-    starts[4] = 0.75f;
+    starts[4] = 0.25f;
     EXPECT_EQ(clusterSliceOfDepth(0.5f, starts.data(), 5), 3u);
-    EXPECT_EQ(clusterSliceOfDepth(0.6f, starts.data(), 5), 3u);
-    EXPECT_EQ(clusterSliceOfDepth(0.4f, starts.data(), 5), 0u);
-    EXPECT_EQ(clusterSliceOfDepth(0.8f, starts.data(), 5), 4u);
+    EXPECT_EQ(clusterSliceOfDepth(0.4f, starts.data(), 5), 3u);
+    EXPECT_EQ(clusterSliceOfDepth(0.6f, starts.data(), 5), 0u);
+    EXPECT_EQ(clusterSliceOfDepth(0.2f, starts.data(), 5), 4u);
 }
 
 TEST(ClusterSlice, EverySliceOfEveryCountIsFound) {
-    // Starts s / 32 (exact): depth s / 32 is slice s, and s / 32 + 1/64 too, for every count, odd
-    // counts included (the search's halving then leaves uneven parts).
+    // Starts 1 - s / 32 (exact): depth 1 - s / 32 is slice s, and 1 - s / 32 - 1/64 too, for every
+    // count, odd counts included (the search's halving then leaves uneven parts).
     std::vector<float> starts(PUNCTUAL_MAX_CLUSTER_SLICES);
-    for (uint32_t s = 0; s < PUNCTUAL_MAX_CLUSTER_SLICES; ++s) starts[s] = float(s) / 32.0f;
+    for (uint32_t s = 0; s < PUNCTUAL_MAX_CLUSTER_SLICES; ++s) starts[s] = 1.0f - float(s) / 32.0f;
     for (uint32_t count = 1; count <= PUNCTUAL_MAX_CLUSTER_SLICES; ++count) {
         for (uint32_t s = 0; s < count; ++s) {
-            EXPECT_EQ(clusterSliceOfDepth(float(s) / 32.0f, starts.data(), count), s) << count;
-            EXPECT_EQ(clusterSliceOfDepth(float(s) / 32.0f + 1.0f / 64.0f, starts.data(), count), s) << count;
+            EXPECT_EQ(clusterSliceOfDepth(1.0f - float(s) / 32.0f, starts.data(), count), s) << count;
+            EXPECT_EQ(clusterSliceOfDepth(1.0f - float(s) / 32.0f - 1.0f / 64.0f, starts.data(), count), s) << count;
         }
+    }
+}
+
+// ---- the camera's depth mapping ----------------------------------------------------------------
+
+TEST(CameraDepth, ReversedDepthIsOneAtNearZeroAtFarAndRoundTrips) {
+    // Near 0.5, far 100.5: b = n / (f - n) = 0.005, a = f n / (f - n) = 0.5025; depth = a / D - b:
+    // 1 at D = 0.5, 0 at D = 100.5, 0.5025 / 2 - 0.005 = 0.24625 at D = 2.
+    Camera camera;
+    camera.znear = 0.5f;
+    camera.zfar = 100.5f;
+    const glm::mat4 p = camera.projection(1.0f);
+    const glm::vec2 depthToView(p[3][2], p[2][2]);
+    EXPECT_NEAR(depthToView.x, 0.5025f, 1e-6f);
+    EXPECT_NEAR(depthToView.y, 0.005f, 1e-8f);
+    auto depthAt = [&](float distance) {
+        const glm::vec4 clip = p * glm::vec4(0.0f, 0.0f, -distance, 1.0f);
+        return clip.z / clip.w;
+    };
+    EXPECT_NEAR(depthAt(0.5f), 1.0f, 1e-6f);
+    EXPECT_NEAR(depthAt(100.5f), 0.0f, 1e-6f);
+    EXPECT_NEAR(depthAt(2.0f), 0.24625f, 1e-6f);
+    for (const float distance : {0.5f, 2.0f, 30.0f, 100.0f}) {
+        EXPECT_NEAR(gpu::viewDistanceFromDepth(depthAt(distance), depthToView), distance, distance * 1e-6f);
+        EXPECT_NEAR(gpu::depthFromViewDistance(distance, depthToView), depthAt(distance), 1e-6f);
+    }
+    EXPECT_TRUE(gpu::isBackgroundDepth(PUNCTUAL_DEPTH_CLEAR));
+    EXPECT_FALSE(gpu::isBackgroundDepth(depthAt(100.0f)));
+}
+
+TEST(CameraDepth, ATinyNearPlaneKeepsDistancesApart) {
+    // Near 1e-6 m, far 100 m: depth ~ 1e-6 / D. Surfaces 1 mm apart at 10, 30 and 90 m still get
+    // different float depths (the usual mapping, 1 - 1e-6 / D, rounds all of them to 1.0).
+    Camera camera;
+    camera.znear = 1e-6f;
+    camera.zfar = 100.0f;
+    const glm::mat4 p = camera.projection(1.0f);
+    auto depthAt = [&](float distance) {
+        const glm::vec4 clip = p * glm::vec4(0.0f, 0.0f, -distance, 1.0f);
+        return clip.z / clip.w;
+    };
+    for (const float distance : {10.0f, 30.0f, 90.0f}) {
+        EXPECT_GT(depthAt(distance), depthAt(distance + 0.001f)) << distance;
+        EXPECT_GT(depthAt(distance + 0.001f), 0.0f) << distance;
+        EXPECT_LT(depthAt(distance), 1.0f) << distance;
     }
 }
 

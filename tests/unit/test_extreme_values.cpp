@@ -1,0 +1,126 @@
+// Valid but extreme values, on the CPU: tone mapping at huge and tiny exposures (shading.h), and
+// the shadow maps' memory check against a device's heap (shadow_setup.h), with made-up heap sizes
+// so that no test allocates gigabytes. The GPU side (the same through the command line) is
+// tests/gpu/test_extreme_values_cli.cpp.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+
+#include "core/error.h"
+#include "lights/shadow_setup.h"
+#include "shading.h"
+
+namespace punctual {
+namespace {
+
+using gpu::toneMapAces;
+
+constexpr uint64_t kGiB = 1ull << 30;
+
+// ---- tone mapping -------------------------------------------------------------------------------
+
+TEST(ToneMapping, HugeExposureSaturatesToWhite) {
+    // radiance 1 x exposure 1e30: x^2 = 1e60 overflows float; the curve must still give 1.
+    EXPECT_EQ(toneMapAces(glm::vec3(1.0f), 1e30f), glm::vec3(1.0f));
+    // radiance x exposure itself overflows to inf (1e10 x 1e30 > 3.4e38).
+    EXPECT_EQ(toneMapAces(glm::vec3(1e10f, 0.5f, 3.0f), 1e30f), glm::vec3(1.0f));
+    EXPECT_EQ(toneMapAces(glm::vec3(std::numeric_limits<float>::max()), std::numeric_limits<float>::max()),
+              glm::vec3(1.0f));
+    // No light stays black at any exposure.
+    EXPECT_EQ(toneMapAces(glm::vec3(0.0f), 1e30f), glm::vec3(0.0f));
+}
+
+TEST(ToneMapping, TinyExposureGivesBlack) {
+    // x = 1e-30: (0.03 x) / 0.14 = 2e-31, far below half an 8-bit step.
+    const glm::vec3 mapped = toneMapAces(glm::vec3(1.0f, 100.0f, 1e4f), 1e-30f);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_GE(mapped[c], 0.0f);
+        EXPECT_LT(mapped[c], 1e-20f);
+    }
+}
+
+TEST(ToneMapping, TheInputCapChangesNoOutput) {
+    // The curve crosses 1 at x = 7.24 (0.08 x^2 - 0.56 x - 0.14 = 0) and stays above it: at
+    // x = 7.3 the ratio is (2.51 * 53.29 + 0.219) / (2.43 * 53.29 + 4.307 + 0.14) = 133.97 / 133.94
+    // > 1, so 1 after the clamp, as every x up to the cap (1e4) and beyond it.
+    EXPECT_EQ(toneMapAces(glm::vec3(7.3f), 1.0f), glm::vec3(1.0f));
+    EXPECT_EQ(toneMapAces(glm::vec3(PUNCTUAL_ACES_MAX_INPUT), 1.0f), glm::vec3(1.0f));
+    // Below 7.24 the curve is below 1 and untouched: x = 1 gives 2.54 / 3.16 = 0.8038.
+    EXPECT_NEAR(toneMapAces(glm::vec3(1.0f), 1.0f).x, 2.54f / 3.16f, 1e-6f);
+}
+
+// ---- shadow-map memory --------------------------------------------------------------------------
+
+ShadowPlan planWith(uint32_t spots, uint32_t points) {
+    ShadowPlan plan;
+    plan.shadowedSpots = spots;
+    plan.shadowedPoints = points;
+    return plan;
+}
+
+TEST(ShadowMemory, BytesCountALayerPerSpotAndSixPerPoint) {
+    // 8192^2 texels x 4 bytes = 256 MiB a layer; 32 spots + 6 x 8 points = 80 layers = 20 GiB.
+    EXPECT_EQ(shadowMapBytes(planWith(32, 8), 8192), 20 * kGiB);
+    // 1024^2 x 4 = 4 MiB a layer; 1 spot + 6 = 7 layers.
+    EXPECT_EQ(shadowMapBytes(planWith(1, 1), 1024), 28ull << 20);
+    EXPECT_EQ(shadowMapBytes(planWith(0, 0), 8192), 0u);
+}
+
+ShadowMemoryLimits heapOf(uint64_t bytes, const std::string& name = "the device's largest heap") {
+    ShadowMemoryLimits limits;
+    limits.total = bytes;
+    limits.totalName = name;
+    return limits;
+}
+
+// The error's whole line, or "no error".
+std::string errorOf(const ShadowPlan& plan, uint32_t resolution, const ShadowMemoryLimits& limits) {
+    ShadowSettings settings;
+    settings.resolution = resolution;
+    try {
+        checkShadowMapsFit(plan, settings, limits);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+TEST(ShadowMemory, ARequestOverTheHeapFailsWithOneClearLine) {
+    // 2048: 80 layers x 16 MiB = 1.25 GiB fits; 4096 (5 GiB) does not.
+    EXPECT_EQ(errorOf(planWith(32, 8), 8192, heapOf(2 * kGiB)),
+              "--shadow-res 8192: the shadow maps of 32 spot and 8 point lights need 20.0 GiB, the device's "
+              "largest heap has 2.0 GiB (at most --shadow-res 2048 fits)");
+}
+
+TEST(ShadowMemory, RequestsThatFitPass) {
+    EXPECT_EQ(errorOf(planWith(32, 8), 8192, heapOf(20 * kGiB)), "no error");
+    EXPECT_EQ(errorOf(planWith(0, 0), 8192, heapOf(0)), "no error");
+    EXPECT_EQ(errorOf(planWith(32, 8), 1024, heapOf(2 * kGiB)), "no error");
+}
+
+TEST(ShadowMemory, AnArrayOverTheLargestImageFails) {
+    // Lavapipe's maxResourceSize is 4 GiB - 1: 32 spot layers at 8192 (8 GiB) exceed it even
+    // with a heap large enough for everything; 4096 (2 GiB) fits.
+    ShadowMemoryLimits limits = heapOf(64 * kGiB);
+    limits.spotArray = 4 * kGiB - 1;
+    limits.pointArray = 4 * kGiB - 1;
+    EXPECT_EQ(errorOf(planWith(32, 0), 8192, limits),
+              "--shadow-res 8192: the spot shadow array (32 layers) needs 8.0 GiB, the device's largest such image "
+              "holds 4.0 GiB (at most --shadow-res 4096 fits)");
+    // 8 points: 48 layers, 12 GiB at 8192, 3 GiB at 4096.
+    EXPECT_EQ(errorOf(planWith(1, 8), 8192, limits),
+              "--shadow-res 8192: the point shadow array (48 layers) needs 12.0 GiB, the device's largest such "
+              "image holds 4.0 GiB (at most --shadow-res 4096 fits)");
+    EXPECT_EQ(errorOf(planWith(32, 8), 4096, limits), "no error");
+}
+
+TEST(ShadowMemory, WhenNothingFitsTheMessageSuggestsNoResolution) {
+    // 64^2 x 4 x 80 = 1.25 MiB; even 16 texels (80 KiB) exceed 1 KiB.
+    EXPECT_EQ(errorOf(planWith(32, 8), 64, heapOf(1024, "the device's memory budget")),
+              "--shadow-res 64: the shadow maps of 32 spot and 8 point lights need 1.2 MiB, the device's memory "
+              "budget has 1.0 KiB");
+}
+
+}  // namespace
+}  // namespace punctual
