@@ -15,7 +15,7 @@ seconds="${1:-60}"
 werror=OFF
 [ "${PUNCTUAL_CI:-0}" = 1 ] && werror=ON
 build="$root/build-fuzz"
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPUNCTUAL_FUZZ=ON \
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPUNCTUAL_FUZZ=ON \
   -DPUNCTUAL_WERROR="$werror" >/dev/null
 cmake --build "$build" -j"$(nproc)"
 

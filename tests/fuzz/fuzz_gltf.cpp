@@ -6,8 +6,10 @@
 // magic exercises the binary container and any other the JSON one. Relative URIs resolve inside
 // that folder, where nothing else exists.
 //
-// The contract under test: loadGltf either returns a scene or throws punctual::Error. Anything
-// else (a crash, a sanitizer report, another exception, a hang) is a bug.
+// The contract under test: loadGltf either returns a scene or throws punctual::Error, and a scene
+// it returns goes through the renderer's CPU-side frame setup (light culling and caps, shadow
+// plan, per-object lists), with its own lights and with generated ones (--lights), as the
+// commands would. Anything else (a crash, a sanitizer report, another exception, a hang) is a bug.
 #include <unistd.h>
 
 #include <cstdio>
@@ -19,12 +21,24 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "fuzz_target.h"
+#include "lights/light_setup.h"
+#include "lights/per_object_lights.h"
+#include "lights/shadow_setup.h"
 #include "scene/gltf_loader.h"
+#include "scene/light_generator.h"
 
 namespace {
 
 std::string gFolder;
 std::string gInputPath;
+
+// What Renderer's constructor computes on the CPU before it touches the GPU (render/renderer.cpp).
+void setUpFrame(const punctual::Scene& scene) {
+    const glm::mat4 projection = scene.camera.projection(16.0f / 9.0f);
+    punctual::FrameLights lights = punctual::setupFrameLights(scene, scene.camera.view, projection);
+    (void)punctual::planShadows(scene, lights, scene.camera.position(), punctual::ShadowSettings{});
+    (void)punctual::buildPerObjectLightLists(scene, lights);
+}
 
 void removeFolder() {
     std::error_code ignored;
@@ -54,7 +68,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         std::abort();
     }
     try {
-        const punctual::Scene scene = punctual::loadGltf(gInputPath);
+        punctual::Scene scene = punctual::loadGltf(gInputPath);
+        setUpFrame(scene);
+        punctual::replaceLights(scene, 8, 4, size);
+        setUpFrame(scene);
     } catch (const punctual::Error&) {
         // A clean, named error: what bad input must give.
     }
