@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs what punctual needs from Debian's packages, only what is missing. Safe to rerun.
+#   scripts/install-deps.sh           what building, running and testing need
+#   scripts/install-deps.sh --fuzz    also what the fuzz targets need (scripts/fuzz.sh, CI)
 set -euo pipefail
 
 packages=(
@@ -10,6 +12,17 @@ packages=(
   libtinyexr-dev                                             # OpenEXR output of `punctual validate --export-exr`
   python3-matplotlib                                         # charts in bench/
 )
+# The sanitizer build (scripts/test-sanitized.sh) needs nothing more: GCC's ASan and UBSan
+# runtimes come with build-essential.
+if [ "${1:-}" = --fuzz ]; then
+  packages+=(
+    clang                # libFuzzer is clang's (-fsanitize=fuzzer); GCC has no equivalent
+    libclang-rt-14-dev   # clang's libFuzzer, ASan and UBSan runtimes (only recommended by clang)
+  )
+elif [ $# -gt 0 ]; then
+  echo "usage: $0 [--fuzz]" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -47,7 +47,7 @@ public:
     const VkPhysicalDeviceFeatures& enabledFeatures() const { return enabledFeatures_; }
     std::string deviceName() const { return properties_.deviceName; }
     // Nanoseconds per timestamp tick, and the mask of valid timestamp bits on our queue.
-    double timestampPeriodNs() const { return properties_.limits.timestampPeriod; }
+    double timestampPeriodNs() const { return double(properties_.limits.timestampPeriod); }
     uint64_t timestampMask() const { return timestampMask_; }
 
     uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required) const;

@@ -1,0 +1,8 @@
+// The fuzz build only (cmake/Fuzz.cmake): tinygltf, stb_image and stb_image_write compiled from
+// the Debian packages' headers, so that they carry the fuzzer's coverage and ASan's checks,
+// instead of linking the uninstrumented libtinygltf.so and libstb.so. Like Debian's
+// libtinygltf.so, tinygltf uses the system's nlohmann JSON and stb_image.
+#define TINYGLTF_IMPLEMENTATION
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <tiny_gltf.h>  // includes stb_image.h and stb_image_write.h, with the definitions above
