@@ -89,7 +89,7 @@ TEST(FuzzRegressions, BufferUriThatIsADirectoryIsAClearError) {
     fs::create_directory(dir.path() / "textures");
     const std::string path = (dir.path() / "scene.gltf").string();
     writeFile(path, triangleWithUris("textures").dump());
-    EXPECT_EQ(loadErrorOf(path), path + ": buffer 0: 'textures' is a directory");
+    EXPECT_EQ(loadErrorOf(path), path + ": buffer 0: 'textures' cannot be read (a directory, not a regular file)");
 }
 
 // The same reader serves images, which may fail without failing the load: the texture falls back
