@@ -33,11 +33,12 @@ import matplotlib.pyplot as plt  # noqa: E402  (after selecting the backend)
 from matplotlib.ticker import FixedLocator, MaxNLocator, NullLocator, PercentFormatter  # noqa: E402
 
 # The columns every row has besides the per-pass times (see pass_columns).
-LEADING_COLUMNS = """config series method spot point shadows shadow_res shadow_filter point_layout
-    frames""".split()
+LEADING_COLUMNS = """config series method spot point shadows shadow_res shadow_format shadow_filter
+    point_layout shadowed_spots shadowed_points frames""".split()
 TRAILING_COLUMNS = """total_ms total_spread_ms tested_per_pixel affecting_per_pixel efficiency
-    missed_energy image_error pixels_off shadow_misclassified shadow_false_shadow
-    shadow_false_lit""".split()
+    missed_energy image_error pixels_off shadow_views shadow_memory_bytes shadow_texels_rendered
+    shadow_filter_taps shadow_reduced_views shadow_misclassified shadow_misclassified_all
+    shadow_misclassified_1px shadow_false_shadow shadow_false_lit""".split()
 # Method styles by position in results.json's "methods": the first four keep the colours the
 # charts have always had (brute, per-object, tiled, clustered). Grey and "x" are left out: they
 # mark a method that results.json does not list.
@@ -332,6 +333,41 @@ def chart_shadow_pareto(rows, names):
     return fig
 
 
+def chart_shadow_memory(rows, names):
+    """Shadow memory against the fraction of shadow tests misclassified outside an edge band one
+    screen pixel wide (against the Embree reference), one point per resolution mode (auto or a
+    fixed N) and depth format. The band's width is fixed on screen, so a coarse map cannot hide
+    its error in a band that widens with its texels. The Pareto front marks the settings that no
+    other beats in both memory and accuracy."""
+    rs = [r for r in series_rows(rows, "shadow-quality")
+          if number(r, "shadow_memory_bytes") is not None and number(r, "shadow_misclassified_1px") is not None]
+    if not rs:
+        raise SkipChart("no shadow-quality rows with shadow_memory_bytes and shadow_misclassified_1px")
+    points = [(number(r, "shadow_misclassified_1px"), number(r, "shadow_memory_bytes") / 2**20) for r in rs]
+    front = pareto_front(points)
+    fig, ax = plt.subplots(figsize=(8, 5.2))
+    formats = ordered((r.get("shadow_format", "") for r in rs), ["d16", "d32"])
+    cmap = plt.get_cmap("tab10")
+    for k, fmt in enumerate(formats):
+        pts = [p for p, r in zip(points, rs) if r.get("shadow_format", "") == fmt]
+        ax.scatter([p[0] for p in pts], [p[1] for p in pts], color=cmap(k % 10), zorder=2, label=fmt or "(unknown)")
+    for (x, y), r in zip(points, rs):
+        label = r.get("shadow_res", "")
+        if r.get("shadowed_spots") and r.get("shadowed_points"):
+            label += f" ({r['shadowed_spots']}+{r['shadowed_points']} lights)"
+        ax.annotate(label, (x, y), xytext=(5, 4), textcoords="offset points", fontsize=7)
+    draw_front(ax, points, front)
+    if is_wide([p[1] for p in points]):
+        ax.set_yscale("log")
+    ax.xaxis.set_major_formatter(PercentFormatter(xmax=1.0))
+    ax.set_xlabel("shadow tests misclassified outside a 1-pixel edge band (lower is better)")
+    ax.set_ylabel("shadow memory, MiB (lower is better)")
+    ax.set_title("shadow memory against accuracy (resolution x depth format)")
+    ax.legend(title="format")
+    fig.tight_layout()
+    return fig
+
+
 def assignment_error_column(rows):
     """image_error when the non-brute rows have any, else pixels_off, else None."""
     for column in ("image_error", "pixels_off"):
@@ -467,6 +503,7 @@ CHARTS = [
     ("pass_time", "GPU time per pass", chart_pass_breakdown, ()),
     ("culling_efficiency", "Culling efficiency against light count", chart_culling_efficiency, ()),
     ("pareto_shadows", "Shadows: speed against accuracy", chart_shadow_pareto, ()),
+    ("pareto_shadow_memory", "Shadows: memory against accuracy", chart_shadow_memory, ()),
     ("pareto_light_assignment", "Light assignment: speed against accuracy",
      chart_assignment_pareto, ()),
 ]

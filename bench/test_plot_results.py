@@ -48,6 +48,9 @@ def row(config, series, method, spot, point, **cells):
         "pixels_off": "" if method == "brute" else (
             0.01 * lights if method == "per-object" else 0.0),
         "shadow_misclassified": "", "shadow_false_shadow": "", "shadow_false_lit": "",
+        "shadow_misclassified_all": "", "shadow_misclassified_1px": "", "shadow_memory_bytes": "",
+        "shadow_views": "", "shadow_texels_rendered": "", "shadow_filter_taps": "",
+        "shadow_reduced_views": "", "shadow_format": "", "shadowed_spots": "", "shadowed_points": "",
     }
     values["efficiency"] = values["tested_per_pixel"] / values["affecting_per_pixel"]
     values.update(cells)
@@ -77,7 +80,11 @@ def full_rows(methods=METHODS):
             rows.append(row(f"sq-{res}-{flt}", "shadow-quality", "tiled", 64, 32, shadows=1,
                             shadow_res=res, shadow_filter=flt, total_ms=200 + res / 20 + 8 * j,
                             shadow_misclassified=0.04 / (i + 1) / (1 + 0.3 * j) + 0.002 * j,
-                            shadow_false_shadow=100 * j + 7, shadow_false_lit=50 + i))
+                            shadow_false_shadow=100 * j + 7, shadow_false_lit=50 + i,
+                            shadow_format="d16" if j % 2 else "d32", shadowed_spots=64, shadowed_points=32,
+                            shadow_memory_bytes=256 * res * res * (2 + 2 * (j % 2 == 0)),
+                            shadow_misclassified_1px=0.03 / (i + 1) + 0.001 * j,
+                            shadow_misclassified_all=0.05 / (i + 1) + 0.001 * j))
     rows[0]["config"] = "mix <b>&amp;\"quoted\""  # must be escaped in the table
     return rows
 
@@ -212,10 +219,11 @@ class PlotResultsTest(unittest.TestCase):
         self.assertEqual(run(self.dir), 0)
         self.assert_charts(["forward_time", "total_time"])
         index = self.index()
-        for name in ("culling_efficiency", "pareto_shadows", "pareto_light_assignment"):
+        for name in ("culling_efficiency", "pareto_shadows", "pareto_shadow_memory",
+                     "pareto_light_assignment"):
             self.assertFalse(os.path.exists(os.path.join(self.dir, "charts", name + ".png")))
             self.assertNotIn(f"charts/{name}.png", index)
-        self.assertEqual(index.count("not drawn"), 3)
+        self.assertEqual(index.count("not drawn"), 4)
         self.assertIn("No images in images/.", index)
 
     def test_skipped_chart_removes_stale_files(self):
@@ -338,6 +346,18 @@ class NamesFromResultsJsonTest(unittest.TestCase):
                   columns=[c for c in plot_results.known_columns(passes) if c != "ssao_spread_ms"])
         run(self.dir)
         self.assertIn("results.csv lacks the columns ssao_spread_ms;", self.index())
+
+    def test_shadow_memory_chart_marks_the_pareto_front(self):
+        rows = [row(f"sq-{res}-{fmt}", "shadow-quality", "tiled", 64, 32, shadows=1, shadow_res=res,
+                    shadow_format=fmt, shadow_memory_bytes=mib * 2**20, shadow_misclassified_1px=err,
+                    shadow_misclassified=err, total_ms=100)
+                for res, fmt, mib, err in (("auto", "d16", 40, 0.01), ("256", "d16", 32, 0.08),
+                                           ("1024", "d32", 1024, 0.012), ("1024", "d16", 512, 0.009))]
+        fig = chart("pareto_shadow_memory", rows, names())
+        self.assertEqual(legend_texts(fig), ["d16", "d32", "Pareto front"])
+        # 1024 at 32 bits is beaten by 1024 at 16 bits in both memory and accuracy.
+        self.assertEqual(set(plot_results.pareto_front([(0.01, 40), (0.08, 32), (0.012, 1024), (0.009, 512)])),
+                         {0, 1, 3})
 
     def test_shadow_filters_follow_results_json(self):
         filters = ["disk", "tent7", "tent5", "tent3", "hw", "pcss"]

@@ -49,9 +49,8 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer 
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_OBJECT_LIGHTS) readonly buffer ObjectLightBlock { uint objectLights[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_STATS) writeonly buffer LightStatsBlock { uvec4 lightStats[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_VIEWS) readonly buffer ShadowViewBlock { GpuShadowView shadowViews[]; };
-layout(set = 0, binding = PUNCTUAL_BINDING_SPOT_SHADOWS) uniform sampler2DArrayShadow spotShadows;
+layout(set = 0, binding = PUNCTUAL_BINDING_SHADOW_ATLAS) uniform sampler2DShadow shadowAtlas;
 layout(set = 0, binding = PUNCTUAL_BINDING_POINT_SHADOWS) uniform samplerCubeArrayShadow pointShadows;
-layout(set = 0, binding = PUNCTUAL_BINDING_POINT_SLICES) uniform sampler2DArrayShadow pointSlices;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_DEBUG) writeonly buffer ShadowDebugBlock { uint shadowDebug[]; };
 layout(push_constant) uniform DrawConstants { uint objectIndex; } draw;
 

@@ -11,10 +11,10 @@
 // images bit-identical: set bits are walked in the same ascending order the brute loop uses.
 #define PUNCTUAL_MAX_SPOT_LIGHTS 64
 #define PUNCTUAL_MAX_POINT_LIGHTS 32
-// Shadowed lights per frame (the design notes' limits): spots each take one layer of a 2D depth
-// array, points six faces of a cube depth array.
-#define PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS 32
-#define PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS 8
+// Shadowed lights per frame: every light the frame keeps can cast a shadow (--shadowed S,P caps
+// them lower). Spots take one view, points six (256 views at most).
+#define PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS PUNCTUAL_MAX_SPOT_LIGHTS
+#define PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS PUNCTUAL_MAX_POINT_LIGHTS
 // Unity's classic forward path gives each object at most 8 lights.
 #define PUNCTUAL_MAX_LIGHTS_PER_OBJECT 8
 
@@ -31,9 +31,8 @@
 #define PUNCTUAL_BINDING_LIGHT_STATS 9    // debug: per pixel uvec4 (tested, affecting | covered bit, luminances)
 #define PUNCTUAL_BINDING_CULL_LIGHTS 10   // CullLight per packed light: view-space culling shapes (culling.h)
 #define PUNCTUAL_BINDING_SHADOW_VIEWS 11  // GpuShadowView per rendered shadow view
-#define PUNCTUAL_BINDING_SPOT_SHADOWS 12  // sampler2DArrayShadow: one layer per shadowed spot
+#define PUNCTUAL_BINDING_SHADOW_ATLAS 12 // sampler2DShadow: every spot view and point slice (lights/shadow_atlas.h)
 #define PUNCTUAL_BINDING_POINT_SHADOWS 13 // samplerCubeArrayShadow: one cube per shadowed point (cube layout)
-#define PUNCTUAL_BINDING_POINT_SLICES 14  // sampler2DArrayShadow: six layers per shadowed point (slices layout)
 #define PUNCTUAL_BINDING_SHADOW_DEBUG 15  // validation: per-pixel surface and shadow factors (see below)
 
 // Shadow validation buffer (forward shader's WRITE_SHADOW_FACTORS variant), in 32-bit words:
@@ -118,7 +117,7 @@ struct GpuFrame {
     vec4 depthToView;     // xy: (a, b) with view distance = a / (depth + b) (see culling.h); zw: unused
     vec4 ndcToView;       // (1/P00, 1/P11, P20, P21): view ray through an NDC point (see culling.h)
     vec4 shadowBias;      // depth, slope-scaled depth, normal, sin-scaled normal offsets (x texel size x (1 + penumbra))
-    vec4 shadowMap;       // x: resolution, y: 1 / resolution, z: disk radius (shadow-map UV), w: penumbra (texels)
+    vec4 shadowMap;       // xy: the atlas's size in texels, z: disk radius (a view's UV units), w: unused
     uvec4 shadowCounts;   // x: shadowed spots (their views come first), y: shadowed points
 };
 
@@ -126,9 +125,13 @@ struct GpuFrame {
 // -Z, consecutive). World -> light clip space (Vulkan depth 0..1).
 struct GpuShadowView {
     mat4 viewProjection;
-    vec4 params;  // x: array layer, or -1 when no caster is in the view (it is then always lit);
-                  // y: 2 tan(fov / 2) (a texel's world size is y x linear depth / resolution);
-                  // z: near, w: far (metres along the view axis)
+    vec4 params;     // x: 1 when the view has a map, -1 when not (no caster, or no storage: always lit);
+                     // y: 2 tan(fov / 2), the view's span at unit depth (shadowTexelWorldSize);
+                     // z: near, w: far (metres along the view axis)
+    vec4 atlasRect;  // xy: the view's top-left corner in atlas UV, zw: its size in atlas UV;
+                     // cube layout: x is the light's cube in the cube array
+    vec4 texel;      // x: resolution (texels a side), y: 1 / resolution, z: the filter's reach in
+                     // texels at this resolution (the bias's penumbra), w: unused
 };
 
 // Written on the GPU each frame (clustered culling): depth-range pass, then slice-boundaries pass.

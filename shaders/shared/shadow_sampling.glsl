@@ -39,8 +39,9 @@ uint filterSampleCount() {
     }
 }
 
-// Offset (xy, UV units) and weight (z) of sample i. `angle` rotates the disk per pixel.
-vec3 filterSample(uint i, float angle) {
+// Offset (xy, UV units of a view of `texelSize` = 1 / resolution) and weight (z) of sample i.
+// `angle` rotates the disk per pixel.
+vec3 filterSample(uint i, float angle, float texelSize) {
     switch (SHADOW_FILTER) {
         case PUNCTUAL_SHADOW_FILTER_HW: return vec3(0.0, 0.0, 1.0);
         case PUNCTUAL_SHADOW_FILTER_TENT3:
@@ -48,7 +49,7 @@ vec3 filterSample(uint i, float angle) {
         case PUNCTUAL_SHADOW_FILTER_TENT7: {
             uint x = i % kTentTaps;
             uint y = i / kTentTaps;
-            vec2 offset = (vec2(x, y) - 0.5 * float(kTentTaps - 1u)) * frame.shadowMap.y;
+            vec2 offset = (vec2(x, y) - 0.5 * float(kTentTaps - 1u)) * texelSize;
             return vec3(offset, tentWeight(x) * tentWeight(y));
         }
         case PUNCTUAL_SHADOW_FILTER_DISK: {
@@ -62,12 +63,21 @@ vec3 filterSample(uint i, float angle) {
     }
 }
 
-float filterLayer(sampler2DArrayShadow map, vec2 uv, float layer, float reference, float angle) {
+// Filters the view's square of the atlas around `uv` (the view's own UV, 0..1 across its square).
+// Samples are clamped half a texel inside the square, so a bilinear tap never reads a neighbour's
+// texels: near its edge a view filters as if its edge texels went on (clamp to edge). A receiver
+// outside the view is lit, as the spot's white border made it before the atlas.
+float filterAtlas(GpuShadowView view, vec2 uv, float reference, float angle) {
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
+    float texelSize = view.texel.y;
+    vec2 lowest = vec2(0.5 * texelSize);
+    vec2 highest = vec2(1.0 - 0.5 * texelSize);
     float sum = 0.0;
     float weights = 0.0;
     for (uint i = 0u; i < filterSampleCount(); ++i) {
-        vec3 s = filterSample(i, angle);
-        sum += s.z * texture(map, vec4(uv + s.xy, layer, reference));
+        vec3 s = filterSample(i, angle, texelSize);
+        vec2 atlasUv = view.atlasRect.xy + clamp(uv + s.xy, lowest, highest) * view.atlasRect.zw;
+        sum += s.z * texture(shadowAtlas, vec3(atlasUv, reference));
         weights += s.z;
     }
     return sum / weights;
@@ -75,13 +85,13 @@ float filterLayer(sampler2DArrayShadow map, vec2 uv, float layer, float referenc
 
 // Cube faces: a UV offset d on face f moves the lookup direction by 2 d |ma| along the face's
 // U or V axis (the face spans [-1, 1] in sc / |ma| over UV [0, 1]).
-float filterCube(vec3 direction, uint face, float cube, float reference, float angle) {
+float filterCube(vec3 direction, uint face, float cube, float reference, float angle, float texelSize) {
     vec3 u = cubeFaceU(face) * (2.0 * abs(dot(direction, cubeFaceAxis(face))));
     vec3 v = cubeFaceV(face) * (2.0 * abs(dot(direction, cubeFaceAxis(face))));
     float sum = 0.0;
     float weights = 0.0;
     for (uint i = 0u; i < filterSampleCount(); ++i) {
-        vec3 s = filterSample(i, angle);
+        vec3 s = filterSample(i, angle, texelSize);
         sum += s.z * texture(pointShadows, vec4(direction + u * s.x + v * s.y, cube), reference);
         weights += s.z;
     }
@@ -103,35 +113,37 @@ float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3
     if (light.angleOffsetShadow.z > -1.0) {
         // Spot: one view. Linear depth along the spot axis sizes the texel (design notes).
         GpuShadowView view = shadowViews[first];
-        if (view.params.x < 0.0) return 1.0;  // no caster in its frustum
+        if (view.params.x < 0.0) return 1.0;  // no caster in its frustum, or no storage
         float linearDepth = abs(dot(lightPosition - position, light.directionAngleScale.xyz));
-        float texel = view.params.y * linearDepth * frame.shadowMap.y;
-        vec3 biased = applyShadowBias(position, normal, toLight, texel, frame.shadowMap.w, frame.shadowBias);
+        float texel = shadowTexelWorldSize(linearDepth, view.params.y, view.texel.x);
+        vec3 biased = applyShadowBias(position, normal, toLight, texel, view.texel.z, frame.shadowBias);
         vec4 clip = view.viewProjection * vec4(biased, 1.0);
         if (clip.w <= 0.0) return 1.0;
         vec3 ndc = clip.xyz / clip.w;  // perspective: divide by w
-        visibility = filterLayer(spotShadows, ndc.xy * 0.5 + 0.5, view.params.x, shadowReference(ndc.z), angle);
+        visibility = filterAtlas(view, ndc.xy * 0.5 + 0.5, shadowReference(ndc.z), angle);
     } else {
         // Point: the face is the major axis of the light-to-point direction.
         vec3 direction = position - lightPosition;
         uint face = cubeFaceOfDirection(direction);
         float linearDepth = abs(dot(direction, cubeFaceAxis(face)));
-        float texel = shadowViews[first + face].params.y * linearDepth * frame.shadowMap.y;
-        vec3 biased = applyShadowBias(position, normal, toLight, texel, frame.shadowMap.w, frame.shadowBias);
+        GpuShadowView unbiasedView = shadowViews[first + face];
+        float texel = shadowTexelWorldSize(linearDepth, unbiasedView.params.y, unbiasedView.texel.x);
+        vec3 biased = applyShadowBias(position, normal, toLight, texel, unbiasedView.texel.z, frame.shadowBias);
         vec3 biasedDirection = biased - lightPosition;
         face = cubeFaceOfDirection(biasedDirection);
         GpuShadowView view = shadowViews[first + face];
+        if (view.params.x < 0.0) return 1.0;  // no caster on this face, or no storage
         switch (POINT_SHADOW_LAYOUT) {
             case PUNCTUAL_POINT_SHADOW_CUBE: {
                 float reference = shadowReference(
                     perspectiveDepth(abs(dot(biasedDirection, cubeFaceAxis(face))), view.params.z, view.params.w));
-                visibility = filterCube(biasedDirection, face, floor(view.params.x / 6.0), reference, angle);
+                visibility = filterCube(biasedDirection, face, view.atlasRect.x, reference, angle, view.texel.y);
                 break;
             }
             case PUNCTUAL_POINT_SHADOW_SLICES: {
                 vec4 clip = view.viewProjection * vec4(biased, 1.0);
                 vec3 ndc = clip.xyz / clip.w;
-                visibility = filterLayer(pointSlices, ndc.xy * 0.5 + 0.5, view.params.x, shadowReference(ndc.z), angle);
+                visibility = filterAtlas(view, ndc.xy * 0.5 + 0.5, shadowReference(ndc.z), angle);
                 break;
             }
             default:

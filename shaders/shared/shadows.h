@@ -52,6 +52,31 @@ PUNCTUAL_FN float perspectiveDepth(float linearDepth, float nearPlane, float far
     return farPlane * (linearDepth - nearPlane) / (linearDepth * (farPlane - nearPlane));
 }
 
+// World size of one shadow-map texel at a receiver `linearDepth` along the view's axis. A view
+// (a spot frustum or a cube face) spans `tanSpan` = 2 tan(field of view / 2) at unit depth across
+// `resolution` texels, so one texel spans tanSpan / resolution at unit depth and grows linearly
+// with depth. The same size scales the receiver bias (applyShadowBias) and sizes the view
+// (shadow_resolution.h).
+PUNCTUAL_FN float shadowTexelWorldSize(float linearDepth, float tanSpan, float resolution) {
+    return linearDepth * tanSpan / resolution;
+}
+
+// World size of one screen pixel on a surface at `viewDepth` along the camera's axis: the frame
+// spans 2 tan(yfov / 2) at unit depth over `height` pixels (square pixels), so
+// pixelSpanAtUnitDepth = 2 tan(yfov / 2) / height. Surfaces seen at a slant cover more world per
+// pixel along the slant; this is the size across the line of sight, the smallest.
+PUNCTUAL_FN float screenPixelWorldSize(float viewDepth, float pixelSpanAtUnitDepth) {
+    return viewDepth * pixelSpanAtUnitDepth;
+}
+
+// The resolution (texels a side) at which one texel of a view covers exactly one screen pixel at a
+// receiver: solve shadowTexelWorldSize(linearDepth, tanSpan, r) = pixelWorldSize for r.
+//   r = linearDepth tanSpan / pixelWorldSize.
+// The density (texels per pixel, 1 the target) of a view of resolution R there is R / r.
+PUNCTUAL_FN float resolutionForOneTexelPerPixel(float linearDepth, float tanSpan, float pixelWorldSize) {
+    return linearDepth * tanSpan / pixelWorldSize;
+}
+
 // ApplyShadowBias (custom SRP, "Shadow Bias and PCF"): moves the receiver towards the light (L)
 // and along its normal (N) by multiples of the shadow-map texel's world size at the receiver,
 // widened by the filter's penumbra (in texels):

@@ -41,7 +41,7 @@ Frame renderAndValidate(vk::Context& context, const Scene& scene, render::Render
     frame.factors = renderer.readShadowFactors();
     const reference::EmbreeScene embree(scene);
     frame.validation =
-        reference::validateShadows(embree, frame.factors, renderer.lights(), renderer.shadowPlan(), settings.shadows);
+        reference::validateShadows(embree, frame.factors, renderer.lights(), renderer.shadowPlan());
     return frame;
 }
 

@@ -75,7 +75,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
         std::string shadowColumn = "-";
         if (embree) {
             const reference::ShadowValidation validation = reference::validateShadows(
-                *embree, renderer.readShadowFactors(), renderer.lights(), renderer.shadowPlan(), settings.shadows);
+                *embree, renderer.readShadowFactors(), renderer.lights(), renderer.shadowPlan());
             char text[32];
             std::snprintf(text, sizeof(text), "%.3f%%", 100.0 * validation.overall.misclassifiedOutsideBand());
             shadowColumn = text;

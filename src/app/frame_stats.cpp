@@ -58,10 +58,44 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
 nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
     const ShadowSettings& settings = renderer.settings().shadows;
     const ShadowPlan& plan = renderer.shadowPlan();
-    return {
+    const FrameLights& lights = renderer.lights();
+    nlohmann::json views = nlohmann::json::array();
+    uint64_t texelsRendered = 0;
+    for (const ShadowView& view : plan.views) {
+        if (view.rendered()) texelsRendered += uint64_t(view.resolution) * view.resolution;
+        nlohmann::json entry = {{"light", lights.sceneLightIndex[view.packedLight]},
+                                {"face", view.face},
+                                {"resolution", view.resolution},
+                                {"rendered", view.rendered()},
+                                {"casters", view.casters.size()}};
+        if (settings.autoResolution()) {
+            entry["demand"] = view.demand;
+            entry["demanded_resolution"] = view.demandedTier;
+        }
+        views.push_back(std::move(entry));
+    }
+    nlohmann::json reduced = nlohmann::json::array();
+    for (const ShadowReduction& reduction : plan.reductions) {
+        const ShadowView& view = plan.views[reduction.view];
+        reduced.push_back({{"light", lights.sceneLightIndex[view.packedLight]},
+                           {"face", view.face},
+                           {"demanded", reduction.demanded},
+                           {"granted", reduction.granted}});
+    }
+    nlohmann::json tiers = nlohmann::json::object();  // "1024": views at 1024 x 1024, ...
+    for (const auto& [resolution, count] : shadowTierCounts(plan)) tiers[std::to_string(resolution)] = count;
+    nlohmann::json json = {
         {"enabled", settings.enabled},
-        {"resolution", settings.resolution},
+        {"mode", settings.autoResolution() ? "auto" : "fixed"},
+        {"resolution", settings.autoResolution() ? nlohmann::json("auto") : nlohmann::json(settings.resolution)},
+        {"tiers", tiers},
+        {"format", shadowFormatName(settings.format)},
+        {"budget_bytes", settings.autoResolution() ? plan.budgetBytes : 0},
+        {"memory_bytes", renderer.shadowMemoryBytes()},
+        {"atlas", {{"width", plan.atlas.width}, {"height", plan.atlas.height}}},
+        {"texels_rendered", texelsRendered},
         {"filter", shadowFilterName(settings.filter)},
+        {"filter_taps", settings.filterTaps()},
         {"samples", settings.diskSamples},
         {"penumbra", settings.diskRadius},
         {"bias", {settings.bias.x, settings.bias.y, settings.bias.z, settings.bias.w}},
@@ -75,8 +109,15 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
         // The same counts under the names of the shadow design: a spot's view is its one face.
         {"faces_rendered", plan.viewsRendered},
         {"faces_skipped", plan.viewsSkipped},
-        {"memory_bytes", renderer.shadowMemoryBytes()},
+        {"reduced", reduced},
+        {"reduced_by", plan.reducedBy},
+        {"views", views},
     };
+    if (settings.autoResolution()) {
+        json["receiver_samples"] = plan.receiverSamples;
+        json["receiver_sample_step_px"] = plan.sampleStep;
+    }
+    return json;
 }
 
 std::string timingTable(const render::PassTimings& ms) {

@@ -57,6 +57,16 @@ glm::vec4 parseBias(const std::string& text) {
     return bias;
 }
 
+// "S,P" -> the most spot and point lights that cast a shadow (ranges: validateShadowSettings).
+void parseShadowedCounts(const std::string& text, ShadowSettings& shadows) {
+    const size_t comma = text.find(',');
+    if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) {
+        throw Error("--shadowed", "expected S,P (spot and point lights), got '" + text + "'");
+    }
+    shadows.maxShadowedSpots = parseWhole("--shadowed", text.substr(0, comma));
+    shadows.maxShadowedPoints = parseWhole("--shadowed", text.substr(comma + 1));
+}
+
 }  // namespace
 
 void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
@@ -99,12 +109,26 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             options.slices = parseWhole(arg, value());
         } else if (arg == "--heatmap") {
             options.heatmapPath = value();
+        } else if (arg == "--shadow-density") {
+            options.shadowDensityPath = value();
         } else if (arg == "--shadows") {
             const std::string& text = value();
             if (text != "on" && text != "off") throw Error(arg, "expected on or off, got '" + text + "'");
             options.shadows.enabled = text == "on";
         } else if (arg == "--shadow-res") {
-            options.shadows.resolution = parseWhole(arg, value());
+            const std::string& text = value();
+            options.shadows.resolution = text == "auto" ? ShadowSettings::kAutoResolution : parseWhole(arg, text);
+            if (text != "auto" && options.shadows.resolution == ShadowSettings::kAutoResolution) {
+                throw Error(arg, "must be auto or a power of two from 16 to 8192, got 0");
+            }
+        } else if (arg == "--shadowed") {
+            parseShadowedCounts(value(), options.shadows);
+        } else if (arg == "--shadow-budget") {
+            options.shadows.budgetBytes = uint64_t(parseWhole(arg, value())) << 20;
+        } else if (arg == "--shadow-format") {
+            const std::string& text = value();
+            if (text != "d16" && text != "d32") throw Error(arg, "expected d16 or d32, got '" + text + "'");
+            options.shadows.format = text == "d16" ? ShadowFormat::D16 : ShadowFormat::D32;
         } else if (arg == "--shadow-filter") {
             options.shadows.filter = parseShadowFilter(value());
         } else if (arg == "--shadow-samples") {
@@ -170,8 +194,16 @@ options:
            R"(  --tile-size N        tile size in pixels for tiled and clustered culling (default 16)
   --slices N           depth slices for clustered culling, 1 to 32 (default 16)
   --heatmap FILE.png   draw the lights tested per pixel as a colour map with a legend
-  --shadows on|off     spot and point shadows (default on: up to 32 spots, 8 points)
-  --shadow-res N       shadow-map resolution, a power of two (default 1024)
+  --shadow-density FILE.png  draw the shadow texels per screen pixel (1 is the target of auto
+                       resolution) where shadowed lights reach, with a legend
+  --shadows on|off     spot and point shadows (default on: every spot and point light)
+  --shadowed S,P       shadow at most S spot and P point lights, the most important
+                       (default 64,32: all of them)
+  --shadow-res auto|N  auto (default): each shadow view the power-of-two resolution at which
+                       one texel covers about one screen pixel where it is seen, within
+                       --shadow-budget; N: every view N x N texels (a power of two, 16-8192)
+  --shadow-budget MiB  the most memory auto resolution may give the shadow atlas (default 64)
+  --shadow-format F    d16 (default) or d32: the shadow maps' depth format
   --shadow-filter F    the shadow filter:
 )" + variantHelp(kShadowFilters, defaults.shadows.filter, kListIndent) +
            R"(  --shadow-samples N   disk filter samples, 1 to 64 (default 16)

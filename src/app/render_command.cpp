@@ -12,6 +12,7 @@
 #include "core/log.h"
 #include "core/output_files.h"
 #include "metrics/heatmap.h"
+#include "metrics/shadow_density.h"
 #include "render/renderer.h"
 #include "vk/context.h"
 
@@ -58,7 +59,10 @@ int runRenderCommand(const std::vector<std::string>& args) {
         }
     }
     const RenderOptions options = parseRenderOptions(args);
-    checkOutputPaths({{"--out", options.outPath}, {"--stats", options.statsPath}, {"--heatmap", options.heatmapPath}});
+    checkOutputPaths({{"--out", options.outPath},
+                      {"--stats", options.statsPath},
+                      {"--heatmap", options.heatmapPath},
+                      {"--shadow-density", options.shadowDensityPath}});
     const Scene scene = loadSceneForOptions(options);
 
     vk::Context context(contextOptionsFrom(options));
@@ -85,10 +89,12 @@ int runRenderCommand(const std::vector<std::string>& args) {
                 lights.droppedByCap);
     const ShadowPlan& shadows = renderer.shadowPlan();
     if (settings.shadows.enabled) {
-        std::printf("shadows: %u spot, %u point (%s), %u views rendered, %u skipped, %.1f MiB, %s filter, %u texels\n",
+        std::printf("shadows: %u spot, %u point (%s), %u views rendered, %u skipped, %.1f MiB %s, %s filter\n",
                     shadows.shadowedSpots, shadows.shadowedPoints, pointShadowLayoutName(settings.shadows.pointLayout),
                     shadows.viewsRendered, shadows.viewsSkipped, double(renderer.shadowMemoryBytes()) / 1048576.0,
-                    shadowFilterName(settings.shadows.filter), settings.shadows.resolution);
+                    shadowFormatName(settings.shadows.format), shadowFilterName(settings.shadows.filter));
+        std::printf("shadow resolution: %s; views at %s texels\n",
+                    settings.shadows.autoResolution() ? "auto" : "fixed", describeShadowTiers(shadows).c_str());
     }
     std::fputs(timingTable(result.medianMs).c_str(), stdout);
 
@@ -113,6 +119,12 @@ int runRenderCommand(const std::vector<std::string>& args) {
             outputs.add(*options.heatmapPath,
                         encodePng(renderHeatmap(lightStats->tested, background, settings.width, settings.height, heatmap)));
         }
+    }
+    if (options.shadowDensityPath) {
+        const ShadowDensityImage density =
+            computeShadowDensity(scene, renderer.lights(), shadows, settings.width, settings.height);
+        const std::string title = "shadow texels per pixel (--shadow-res " + shadowResolutionName(settings.shadows) + ")";
+        outputs.add(*options.shadowDensityPath, encodePng(renderShadowDensity(density, title)));
     }
     const auto written = outputs.pending();
     outputs.commit();

@@ -1,6 +1,8 @@
 #include "app/validate_command.h"
 
+#include <charconv>
 #include <cstdio>
+#include <system_error>
 
 #include "app/options.h"
 #include "app/output_paths.h"
@@ -18,11 +20,14 @@ namespace punctual::app {
 namespace {
 
 constexpr const char* kUsage = R"(usage: punctual validate [SCENE] [render options] --out-dir DIR [--export-exr]
+                         [--edge-band-px N]
 
 Compares the GPU's shadow factor at every pixel, for every shadowed light, with Embree's ray-cast
 visibility from the same surface point, and writes:
   DIR/report.json   per light and overall: pixels compared, false_shadow (GPU dark, ray lit),
-                    false_lit (GPU lit, ray blocked), each also outside the +-1 texel edge band
+                    false_lit (GPU lit, ray blocked), misclassified_fraction over every
+                    compared pixel, and each also outside the edge band (ray visibility
+                    changes within one shadow texel, or --edge-band-px N screen pixels)
   DIR/report.html   the GPU image, the reference and per-light mismatch maps
   DIR/*.exr         with --export-exr: world positions (NaN for background) and each light's
                     GPU shadow factor (NaN where the light does not reach)
@@ -32,12 +37,23 @@ else). All render options apply (see
 `punctual render --help`): --shadow-filter, --shadow-res, --shadow-bias, --point-shadow-layout...
 )";
 
+// --edge-band-px N: a number of screen pixels, 0 to 64.
+float parseEdgeBandPixels(const std::string& text) {
+    float value = 0.0f;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end != text.data() + text.size() || !(value >= 0.0f && value <= 64.0f)) {
+        throw Error("--edge-band-px", "expected a number of screen pixels from 0 to 64, got '" + text + "'");
+    }
+    return value;
+}
+
 }  // namespace
 
 int runValidateCommand(const std::vector<std::string>& args) {
     std::vector<std::string> renderArgs;
     std::optional<std::string> outDir;
     bool exportExr = false;
+    float edgeBandPixels = 0.0f;  // one shadow texel
     for (size_t i = 0; i < args.size(); ++i) {
         if (args[i] == "--help" || args[i] == "-h") {
             std::fputs(kUsage, stdout);
@@ -47,6 +63,9 @@ int runValidateCommand(const std::vector<std::string>& args) {
             outDir = args[++i];
         } else if (args[i] == "--export-exr") {
             exportExr = true;
+        } else if (args[i] == "--edge-band-px") {
+            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--edge-band-px", "needs a value");
+            edgeBandPixels = parseEdgeBandPixels(args[++i]);
         } else if (args[i] == "--out" || args[i] == "--stats" || args[i] == "--heatmap") {
             throw Error(args[i], "not an option of validate (it writes into --out-dir)");
         } else {
@@ -80,9 +99,11 @@ int runValidateCommand(const std::vector<std::string>& args) {
     const reference::ReferenceRenderer referenceRenderer(scene, referenceSettings);
     const ImageRgba8 referenceImage = referenceRenderer.render();
     const reference::ShadowValidation validation = reference::validateShadows(
-        referenceRenderer.embree(), factors, renderer.lights(), renderer.shadowPlan(), settings.shadows);
+        referenceRenderer.embree(), factors, renderer.lights(), renderer.shadowPlan(),
+        edgeBandPixels > 0.0f ? reference::EdgeBand::ofScreenPixels(edgeBandPixels, scene.camera, options.height)
+                              : reference::EdgeBand{});
 
-    nlohmann::json report = validationJson(validation, scene, renderer);
+    nlohmann::json report = validationJson(validation, scene, renderer, edgeBandPixels);
     OutputFiles outputs;
     const std::string dir = *outDir;
     outputs.add(dir + "/report.html", validationHtml(report));
@@ -108,9 +129,11 @@ int runValidateCommand(const std::vector<std::string>& args) {
                     static_cast<unsigned long long>(c.falseLit), static_cast<unsigned long long>(c.edgeBand),
                     100.0 * c.misclassifiedOutsideBand());
     };
-    std::printf("shadow validation: %s, %ux%u, %zu shadowed lights, %s filter, %u texels, %s point layout\n",
+    std::printf("shadow validation: %s, %ux%u, %zu shadowed lights, %s filter, %s resolution (views at %s), %s, %s "
+                "point layout\n",
                 scene.source.c_str(), options.width, options.height, validation.lights.size(),
-                shadowFilterName(settings.shadows.filter), settings.shadows.resolution,
+                shadowFilterName(settings.shadows.filter), shadowResolutionName(settings.shadows).c_str(),
+                describeShadowTiers(renderer.shadowPlan()).c_str(), shadowFormatName(settings.shadows.format),
                 pointShadowLayoutName(settings.shadows.pointLayout));
     line("spots", validation.spots);
     line("points", validation.points);

@@ -14,6 +14,7 @@ nlohmann::json countsJson(const reference::ShadowCounts& c) {
         {"compared", c.compared},
         {"false_shadow", c.falseShadow},
         {"false_lit", c.falseLit},
+        {"misclassified_fraction", c.misclassified()},
         {"edge_band", c.edgeBand},
         {"outside_edge_band",
          {{"compared", c.comparedOutsideBand},
@@ -34,20 +35,30 @@ const OutputFolderLayout& validationFolderLayout() {
 }
 
 nlohmann::json validationJson(const reference::ShadowValidation& validation, const Scene& scene,
-                              const render::Renderer& renderer) {
+                              const render::Renderer& renderer, float edgeBandPixels) {
     const ShadowSettings& s = renderer.settings().shadows;
     nlohmann::json report;
     report["scene"] = scene.source;
     report["size"] = {{"width", validation.width}, {"height", validation.height}};
-    report["settings"] = {{"resolution", s.resolution},
+    report["settings"] = {{"resolution", shadowResolutionName(s)},
+                          {"format", shadowFormatName(s.format)},
+                          {"budget_bytes", s.budgetBytes},
                           {"filter", shadowFilterName(s.filter)},
                           {"samples", s.diskSamples},
                           {"penumbra", s.diskRadius},
                           {"bias", {s.bias.x, s.bias.y, s.bias.z, s.bias.w}},
                           {"point_layout", pointShadowLayoutName(s.pointLayout)},
                           {"culling", render::methodName(renderer.settings().method)}};
-    report["rule"] = "GPU dark when its filtered factor < 0.5; edge band: ray visibility changes within one shadow "
-                     "texel of the point (4 probe rays)";
+    std::ostringstream band;
+    if (edgeBandPixels > 0.0f) {
+        band << edgeBandPixels << " screen pixel(s)";
+    } else {
+        band << "one shadow texel";
+    }
+    report["rule"] = "GPU dark when its filtered factor < 0.5; edge band: ray visibility changes within " + band.str() +
+                     " of the point (4 probe rays); misclassified_fraction counts every compared pixel, "
+                     "outside_edge_band those outside the band";
+    report["edge_band_px"] = edgeBandPixels;
     report["overall"] = countsJson(validation.overall);
     report["spot"] = countsJson(validation.spots);
     report["point"] = countsJson(validation.points);
@@ -90,10 +101,10 @@ ImageRgba8 mismatchMap(const reference::LightShadowValidation& light, uint32_t w
 
 std::string validationHtml(const nlohmann::json& report) {
     std::ostringstream html;
-    auto percent = [](const nlohmann::json& counts) {
+    auto percent = [](double fraction) {
         std::ostringstream s;
         s.precision(3);
-        s << 100.0 * counts["outside_edge_band"]["misclassified_fraction"].get<double>() << "%";
+        s << 100.0 * fraction << "%";
         return s.str();
     };
     html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>punctual shadow validation</title>\n"
@@ -105,11 +116,12 @@ std::string validationHtml(const nlohmann::json& report) {
          << "<p><img src=\"gpu.png\" alt=\"GPU\"><img src=\"reference.png\" alt=\"Embree reference\"><br>"
          << "Left: GPU. Right: Embree reference (ray-traced shadows).</p>\n"
          << "<table><tr><th>light</th><th>type</th><th>compared</th><th>false shadow</th><th>false lit</th>"
-         << "<th>edge band</th><th>misclassified outside band</th></tr>\n";
+         << "<th>edge band</th><th>misclassified</th><th>misclassified outside band</th></tr>\n";
     auto row = [&](const std::string& name, const std::string& type, const nlohmann::json& c) {
         html << "<tr><td>" << name << "</td><td>" << type << "</td><td>" << c["compared"] << "</td><td>"
              << c["false_shadow"] << "</td><td>" << c["false_lit"] << "</td><td>" << c["edge_band"] << "</td><td>"
-             << percent(c) << "</td></tr>\n";
+             << percent(c["misclassified_fraction"].get<double>()) << "</td><td>"
+             << percent(c["outside_edge_band"]["misclassified_fraction"].get<double>()) << "</td></tr>\n";
     };
     row("all", "", report["overall"]);
     row("spots", "spot", report["spot"]);

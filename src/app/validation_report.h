@@ -17,8 +17,9 @@ namespace punctual::app {
 // Every file validate may write into its --out-dir (report.json lists a run's files).
 const OutputFolderLayout& validationFolderLayout();
 
+// `edgeBandPixels`: the band's width in screen pixels (--edge-band-px), 0 for one shadow texel.
 nlohmann::json validationJson(const reference::ShadowValidation& validation, const Scene& scene,
-                              const render::Renderer& renderer);
+                              const render::Renderer& renderer, float edgeBandPixels);
 
 // Red: false shadow, blue: false lit, greys: agreement (dark grey lit, light grey shadowed),
 // black: not compared; pixels of the edge band are drawn at half brightness.

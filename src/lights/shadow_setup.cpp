@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <numeric>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "lights/shadow_resolution.h"
 #include "shadows.h"
 
 namespace punctual {
@@ -108,10 +110,16 @@ glm::mat4 spotViewProjection(const glm::vec3& position, const glm::vec3& directi
 
 }  // namespace
 
-float ShadowSettings::penumbraTexels() const {
+float ShadowSettings::penumbraTexels(uint32_t viewResolution) const {
     const ShadowFilterInfo* info = findVariant(kShadowFilters, filter);
     if (!info) return kShadowFilters[0].footprint.penumbraTexels;
-    return info->footprint.fromDiskSettings ? diskRadius * float(resolution) : info->footprint.penumbraTexels;
+    return info->footprint.fromDiskSettings ? diskRadius * float(viewResolution) : info->footprint.penumbraTexels;
+}
+
+const char* shadowFormatName(ShadowFormat format) { return format == ShadowFormat::D16 ? "d16" : "d32"; }
+
+std::string shadowResolutionName(const ShadowSettings& settings) {
+    return settings.autoResolution() ? "auto" : std::to_string(settings.resolution);
 }
 
 uint32_t ShadowSettings::filterTaps() const {
@@ -121,8 +129,21 @@ uint32_t ShadowSettings::filterTaps() const {
 }
 
 void validateShadowSettings(const ShadowSettings& settings) {
-    if (settings.resolution < 16 || settings.resolution > 8192 || (settings.resolution & (settings.resolution - 1)) != 0) {
-        throw Error("--shadow-res", "must be a power of two from 16 to 8192, got " + std::to_string(settings.resolution));
+    if (!settings.autoResolution() &&
+        (settings.resolution < 16 || settings.resolution > 8192 || (settings.resolution & (settings.resolution - 1)) != 0)) {
+        throw Error("--shadow-res", "must be auto or a power of two from 16 to 8192, got " + std::to_string(settings.resolution));
+    }
+    if (settings.autoResolution() && settings.pointLayout == PointShadowLayout::Cube) {
+        throw Error("--point-shadow-layout cube",
+                    "a cube map's faces share one resolution: use it with a fixed --shadow-res N, or use slices");
+    }
+    if (settings.budgetBytes < (1ull << 20) || settings.budgetBytes > (64ull << 30)) {
+        throw Error("--shadow-budget", "must be from 1 to 65536 MiB");
+    }
+    if (settings.maxShadowedSpots > PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS ||
+        settings.maxShadowedPoints > PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS) {
+        throw Error("--shadowed", "at most " + std::to_string(PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS) + " spots and " +
+                                      std::to_string(PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS) + " points can be shadowed");
     }
     if (settings.diskSamples < 1 || settings.diskSamples > 64) {
         throw Error("--shadow-samples", "must be from 1 to 64, got " + std::to_string(settings.diskSamples));
@@ -141,61 +162,6 @@ void validateShadowSettings(const ShadowSettings& settings) {
     if (!std::isfinite(settings.strength) || settings.strength < 0.0f || settings.strength > 1.0f) {
         throw Error("--shadow-strength", "must be from 0 to 1");
     }
-}
-
-namespace {
-
-// "20.0 GiB", "1.2 MiB", "80.0 KiB": the largest unit that shows the size as at least 0.1.
-std::string describeBytes(uint64_t bytes) {
-    const char* units[] = {"KiB", "MiB", "GiB"};
-    int unit = 2;
-    while (unit > 0 && double(bytes) < 0.1 * double(1ull << (10 * (unit + 1)))) --unit;
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.1f %s", double(bytes) / double(1ull << (10 * (unit + 1))), units[unit]);
-    return text;
-}
-
-}  // namespace
-
-uint64_t shadowMapBytes(const ShadowPlan& plan, uint32_t resolution) {
-    const uint64_t layers = uint64_t(plan.shadowedSpots) + 6ull * plan.shadowedPoints;
-    return layers * resolution * resolution * kShadowTexelBytes;
-}
-
-void checkShadowMapsFit(const ShadowPlan& plan, const ShadowSettings& settings, const ShadowMemoryLimits& limits) {
-    ShadowPlan spotsOnly;
-    spotsOnly.shadowedSpots = plan.shadowedSpots;
-    ShadowPlan pointsOnly;
-    pointsOnly.shadowedPoints = plan.shadowedPoints;
-    // The first limit the maps at `resolution` exceed, described; empty when they fit.
-    auto problemAt = [&](uint32_t resolution) -> std::string {
-        const uint64_t total = shadowMapBytes(plan, resolution);
-        if (total > limits.total) {
-            return "the shadow maps of " + std::to_string(plan.shadowedSpots) + " spot and " +
-                   std::to_string(plan.shadowedPoints) + " point lights need " + describeBytes(total) + ", " +
-                   limits.totalName + " has " + describeBytes(limits.total);
-        }
-        const uint64_t spots = shadowMapBytes(spotsOnly, resolution);
-        if (spots > limits.spotArray) {
-            return "the spot shadow array (" + std::to_string(plan.shadowedSpots) + " layers) needs " +
-                   describeBytes(spots) + ", the device's largest such image holds " + describeBytes(limits.spotArray);
-        }
-        const uint64_t points = shadowMapBytes(pointsOnly, resolution);
-        if (points > limits.pointArray) {
-            return "the point shadow array (" + std::to_string(6 * plan.shadowedPoints) + " layers) needs " +
-                   describeBytes(points) + ", the device's largest such image holds " + describeBytes(limits.pointArray);
-        }
-        return {};
-    };
-    std::string problem = problemAt(settings.resolution);
-    if (problem.empty()) return;
-    for (uint32_t resolution = settings.resolution / 2; resolution >= 16; resolution /= 2) {
-        if (problemAt(resolution).empty()) {
-            problem += " (at most --shadow-res " + std::to_string(resolution) + " fits)";
-            break;
-        }
-    }
-    throw Error("--shadow-res " + std::to_string(settings.resolution), problem);
 }
 
 glm::mat4 cubeFaceViewProjection(const glm::vec3& position, uint32_t face, float nearPlane, float farPlane,
@@ -243,12 +209,13 @@ ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3&
             plan.droppedByCap += uint32_t(order.size() - cap);
             order.resize(cap);
         }
-        std::sort(order.begin(), order.end());  // packed order: stable layer assignment
+        std::sort(order.begin(), order.end());  // packed order: stable slot assignment
         return order;
     };
-    const std::vector<uint32_t> spots = rankedCasters(0, lights.spotCount, PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS);
-    const std::vector<uint32_t> points =
-        rankedCasters(lights.spotCount, lights.pointCount, PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS);
+    const std::vector<uint32_t> spots = rankedCasters(
+        0, lights.spotCount, std::min<uint32_t>(settings.maxShadowedSpots, PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS));
+    const std::vector<uint32_t> points = rankedCasters(
+        lights.spotCount, lights.pointCount, std::min<uint32_t>(settings.maxShadowedPoints, PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS));
 
     for (uint32_t index : spots) {
         const Light& source = scene.lights[lights.sceneLightIndex[index]];
@@ -267,24 +234,17 @@ ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3&
                                    direction, range, span);
         // The failure study's fixed near plane (a share of the range) keeps the range as far.
         const bool fixedNear = settings.spotNearFraction > 0.0f;
-        const float farPlane = fixedNear ? range : farPlaneFor(span, range);
-        const float nearPlane = fixedNear ? range * settings.spotNearFraction : nearPlaneFor(span.nearest, farPlane);
-        view.gpu.viewProjection = spotViewProjection(position, direction, halfAngle, nearPlane, farPlane);
-        view.layer = plan.shadowedSpots++;
+        view.farPlane = fixedNear ? range : farPlaneFor(span, range);
+        view.nearPlane = fixedNear ? range * settings.spotNearFraction : nearPlaneFor(span.nearest, view.farPlane);
+        view.gpu.viewProjection = spotViewProjection(position, direction, halfAngle, view.nearPlane, view.farPlane);
+        view.tanSpan = 2.0f * std::tan(halfAngle);
         view.packedLight = index;
-        view.gpu.params = glm::vec4(view.casters.empty() ? -1.0f : float(view.layer), 2.0f * std::tan(halfAngle),
-                                    nearPlane, farPlane);
-        (view.casters.empty() ? plan.viewsSkipped : plan.viewsRendered)++;
+        plan.shadowedSpots++;
         light.angleOffsetShadow.y = float(plan.views.size());
         light.angleOffsetShadow.w = settings.strength * source.shadowStrength;
         plan.views.push_back(std::move(view));
     }
 
-    // Slices: widen each face so that a filter reaching `penumbraTexels` (plus one for the
-    // bilinear footprint) past the face edge still reads the same slice (URP's guard angle).
-    plan.sliceScale = settings.pointLayout == PointShadowLayout::Slices
-                          ? 1.0f + 2.0f * (settings.penumbraTexels() + 1.0f) / float(settings.resolution)
-                          : 1.0f;
     for (uint32_t index : points) {
         const Light& source = scene.lights[lights.sceneLightIndex[index]];
         gpu::GpuPunctualLight& light = lights.packed[index];
@@ -293,33 +253,240 @@ ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3&
         const uint32_t cube = plan.shadowedPoints++;
         light.angleOffsetShadow.y = float(plan.views.size());
         light.angleOffsetShadow.w = settings.strength * source.shadowStrength;
-        // One near and one far plane for the whole cube: the hardware filters across face edges
-        // (seamless cube sampling), so every face must map depth the same way.
+        // One near and one far plane for the whole light: the cube layout's hardware filters across
+        // face edges (seamless cube sampling), so every face must map depth the same way, and the
+        // slices keep the same planes so that the two layouts differ only in their storage.
         std::vector<ShadowView> faces(6);
         DepthSpan cubeSpan;
         for (uint32_t face = 0; face < 6; ++face) {
             DepthSpan span;
-            faces[face].casters = findCasters(scene, cubeFaceViewProjection(position, face, 1.0f, 2.0f, plan.sliceScale),
-                                              position, gpu::cubeFaceAxis(face), range, span);
+            // Slices: a guard band of up to twice the face (at the smallest tier and the widest
+            // filter the widening stays below 1.6) bounds every face's frustum, whatever its
+            // resolution turns out to be.
+            const float widest = settings.pointLayout == PointShadowLayout::Slices ? 2.0f : 1.0f;
+            faces[face].casters = findCasters(scene, cubeFaceViewProjection(position, face, 1.0f, 2.0f, widest), position,
+                                              gpu::cubeFaceAxis(face), range, span);
             cubeSpan.extend(span);
         }
         const float farPlane = farPlaneFor(cubeSpan, range);
         const float nearPlane = nearPlaneFor(cubeSpan.nearest, farPlane);
         for (uint32_t face = 0; face < 6; ++face) {
             ShadowView& view = faces[face];
-            view.gpu.viewProjection = cubeFaceViewProjection(position, face, nearPlane, farPlane, plan.sliceScale);
-            view.layer = cube * 6 + face;
+            view.farPlane = farPlane;
+            view.nearPlane = nearPlane;
+            view.tanSpan = 2.0f;  // widened by the slices' guard band once the resolution is known
+            view.gpu.viewProjection = cubeFaceViewProjection(position, face, nearPlane, farPlane);
+            view.cubeLayer = cube * 6 + face;
             view.packedLight = index;
             view.face = face;
             view.isPoint = true;
-            // Point faces without casters are still cleared (to "far"): filters and the cube's
-            // seamless sampling may read across a face edge.
-            view.gpu.params = glm::vec4(float(view.layer), 2.0f * plan.sliceScale, nearPlane, farPlane);
-            (view.casters.empty() ? plan.viewsSkipped : plan.viewsRendered)++;
             plan.views.push_back(std::move(view));
         }
     }
     return plan;
+}
+
+namespace {
+
+// Each view's light's rank (0 = the most important), for the budget.
+std::vector<uint32_t> lightRanks(const ShadowPlan& plan, const Scene& scene, const FrameLights& lights,
+                                 const glm::vec3& cameraPosition) {
+    std::vector<uint32_t> packed;
+    for (const ShadowView& view : plan.views) {
+        if (packed.empty() || packed.back() != view.packedLight) packed.push_back(view.packedLight);
+    }
+    std::vector<uint32_t> byImportance = packed;
+    std::stable_sort(byImportance.begin(), byImportance.end(), [&](uint32_t a, uint32_t b) {
+        return lightImportance(scene.lights[lights.sceneLightIndex[a]], cameraPosition) >
+               lightImportance(scene.lights[lights.sceneLightIndex[b]], cameraPosition);
+    });
+    std::vector<uint32_t> ranks;
+    for (const ShadowView& view : plan.views) {
+        ranks.push_back(uint32_t(std::find(byImportance.begin(), byImportance.end(), view.packedLight) - byImportance.begin()));
+    }
+    return ranks;
+}
+
+bool usesCubeArray(const ShadowView& view, const ShadowSettings& settings) {
+    return view.isPoint && settings.pointLayout == PointShadowLayout::Cube;
+}
+
+// The atlas sizes of the views at `resolution` (fixed mode): every view with a caster.
+std::vector<uint32_t> fixedAtlasSizes(const ShadowPlan& plan, const ShadowSettings& settings, uint32_t resolution) {
+    std::vector<uint32_t> sizes;
+    for (const ShadowView& view : plan.views) {
+        sizes.push_back(!usesCubeArray(view, settings) && !view.casters.empty() ? resolution : 0u);
+    }
+    return sizes;
+}
+
+// Fills each view's GPU record from its resolution and storage.
+void finishViews(ShadowPlan& plan, const FrameLights& lights, const ShadowSettings& settings) {
+    plan.viewsRendered = 0;
+    plan.viewsSkipped = 0;
+    for (ShadowView& view : plan.views) {
+        const float resolution = float(std::max(view.resolution, 1u));
+        if (view.isPoint) {
+            const glm::vec3 position(lights.packed[view.packedLight].positionInvRangeSq);
+            // Slices: widen each face so that a filter reaching `penumbraTexels` (plus one for the
+            // bilinear footprint) past the face edge still reads the same slice (URP's guard angle).
+            const float scale = settings.pointLayout == PointShadowLayout::Slices
+                                    ? 1.0f + 2.0f * (settings.penumbraTexels(view.resolution) + 1.0f) / resolution
+                                    : 1.0f;
+            view.tanSpan = 2.0f * scale;
+            view.gpu.viewProjection = cubeFaceViewProjection(position, view.face, view.nearPlane, view.farPlane, scale);
+        }
+        (view.rendered() ? plan.viewsRendered : plan.viewsSkipped)++;
+        view.gpu.params = glm::vec4(view.rendered() ? 1.0f : -1.0f, view.tanSpan, view.nearPlane, view.farPlane);
+        if (usesCubeArray(view, settings)) {
+            view.gpu.atlasRect = glm::vec4(float(view.cubeLayer / 6), 0.0f, 0.0f, 0.0f);
+        } else if (plan.atlas.width > 0) {
+            const glm::vec2 atlasSize(float(plan.atlas.width), float(plan.atlas.height));
+            view.gpu.atlasRect = glm::vec4(glm::vec2(float(view.rect.x), float(view.rect.y)) / atlasSize,
+                                           glm::vec2(float(view.rect.size)) / atlasSize);
+        }
+        view.gpu.texel = glm::vec4(resolution, 1.0f / resolution, settings.penumbraTexels(view.resolution), 0.0f);
+    }
+}
+
+}  // namespace
+
+std::vector<std::pair<uint32_t, uint32_t>> shadowTierCounts(const ShadowPlan& plan) {
+    std::vector<std::pair<uint32_t, uint32_t>> tiers;
+    for (const ShadowView& view : plan.views) {
+        if (!view.rendered()) continue;
+        auto it = std::find_if(tiers.begin(), tiers.end(), [&](const auto& t) { return t.first == view.resolution; });
+        if (it == tiers.end()) {
+            tiers.emplace_back(view.resolution, 1u);
+        } else {
+            ++it->second;
+        }
+    }
+    std::sort(tiers.begin(), tiers.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    return tiers;
+}
+
+std::string describeShadowTiers(const ShadowPlan& plan) {
+    std::string text;
+    for (const auto& [resolution, count] : shadowTierCounts(plan)) {
+        text += (text.empty() ? "" : ", ") + std::to_string(count) + " x " + std::to_string(resolution);
+    }
+    return text.empty() ? "none" : text;
+}
+
+namespace {
+
+uint64_t cubeArrayBytes(const ShadowPlan& plan, const ShadowSettings& settings, uint32_t resolution) {
+    return settings.pointLayout == PointShadowLayout::Cube
+               ? 6ull * plan.shadowedPoints * resolution * resolution * settings.texelBytes()
+               : 0;
+}
+
+}  // namespace
+
+uint64_t shadowMapBytes(const ShadowPlan& plan, const ShadowSettings& settings, uint32_t resolution) {
+    const std::vector<uint32_t> sizes = fixedAtlasSizes(plan, settings, resolution);
+    const uint64_t atlas = packShadowAtlas(sizes, std::numeric_limits<uint32_t>::max()).texels();
+    return atlas * settings.texelBytes() + cubeArrayBytes(plan, settings, resolution);
+}
+
+void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& lights, const glm::vec3& cameraPosition,
+                     uint32_t frameWidth, uint32_t frameHeight, const ShadowSettings& settings,
+                     const ShadowMemoryLimits& limits) {
+    if (plan.views.empty()) return;
+    if (!settings.autoResolution()) {
+        // The first limit the maps at `resolution` exceed, described; empty when they fit.
+        auto problemAt = [&](uint32_t resolution) -> std::string {
+            const std::vector<uint32_t> sizes = fixedAtlasSizes(plan, settings, resolution);
+            const uint64_t total = shadowMapBytes(plan, settings, resolution);
+            if (total > limits.total) {
+                return "the shadow maps of " + std::to_string(plan.shadowedSpots) + " spot and " +
+                       std::to_string(plan.shadowedPoints) + " point lights need " + describeBytes(total) + ", " +
+                       limits.totalName + " has " + describeBytes(limits.total);
+            }
+            if (!shadowAtlasFits(sizes, limits.atlasSide)) {
+                return "the shadow atlas would be wider or taller than the device's largest 2D image (" +
+                       std::to_string(limits.atlasSide) + " texels)";
+            }
+            const uint64_t atlas = packShadowAtlas(sizes, limits.atlasSide).texels() * settings.texelBytes();
+            if (atlas > limits.atlasBytes) {
+                return "the shadow atlas needs " + describeBytes(atlas) + ", the device's largest such image holds " +
+                       describeBytes(limits.atlasBytes);
+            }
+            const uint64_t cubes = cubeArrayBytes(plan, settings, resolution);
+            if (cubes > limits.cubeArrayBytes) {
+                return "the point shadow cube array (" + std::to_string(6 * plan.shadowedPoints) + " layers) needs " +
+                       describeBytes(cubes) + ", the device's largest such image holds " + describeBytes(limits.cubeArrayBytes);
+            }
+            if (atlas + cubes > limits.total) {
+                return "the shadow maps of " + std::to_string(plan.shadowedSpots) + " spot and " +
+                       std::to_string(plan.shadowedPoints) + " point lights need " + describeBytes(atlas + cubes) + ", " +
+                       limits.totalName + " has " + describeBytes(limits.total);
+            }
+            return {};
+        };
+        std::string problem = problemAt(settings.resolution);
+        if (!problem.empty()) {
+            for (uint32_t resolution = settings.resolution / 2; resolution >= 16; resolution /= 2) {
+                if (problemAt(resolution).empty()) {
+                    problem += " (at most --shadow-res " + std::to_string(resolution) + " fits)";
+                    break;
+                }
+            }
+            throw Error("--shadow-res " + std::to_string(settings.resolution), problem);
+        }
+        const std::vector<uint32_t> sizes = fixedAtlasSizes(plan, settings, settings.resolution);
+        plan.atlas = packShadowAtlas(sizes, limits.atlasSide);
+        for (uint32_t v = 0; v < plan.views.size(); ++v) {
+            ShadowView& view = plan.views[v];
+            view.resolution = usesCubeArray(view, settings) || !view.casters.empty() ? settings.resolution : 0u;
+            view.rect = plan.atlas.rects[v];
+        }
+        plan.cubeResolution = settings.pointLayout == PointShadowLayout::Cube && plan.shadowedPoints > 0 ? settings.resolution : 0;
+        plan.bytes = plan.atlas.texels() * settings.texelBytes() + cubeArrayBytes(plan, settings, settings.resolution);
+        finishViews(plan, lights, settings);
+        return;
+    }
+
+    // Auto: the tier each view's visible receivers need, then the budget.
+    const VisibleReceivers receivers = sampleVisibleReceivers(scene, frameWidth, frameHeight);
+    plan.receiverSamples = uint32_t(receivers.samples.size());
+    plan.sampleStep = receivers.step;
+    const std::vector<float> demand = shadowViewDemand(plan, lights, receivers);
+    std::vector<uint32_t> tiers;
+    for (uint32_t v = 0; v < plan.views.size(); ++v) {
+        ShadowView& view = plan.views[v];
+        view.demand = demand[v];
+        static const float expDensity = std::getenv("PUNCTUAL_EXP_DENSITY") ? std::atof(std::getenv("PUNCTUAL_EXP_DENSITY")) : 1.0f;
+        static const bool expFill = std::getenv("PUNCTUAL_EXP_FACEFILL") != nullptr;
+        view.demandedTier = shadowTierFor(demand[v] * expDensity, settings.minTier, settings.maxTier);
+        if (expFill && view.demandedTier == 0 && view.isPoint) view.demandedTier = settings.minTier;
+        // A view with no caster is lit everywhere: it needs no storage whatever its receivers.
+        tiers.push_back(view.casters.empty() ? 0u : view.demandedTier);
+    }
+    ShadowBudgetLimits budget;
+    budget.texelBytes = settings.texelBytes();
+    budget.minTier = settings.minTier;
+    budget.maxSide = limits.atlasSide;
+    const uint64_t deviceBytes = std::min(limits.total, limits.atlasBytes);
+    if (settings.budgetBytes <= deviceBytes) {
+        budget.bytes = settings.budgetBytes;
+        budget.bytesName = "--shadow-budget " + std::to_string(settings.budgetBytes >> 20);
+    } else {
+        budget.bytes = deviceBytes;
+        budget.bytesName = limits.total <= limits.atlasBytes ? limits.totalName : "the device's largest 2D image";
+    }
+    const ShadowAllocation allocation = fitShadowBudget(tiers, lightRanks(plan, scene, lights, cameraPosition), budget);
+    plan.atlas = allocation.atlas;
+    plan.bytes = allocation.bytes;
+    plan.budgetBytes = budget.bytes;
+    plan.reductions = allocation.reductions;
+    plan.reducedBy = allocation.limitName;
+    for (uint32_t v = 0; v < plan.views.size(); ++v) {
+        plan.views[v].resolution = allocation.resolutions[v];
+        plan.views[v].rect = plan.atlas.rects[v];
+    }
+    finishViews(plan, lights, settings);
 }
 
 }  // namespace punctual

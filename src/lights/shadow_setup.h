@@ -1,97 +1,144 @@
 #pragma once
 // Which lights cast shadows this frame, and the views the shadow stage renders for them.
 //
-// Spots take one view each (a perspective frustum of field of view 2 x outer angle) and one
-// layer of a 2D depth array; points take six views (+X -X +Y -Y +Z -Z) and one cube of a cube
-// depth array, or six layers of a 2D array with a widened field of view (URP's "slices"). At
-// most 32 spots and 8 points are shadowed, chosen by rank. Every view lists the objects whose
+// Spots take one view each (a perspective frustum of field of view 2 x outer angle); points take
+// six views (+X -X +Y -Y +Z -Z). By default every spot and point light in the frame is shadowed
+// (up to 64 + 32); --shadowed S,P caps them, chosen by rank. Every view lists the objects whose
 // bounds meet its frustum; a view with none is not rendered.
+//
+// Each view gets its own resolution: in fixed mode (--shadow-res N) N, in auto mode the tier its
+// visible receivers need (lights/shadow_resolution.h) within the budget (lights/shadow_budget.h).
+// Spot views and point faces stored as slices live in one atlas (lights/shadow_atlas.h); the cube
+// layout keeps a cube array and needs a fixed resolution.
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "gpu_types.h"
 #include "lights/light_setup.h"
+#include "lights/shadow_atlas.h"
+#include "lights/shadow_budget.h"
 #include "lights/shadow_filters.h"
 #include "scene/scene.h"
 
 namespace punctual {
 
+enum class ShadowFormat : uint32_t { D16, D32 };
+
 struct ShadowSettings {
     bool enabled = true;
-    uint32_t resolution = 1024;  // texels a side, every layer
+    // Texels a side of every view (fixed mode, --shadow-res N), or kAutoResolution: each view the
+    // tier its visible receivers need (--shadow-res auto, the default).
+    uint32_t resolution = kAutoResolution;
+    static constexpr uint32_t kAutoResolution = 0;
+    uint32_t minTier = 16;     // auto: the smallest and largest tiers a view may get
+    uint32_t maxTier = 2048;
+    uint64_t budgetBytes = 64ull << 20;  // auto: the atlas's largest size (--shadow-budget MiB)
+    uint32_t maxShadowedSpots = PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS;  // --shadowed S,P
+    uint32_t maxShadowedPoints = PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS;
+    ShadowFormat format = ShadowFormat::D16;
     ShadowFilter filter = ShadowFilter::Tent5;
     uint32_t diskSamples = 16;
     // Disk radius in shadow-map UV units: a fixed share of the map, so the penumbra does not
     // change with the resolution (the design notes' "penumbra independent of map size").
     float diskRadius = 2.5f / 1024.0f;
     glm::vec4 bias{1.0f, 1.0f, 1.0f, 0.0f};  // depth, slope-scaled, normal, sin-scaled normal
-    PointShadowLayout pointLayout = PointShadowLayout::Cube;
+    PointShadowLayout pointLayout = PointShadowLayout::Slices;
     float strength = 1.0f;  // multiplies every light's own shadow strength
     // For the failure study only (bench), never needed to render correctly:
     bool pancaking = false;         // clamp caster vertices' depth onto the near plane (Unity's pancaking)
     float spotNearFraction = 0.0f;  // > 0: spot near plane at this fraction of the range, not fitted
 
-    // The filter's reach in texels, which widens the bias (the design notes' penumbra), and its
-    // lookups per shadow test: the filter table's footprint, or the disk's settings.
-    float penumbraTexels() const;
+    bool autoResolution() const { return resolution == kAutoResolution; }
+    // The filter's reach in texels, for a view of `viewResolution` texels a side, which widens the
+    // bias (the design notes' penumbra) and the slices' guard band, and its lookups per shadow
+    // test: the filter table's footprint, or the disk's settings.
+    float penumbraTexels(uint32_t viewResolution) const;
     uint32_t filterTaps() const;
+    uint32_t texelBytes() const { return format == ShadowFormat::D16 ? 2u : 4u; }
 };
+
+const char* shadowFormatName(ShadowFormat format);
+// "auto" or the fixed resolution, as --shadow-res takes it.
+std::string shadowResolutionName(const ShadowSettings& settings);
 
 // Throws Error naming the option for out-of-range settings.
 void validateShadowSettings(const ShadowSettings& settings);
 
 struct ShadowView {
-    gpu::GpuShadowView gpu;
+    gpu::GpuShadowView gpu{};
     std::vector<uint32_t> casters;  // object indices whose bounds meet the view's frustum
     uint32_t packedLight = 0;       // index into FrameLights::packed
     uint32_t face = 0;              // 0 for spots; the cube face for points
-    uint32_t layer = 0;             // in the spot array, or in the point cube / slice array
+    uint32_t cubeLayer = 0;         // cube layout: the face's layer in the cube array
     bool isPoint = false;
+    float nearPlane = 0.0f;         // metres along the view's axis
+    float farPlane = 0.0f;
+    float tanSpan = 0.0f;           // 2 tan(half field of view): the view's width at unit depth
+    float demand = 0.0f;            // auto: texels a side its visible receivers need (0: none seen)
+    uint32_t demandedTier = 0;      // auto: the tier of the demand, before the budget
+    uint32_t resolution = 0;        // texels a side it is rendered at; 0: no storage, always lit
+    AtlasRect rect;                 // where it lives in the atlas (not for the cube layout)
+    bool rendered() const { return resolution > 0 && !casters.empty(); }
 };
 
 struct ShadowPlan {
     std::vector<ShadowView> views;  // spots first (one each), then points (six each)
-    uint32_t shadowedSpots = 0;     // layers of the spot array
-    uint32_t shadowedPoints = 0;    // cubes of the point array (or groups of six slices)
+    uint32_t shadowedSpots = 0;     // spot lights with a view
+    uint32_t shadowedPoints = 0;    // point lights with six
     uint32_t droppedByCap = 0;      // shadow-casting lights over the caps (they stay unshadowed)
-    uint32_t viewsRendered = 0;     // views with at least one caster
-    uint32_t viewsSkipped = 0;      // views with none (spots: not even cleared; points: cleared)
-    float sliceScale = 1.0f;        // slices layout: tan of half the widened field of view
+    uint32_t viewsRendered = 0;     // views with storage and at least one caster
+    uint32_t viewsSkipped = 0;      // the others (no caster, or no visible receiver in auto mode)
+    AtlasLayout atlas;              // spot views and point slices
+    uint32_t cubeResolution = 0;    // cube layout: the cube array's side (fixed mode only)
+    uint64_t bytes = 0;             // the atlas's and the cube array's, per the format
+    uint64_t budgetBytes = 0;       // auto: the budget the views were fitted to
+    std::vector<ShadowReduction> reductions;  // auto: views given less than their tier asked
+    std::string reducedBy;          // what forced the reductions
+    uint32_t receiverSamples = 0;   // auto: visible receiver samples the demand came from
+    uint32_t sampleStep = 0;        // auto: pixels between them
 };
 
-// Chooses the shadowed lights (by lightImportance, see light_setup.h), builds their views and
-// writes each shadowed light's first view index and strength into `lights.packed`
-// (angleOffsetShadow.y and .w). Lights without a shadow keep y = -1.
+// Chooses the shadowed lights (by lightImportance, see light_setup.h), builds their views (casters,
+// near and far planes) and writes each shadowed light's first view index and strength into
+// `lights.packed` (angleOffsetShadow.y and .w). Lights without a shadow keep y = -1. The views
+// have no resolution yet: sizeShadowViews gives them one.
 ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3& cameraPosition,
                        const ShadowSettings& settings);
 
-// Bytes of one shadow-map texel (ShadowMaps::kFormat, VK_FORMAT_D32_SFLOAT).
-constexpr uint64_t kShadowTexelBytes = 4;
-
-// Bytes the shadow maps of `plan` take at `resolution` texels a side: a layer per shadowed spot,
-// six per shadowed point (the placeholders of empty arrays, a few bytes, are left out). A lower
-// bound of what the device allocates (it may pad).
-uint64_t shadowMapBytes(const ShadowPlan& plan, uint32_t resolution);
-
-// What the device can hold of the shadow maps: all arrays together (`total`, named by
-// `totalName`, e.g. "the device's largest heap"), and each array alone (one image; Vulkan's
-// maxResourceSize for its format and usage).
+// What the device can hold of the shadow maps: all of them together (`total`, named by
+// `totalName`, e.g. "the device's largest heap"), the atlas's side (maxImageDimension2D) and
+// bytes (maxResourceSize), and the cube array's bytes.
 struct ShadowMemoryLimits {
     uint64_t total = std::numeric_limits<uint64_t>::max();
     std::string totalName = "the device's largest heap";
-    uint64_t spotArray = std::numeric_limits<uint64_t>::max();
-    uint64_t pointArray = std::numeric_limits<uint64_t>::max();  // the cube array, or the slice array
+    uint32_t atlasSide = 16384;
+    uint64_t atlasBytes = std::numeric_limits<uint64_t>::max();
+    uint64_t cubeArrayBytes = std::numeric_limits<uint64_t>::max();
 };
 
-// Throws Error("--shadow-res N", ...) when the shadow maps of `plan` do not fit `limits`, saying
-// what they need, what the device has and the largest resolution that would fit. Called before
-// allocating, so that an oversized request fails with that line rather than with the driver's
-// out-of-memory code (or a validation error for an image over maxResourceSize).
-void checkShadowMapsFit(const ShadowPlan& plan, const ShadowSettings& settings, const ShadowMemoryLimits& limits);
+// Gives every view of `plan` its resolution and storage, and fills the GPU views:
+//  - fixed mode: every view with a caster at settings.resolution; throws Error("--shadow-res N",
+//    ...) saying what is needed, what the device has and the largest resolution that fits when
+//    the maps do not fit `limits` (before anything is allocated);
+//  - auto mode: each view its demanded tier from the receivers the frame shows (frameWidth x
+//    frameHeight, see shadow_resolution.h), fitted to min(budget, what the device has).
+void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& lights, const glm::vec3& cameraPosition,
+                     uint32_t frameWidth, uint32_t frameHeight, const ShadowSettings& settings,
+                     const ShadowMemoryLimits& limits);
+
+// Bytes of the fixed-mode maps of `plan` at `resolution` texels a side: the atlas (spots and
+// slices) and the cube array. A lower bound of what the device allocates (it may pad).
+uint64_t shadowMapBytes(const ShadowPlan& plan, const ShadowSettings& settings, uint32_t resolution);
+
+// The resolutions the rendered views of `plan` use, largest first, each with how many views use
+// it; and the same as text, e.g. "4 x 1024, 18 x 512, 40 x 256" ("none" for no view).
+std::vector<std::pair<uint32_t, uint32_t>> shadowTierCounts(const ShadowPlan& plan);
+std::string describeShadowTiers(const ShadowPlan& plan);
 
 // The matrix of cube face `face` of a light at `position`: clip.x = dot(r, U) / scale,
 // clip.y = dot(r, V) / scale, clip.w = dot(r, axis) for r = p - position (see shadows.h), and a

@@ -176,7 +176,7 @@ ImageRgba8 renderHeatmap(const std::vector<uint32_t>& counts, const std::vector<
     const uint32_t scaleMax =
         options.maxValue > 0 ? options.maxValue : autoScaleMax(counts, background, options.markBackground);
     const CountStats stats = geometryStats(counts, background);
-    const std::string statsText = statsLine(stats, scaleMax);
+    const std::string statsText = options.statsText.empty() ? statsLine(stats, scaleMax) : options.statsText;
     const bool clamped = stats.max > scaleMax;
 
     const uint32_t scale = width >= kDoubleScaleFrameWidth ? 2 : 1;
@@ -223,7 +223,16 @@ ImageRgba8 renderHeatmap(const std::vector<uint32_t>& counts, const std::vector<
         fillRect(image, barLeft + column, barTop, 1, barHeight, heatmapColor(value, 1.0f));
     }
     const uint32_t labelSlot = widestLabel + 2 * margin;
-    for (const Tick& tick : integerTicks(scaleMax, clamped, barLeft, barWidth, labelSlot)) {
+    std::vector<Tick> ticks;
+    if (options.ticks.empty()) {
+        ticks = integerTicks(scaleMax, clamped, barLeft, barWidth, labelSlot);
+    } else {
+        for (const auto& [value, label] : options.ticks) {
+            const double fraction = std::min(1.0, double(value) / double(scaleMax));
+            ticks.push_back({value, barLeft + std::llround(fraction * double(barWidth - 1)), label});
+        }
+    }
+    for (const Tick& tick : ticks) {
         fillRect(image, tick.x, barTop + barHeight, scale, kTickLengthUnits * scale, kTextColor);
         int64_t labelWidth = textWidth(tick.label, scale);
         int64_t labelLeft = std::clamp<int64_t>(tick.x - labelWidth / 2, 0,

@@ -4,6 +4,7 @@
 // places where tiled / clustered / per-object culling over- or under-performs are visible.
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/ext/vector_uint3_sized.hpp>
@@ -16,6 +17,10 @@ struct HeatmapOptions {
     uint32_t maxValue = 0;        // top of the colour scale; 0 = the largest coloured count (min 1)
     std::string title;            // e.g. "lights tested per pixel (tiled 16x16)"
     bool markBackground = true;   // background pixels drawn kHeatmapBackgroundColor, not colour 0
+    // For scales that are not plain counts (e.g. a log scale): ticks at these values of the scale,
+    // with these labels, instead of the integer ticks; and this line instead of "mean .. max ..".
+    std::vector<std::pair<uint32_t, std::string>> ticks;
+    std::string statsText;
 };
 
 // Where no geometry is (when HeatmapOptions::markBackground): a neutral dark grey, which the

@@ -8,9 +8,12 @@
 //   false_shadow: GPU dark, ray lit (acne, over-darkening);
 //   false_lit:    GPU lit, ray blocked (light leaks, peter-panning).
 // Near a shadow's edge a shadow map cannot be exact: its texels are finite and its filters blur.
-// A pixel is in the edge band when the ray-traced visibility changes within one shadow texel
-// (its world size at the pixel, as the bias computes it) of the point, probed by four more rays;
-// every count is also given with that band excluded.
+// A pixel is in the edge band when the ray-traced visibility changes within the band's width of
+// the point, probed by four more rays; every count is also given with that band excluded. The
+// width is one shadow texel (its world size at the pixel, as the bias computes it) by default. A
+// texel band widens as texels grow and so hides the error of low resolutions: EdgeBand's
+// screenPixels gives a band of fixed width on screen instead (--edge-band-px N), which compares
+// resolutions fairly. misclassified() counts every compared pixel, no band excluded.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -33,6 +36,8 @@ struct ShadowCounts {
     void add(const ShadowCounts& other);
     // Misclassified share of the compared pixels outside the edge band.
     double misclassifiedOutsideBand() const;
+    // Misclassified share of every compared pixel.
+    double misclassified() const;
 };
 
 // Per pixel, what the comparison found for one light.
@@ -57,8 +62,20 @@ struct ShadowValidation {
     ShadowCounts overall;
 };
 
+// The edge band's width: one shadow texel (screenPixels = 0), or screenPixels screen pixels of the
+// camera below, at the pixel's depth. In the surface's plane, a pixel's footprint stretches by
+// 1 / cos(view angle) along the view's slant, and so do those probes.
+struct EdgeBand {
+    float screenPixels = 0.0f;
+    glm::mat4 cameraView{1.0f};           // world -> view (looking down -Z)
+    float pixelSpanAtUnitDepth = 0.0f;    // 2 tan(yfov / 2) / height (screenPixelWorldSize)
+
+    // A band `pixels` wide on the screen of `camera` at a frame `height` pixels tall.
+    static EdgeBand ofScreenPixels(float pixels, const Camera& camera, uint32_t height);
+};
+
 // Casts the rays in parallel (TBB); deterministic.
 ShadowValidation validateShadows(const EmbreeScene& embree, const ShadowFactorImage& factors,
-                                 const FrameLights& lights, const ShadowPlan& plan, const ShadowSettings& settings);
+                                 const FrameLights& lights, const ShadowPlan& plan, const EdgeBand& band = {});
 
 }  // namespace punctual::reference

@@ -6,12 +6,14 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/log.h"
 #include "culling.h"
 #include "gpu_types.h"
 #include "render/depth_prepass.h"
 #include "render/forward_pass.h"
 #include "render/frame_bindings.h"
 #include "render/scene_gpu.h"
+#include "render/shadow_maps.h"
 #include "render/shadow_pass.h"
 #include "render/tonemap_pass.h"
 #include "vk/buffer.h"
@@ -197,8 +199,7 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     frame.ndcToView = glm::vec4(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
     const ShadowSettings& shadows = settings.shadows;
     frame.shadowBias = shadows.bias;
-    frame.shadowMap = glm::vec4(float(shadows.resolution), 1.0f / float(shadows.resolution), shadows.diskRadius,
-                                shadows.penumbraTexels());
+    frame.shadowMap = glm::vec4(float(shadowPlan.atlas.width), float(shadowPlan.atlas.height), shadows.diskRadius, 0.0f);
     frame.shadowCounts = glm::uvec4(shadowPlan.shadowedSpots, shadowPlan.shadowedPoints, 0u, 0u);
     return frame;
 }
@@ -219,6 +220,13 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     projection_ = scene.camera.projection(float(settings.width) / float(settings.height));
     lights_ = setupFrameLights(scene, view_, projection_);
     shadowPlan_ = planShadows(scene, lights_, scene.camera.position(), settings.shadows);
+    // Sized before anything is allocated: a request the device cannot hold fails here, in one line.
+    sizeShadowViews(shadowPlan_, scene, lights_, scene.camera.position(), settings.width, settings.height,
+                    settings.shadows, ShadowMaps::memoryLimits(context, settings.shadows));
+    if (!shadowPlan_.reductions.empty()) {
+        log::warn("shadows: " + std::to_string(shadowPlan_.reductions.size()) + " view(s) got less resolution than " +
+                  "their receivers need, to fit " + shadowPlan_.reducedBy + " (the stats' shadows.reduced lists them)");
+    }
     const LightListMethodInfo& method = methodInfo(settings.method);
     if (method.objectLists) perObjectLists_ = buildPerObjectLightLists(scene, lights_);
     const uint32_t slices = method.depthSlices ? settings.clusterSlices : 1u;

@@ -12,23 +12,24 @@ namespace {
 
 constexpr VkImageUsageFlags kUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
 
-vk::Image depthArray(const vk::Context& context, uint32_t resolution, uint32_t layers, bool cube, const char* name) {
+vk::Image depthImage(const vk::Context& context, VkFormat format, uint32_t width, uint32_t height, uint32_t layers,
+                     bool cube, const char* name) {
     vk::ImageDesc desc;
-    desc.format = ShadowMaps::kFormat;
-    desc.width = resolution;
-    desc.height = resolution;
+    desc.format = format;
+    desc.width = width;
+    desc.height = height;
     desc.layers = layers;
     desc.usage = kUsage;
-    desc.viewType = cube ? VK_IMAGE_VIEW_TYPE_CUBE_ARRAY : VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+    desc.viewType = cube ? VK_IMAGE_VIEW_TYPE_CUBE_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
     desc.flags = cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
     desc.debugName = name;
     return vk::Image(context, desc);
 }
 
-// maxResourceSize of one shadow array (a cube array when `cube`).
-uint64_t maxArrayBytes(const vk::Context& context, bool cube) {
+// maxResourceSize of one shadow image (a cube array when `cube`).
+uint64_t maxImageBytes(const vk::Context& context, VkFormat format, bool cube) {
     VkImageFormatProperties properties{};
-    vk::check(vkGetPhysicalDeviceImageFormatProperties(context.physicalDevice(), ShadowMaps::kFormat, VK_IMAGE_TYPE_2D,
+    vk::check(vkGetPhysicalDeviceImageFormatProperties(context.physicalDevice(), format, VK_IMAGE_TYPE_2D,
                                                        VK_IMAGE_TILING_OPTIMAL, kUsage,
                                                        cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0, &properties),
               "vkGetPhysicalDeviceImageFormatProperties");
@@ -47,7 +48,7 @@ bool supportsDeviceExtension(VkPhysicalDevice device, const char* name) {
 
 }  // namespace
 
-ShadowMemoryLimits ShadowMaps::memoryLimits(const vk::Context& context, PointShadowLayout pointLayout) {
+ShadowMemoryLimits ShadowMaps::memoryLimits(const vk::Context& context, const ShadowSettings& settings) {
     // A physical-device query: the budget structure needs the extension supported, not enabled.
     VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
     VkPhysicalDeviceMemoryProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2};
@@ -75,24 +76,23 @@ ShadowMemoryLimits ShadowMaps::memoryLimits(const vk::Context& context, PointSha
             limits.totalName = name;
         }
     }
-    limits.spotArray = maxArrayBytes(context, false);
-    limits.pointArray = maxArrayBytes(context, pointLayout == PointShadowLayout::Cube);
+    VkPhysicalDeviceProperties device{};
+    vkGetPhysicalDeviceProperties(context.physicalDevice(), &device);
+    limits.atlasSide = device.limits.maxImageDimension2D;
+    limits.atlasBytes = maxImageBytes(context, format(settings.format), false);
+    limits.cubeArrayBytes = maxImageBytes(context, format(settings.format), true);
     return limits;
 }
 
 ShadowMaps::ShadowMaps(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings) {
-    checkShadowMapsFit(plan, settings, memoryLimits(context, settings.pointLayout));
-    const uint32_t res = settings.resolution;
-    const bool cubes = settings.pointLayout == PointShadowLayout::Cube;
-    // Only what the frame uses: a 1x1 placeholder (six layers for a cube) for an empty array.
-    spots_ = plan.shadowedSpots > 0 ? depthArray(context, res, plan.shadowedSpots, false, "spot shadows")
-                                    : depthArray(context, 1, 1, false, "spot shadows (placeholder)");
-    pointCubes_ = cubes && plan.shadowedPoints > 0
-                      ? depthArray(context, res, 6 * plan.shadowedPoints, true, "point shadow cubes")
-                      : depthArray(context, 1, 6, true, "point shadow cubes (placeholder)");
-    pointSlices_ = !cubes && plan.shadowedPoints > 0
-                       ? depthArray(context, res, 6 * plan.shadowedPoints, false, "point shadow slices")
-                       : depthArray(context, 1, 1, false, "point shadow slices (placeholder)");
+    const VkFormat depthFormat = format(settings.format);
+    // Only what the frame uses: a 1x1 placeholder (six layers for a cube) for an empty image.
+    atlas_ = plan.atlas.width > 0
+                 ? depthImage(context, depthFormat, plan.atlas.width, plan.atlas.height, 1, false, "shadow atlas")
+                 : depthImage(context, depthFormat, 1, 1, 1, false, "shadow atlas (placeholder)");
+    pointCubes_ = plan.cubeResolution > 0 ? depthImage(context, depthFormat, plan.cubeResolution, plan.cubeResolution,
+                                                       6 * plan.shadowedPoints, true, "point shadow cubes")
+                                          : depthImage(context, depthFormat, 1, 1, 6, true, "point shadow cubes (placeholder)");
 
     // Compare sampler: bilinear, so one tap is the hardware's 2x2 PCF; outside the map is "far"
     // (the white border), i.e. lit.
@@ -112,7 +112,7 @@ ShadowMaps::ShadowMaps(const vk::Context& context, const ShadowPlan& plan, const
 }
 
 uint64_t ShadowMaps::allocatedBytes() const {
-    return spots_.allocatedBytes() + pointCubes_.allocatedBytes() + pointSlices_.allocatedBytes();
+    return atlas_.allocatedBytes() + pointCubes_.allocatedBytes();
 }
 
 }  // namespace punctual::render

@@ -1,7 +1,8 @@
 #pragma once
-// The shadow stage's depth arrays and their compare sampler: spot lights in a 2D array (one layer
-// each), point lights in a cube array (six faces each) or six slices of a 2D array. Sized to the
-// shadowed lights present (a 1x1 placeholder when there are none).
+// The shadow stage's storage and its compare sampler: the atlas (lights/shadow_atlas.h), one 2D
+// depth image holding every spot view and point slice at its own resolution, and, for the cube
+// layout (fixed resolution only), a cube depth array with six faces per shadowed point. Each is
+// sized to what the plan gives storage (a 1x1 placeholder when nothing does).
 #include <cstdint>
 
 #include <vulkan/vulkan.h>
@@ -14,29 +15,28 @@ namespace punctual::render {
 
 class ShadowMaps {
 public:
-    // Throws Error("--shadow-res N", ...) (checkShadowMapsFit) before allocating anything when
-    // the arrays do not fit memoryLimits().
+    // `plan` must be sized (sizeShadowViews, against memoryLimits()).
     ShadowMaps(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings);
 
-    // What the device can hold: all arrays together in the largest device-local heap (the
+    // What the device can hold: everything together in the largest device-local heap (the
     // largest heap, where none is device-local), or, where VK_EXT_memory_budget is supported,
-    // that heap's budget for this process when smaller; each array alone up to maxResourceSize
-    // for its format, usage and flags.
-    static ShadowMemoryLimits memoryLimits(const vk::Context& context, PointShadowLayout pointLayout);
+    // that heap's budget for this process when smaller; the atlas's side up to
+    // maxImageDimension2D; each image alone up to maxResourceSize for its format, usage and flags.
+    static ShadowMemoryLimits memoryLimits(const vk::Context& context, const ShadowSettings& settings);
 
-    const vk::Image& spots() const { return spots_; }
+    static VkFormat format(ShadowFormat format) {
+        return format == ShadowFormat::D16 ? VK_FORMAT_D16_UNORM : VK_FORMAT_D32_SFLOAT;
+    }
+
+    const vk::Image& atlas() const { return atlas_; }
     const vk::Image& pointCubes() const { return pointCubes_; }
-    const vk::Image& pointSlices() const { return pointSlices_; }
     VkSampler sampler() const { return sampler_; }
-    // Device memory of the three arrays, placeholders included.
+    // Device memory of the two images, placeholders included.
     uint64_t allocatedBytes() const;
 
-    static constexpr VkFormat kFormat = VK_FORMAT_D32_SFLOAT;
-
 private:
-    vk::Image spots_;
+    vk::Image atlas_;
     vk::Image pointCubes_;
-    vk::Image pointSlices_;
     vk::Handle<VkSampler> sampler_;
 };
 

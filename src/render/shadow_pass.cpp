@@ -34,31 +34,43 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
     if (!views.empty()) views_.write(views.data(), views.size() * sizeof(gpu::GpuShadowView));
 
     const VkDevice device = context.device();
+    const VkFormat format = ShadowMaps::format(settings.format);
     vk::RenderPassDesc passDesc;
-    passDesc.depthFormat = ShadowMaps::kFormat;
+    passDesc.depthFormat = format;
     passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_CLEAR;
     passDesc.depthInitialLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     passDesc.depthFinalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     renderPass_ = vk::createRenderPass(device, passDesc);
-    for (uint32_t i = 0; i < plan.views.size(); ++i) {
-        const ShadowView& view = plan.views[i];
-        if (!view.isPoint && view.casters.empty()) continue;  // never sampled
-        const vk::Image& image = !view.isPoint ? maps_.spots()
-                                 : settings.pointLayout == PointShadowLayout::Cube ? maps_.pointCubes()
-                                                                                    : maps_.pointSlices();
+    auto addTarget = [&](const vk::Image& image, uint32_t layer, uint32_t width, uint32_t height) -> Target& {
         VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         viewInfo.image = image.handle();
         viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        viewInfo.format = ShadowMaps::kFormat;
-        viewInfo.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, view.layer, 1};
+        viewInfo.format = format;
+        viewInfo.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, layer, 1};
         VkImageView layerView = VK_NULL_HANDLE;
         vk::check(vkCreateImageView(device, &viewInfo, nullptr, &layerView), "vkCreateImageView");
         Target target;
         target.view = vk::Handle<VkImageView>(device, layerView, vkDestroyImageView);
-        target.framebuffer =
-            vk::createFramebuffer(device, renderPass_, {&layerView, 1}, settings.resolution, settings.resolution);
-        target.planView = i;
+        target.framebuffer = vk::createFramebuffer(device, renderPass_, {&layerView, 1}, width, height);
+        target.width = width;
+        target.height = height;
         targets_.push_back(std::move(target));
+        return targets_.back();
+    };
+    if (plan.atlas.width > 0) {
+        Target& atlas = addTarget(maps_.atlas(), 0, plan.atlas.width, plan.atlas.height);
+        for (uint32_t i = 0; i < plan.views.size(); ++i) {
+            const ShadowView& view = plan.views[i];
+            if (view.rendered() && view.rect.size > 0) atlas.planViews.push_back(i);
+        }
+    }
+    if (plan.cubeResolution > 0) {
+        for (uint32_t i = 0; i < plan.views.size(); ++i) {
+            const ShadowView& view = plan.views[i];
+            if (!view.isPoint) continue;
+            Target& face = addTarget(maps_.pointCubes(), view.cubeLayer, plan.cubeResolution, plan.cubeResolution);
+            if (view.rendered()) face.planViews.push_back(i);
+        }
     }
 }
 
@@ -66,12 +78,10 @@ void ShadowPass::addBindings(BindingTable& table) const {
     const VkImageLayout readOnly = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     table.addBuffer(PUNCTUAL_BINDING_SHADOW_VIEWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
                     views_);
-    table.addImage(PUNCTUAL_BINDING_SPOT_SHADOWS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(), maps_.spots().view(),
+    table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(), maps_.atlas().view(),
                    readOnly);
     table.addImage(PUNCTUAL_BINDING_POINT_SHADOWS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(),
                    maps_.pointCubes().view(), readOnly);
-    table.addImage(PUNCTUAL_BINDING_POINT_SLICES, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(),
-                   maps_.pointSlices().view(), readOnly);
 }
 
 void ShadowPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
@@ -93,11 +103,19 @@ void ShadowPass::createPipelines(const vk::Context& context, const FrameBindings
     pipeline_ = vk::createGraphicsPipeline(device, pipelineDesc);
 }
 
+void ShadowPass::drawView(const FrameContext& frame, const ShadowView& view) const {
+    const VkCommandBuffer cmd = frame.cmd;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_);
+    vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::mat4), &view.gpu.viewProjection);
+    frame.scene.drawObjects(cmd, pipelineLayout_, view.casters, kObjectIndexOffset, VK_SHADER_STAGE_VERTEX_BIT);
+}
+
 void ShadowPass::record(const FrameContext& frame) const {
     const VkCommandBuffer cmd = frame.cmd;
-    const std::array<const vk::Image*, 3> arrays = {&maps_.spots(), &maps_.pointCubes(), &maps_.pointSlices()};
-    for (const vk::Image* image : arrays) {
-        // Last frame's contents are not needed: every read layer is cleared or rendered below.
+    const std::array<const vk::Image*, 2> images = {&maps_.atlas(), &maps_.pointCubes()};
+    for (const vk::Image* image : images) {
+        // Last frame's contents are not needed: every read texel is cleared or rendered below.
         vk::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
                          VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
@@ -106,18 +124,25 @@ void ShadowPass::record(const FrameContext& frame) const {
     VkClearValue clear{};
     clear.depthStencil = {1.0f, 0};
     for (const Target& target : targets_) {
-        const ShadowView& view = plan_.views[target.planView];
-        vk::beginRenderPass(cmd, renderPass_, target.framebuffer, settings_.resolution, settings_.resolution, {&clear, 1});
-        if (!view.casters.empty()) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-            frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_);
-            vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::mat4),
-                               &view.gpu.viewProjection);
-            frame.scene.drawObjects(cmd, pipelineLayout_, view.casters, kObjectIndexOffset, VK_SHADER_STAGE_VERTEX_BIT);
+        vk::beginRenderPass(cmd, renderPass_, target.framebuffer, target.width, target.height, {&clear, 1});
+        for (uint32_t index : target.planViews) {
+            const ShadowView& view = plan_.views[index];
+            if (view.isPoint && settings_.pointLayout == PointShadowLayout::Cube) {
+                drawView(frame, view);  // the whole face; beginRenderPass set its viewport
+                continue;
+            }
+            // The view's square of the atlas: the viewport maps its clip space onto the square, the
+            // scissor keeps every fragment inside it.
+            const VkViewport viewport{float(view.rect.x), float(view.rect.y), float(view.rect.size),
+                                      float(view.rect.size), 0.0f, 1.0f};
+            const VkRect2D scissor{{int32_t(view.rect.x), int32_t(view.rect.y)}, {view.rect.size, view.rect.size}};
+            vkCmdSetViewport(cmd, 0, 1, &viewport);
+            vkCmdSetScissor(cmd, 0, 1, &scissor);
+            drawView(frame, view);
         }
         vkCmdEndRenderPass(cmd);
     }
-    for (const vk::Image* image : arrays) {
+    for (const vk::Image* image : images) {
         vk::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,

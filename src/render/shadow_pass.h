@@ -1,7 +1,9 @@
 #pragma once
-// The raster shadow stage: renders every shadow view of the plan with casters into the shadow
-// maps (ShadowMaps) and binds them, with the views' matrices, for the forward pass. A view without
-// casters draws nothing (spot layers are not even cleared: the shader never reads them).
+// The raster shadow stage: renders every shadow view of the plan with casters into its square of
+// the atlas, or its face of the cube array (ShadowMaps), and binds them, with the views'
+// records, for the forward pass. The atlas is cleared once and every view drawn in one render
+// pass, its viewport and scissor moving from square to square; each cube face is its own target.
+// A view without casters or storage draws nothing (the shader never reads it).
 #include <cstdint>
 #include <vector>
 
@@ -26,8 +28,9 @@ public:
     // With no shadowed light the stage only moves the placeholder maps into their layout: not a
     // pass worth timing.
     bool timed() const override { return !plan_.views.empty(); }
-    // Renders every view with casters, clears point faces without, and leaves all three arrays in
-    // SHADER_READ_ONLY_OPTIMAL for the forward pass.
+    // Renders every view with casters, clears the atlas and every cube face (the cube's hardware
+    // filtering reads across face edges), and leaves both images in SHADER_READ_ONLY_OPTIMAL for
+    // the forward pass.
     void record(const FrameContext& frame) const override;
     uint64_t memoryBytes() const override { return maps_.allocatedBytes(); }
 
@@ -37,8 +40,11 @@ private:
     struct Target {
         vk::Handle<VkImageView> view;
         vk::Handle<VkFramebuffer> framebuffer;
-        uint32_t planView = 0;  // index into plan_.views
+        uint32_t width = 0;
+        uint32_t height = 0;
+        std::vector<uint32_t> planViews;  // indices into plan_.views drawn into it
     };
+    void drawView(const FrameContext& frame, const ShadowView& view) const;
     const ShadowPlan& plan_;
     ShadowSettings settings_;
     ShadowMaps maps_;
@@ -46,7 +52,7 @@ private:
     vk::Handle<VkRenderPass> renderPass_;
     vk::Handle<VkPipelineLayout> pipelineLayout_;
     vk::Handle<VkPipeline> pipeline_;
-    std::vector<Target> targets_;
+    std::vector<Target> targets_;  // the atlas first (when it has storage), then the cube faces
 };
 
 }  // namespace punctual::render

@@ -31,8 +31,10 @@ static_assert(offsetof(GpuFrame, shadowMap) == 416);
 static_assert(offsetof(GpuFrame, shadowCounts) == 432);
 static_assert(sizeof(GpuFrame) == 448);
 
-static_assert(sizeof(GpuShadowView) == 80);
+static_assert(sizeof(GpuShadowView) == 112);
 static_assert(offsetof(GpuShadowView, params) == 64);
+static_assert(offsetof(GpuShadowView, atlasRect) == 80);
+static_assert(offsetof(GpuShadowView, texel) == 96);
 
 static_assert(sizeof(GpuDepthRange) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES);
 static_assert(offsetof(GpuDepthRange, sliceStartDepth) == 16);

@@ -21,7 +21,7 @@ ShadowRun renderAndValidateShadows(vk::Context& context, const Scene& scene, con
     run.lights = renderer.lights();
     run.plan = renderer.shadowPlan();
     const reference::EmbreeScene embree(scene);
-    run.validation = reference::validateShadows(embree, run.factors, run.lights, run.plan, settings.shadows);
+    run.validation = reference::validateShadows(embree, run.factors, run.lights, run.plan);
     return run;
 }
 

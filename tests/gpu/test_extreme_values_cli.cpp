@@ -11,6 +11,7 @@
 #include "gpu_test_support.h"
 #include "lights/shadow_setup.h"
 #include "render/shadow_maps.h"
+#include "scene/default_scene.h"
 
 namespace punctual {
 namespace {
@@ -64,30 +65,32 @@ TEST(ExtremeExposure, HugeIsWhiteWhereLitAndTinyIsBlack) {
     EXPECT_EQ(tinyNotBlack, 0u) << "pixels not black at --exposure 1e-30";
 }
 
-// The default scene shadows 32 spots and 8 points: 80 layers of 8192^2 x 4 bytes, 20 GiB. Lavapipe
-// has one 2 GiB heap (and images of at most 4 GiB), so the request fails there; a device with
-// room for it would render it, and the test is skipped (tests/unit/test_extreme_values.cpp covers
-// the check with made-up limits).
+// The default scene shadows every light, 64 spots and 32 points: 256 views of 8192^2 x 2 bytes,
+// 32 GiB, more than any single 2D image of lavapipe (16384^2 texels, 4 GiB) or its 2 GiB heap, so
+// the request fails there; a device with room for it would render it, and the test is skipped
+// (tests/unit/test_extreme_values.cpp covers the check with made-up limits).
 TEST(ExtremeShadowResolution, MapsLargerThanTheDeviceFailWithOneLine) {
     ShadowMemoryLimits limits;
     std::string expected;
     {
         auto context = testing::makeValidatedContext();
-        limits = render::ShadowMaps::memoryLimits(*context, PointShadowLayout::Cube);
-        ShadowPlan plan;
-        plan.shadowedSpots = PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS;
-        plan.shadowedPoints = PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS;
         ShadowSettings settings;
         settings.resolution = 8192;
+        limits = render::ShadowMaps::memoryLimits(*context, settings);
+        // The plan the command line makes (render --size 64x36 on the default scene).
+        const Scene scene = makeDefaultScene();
+        const float aspect = 64.0f / 36.0f;
+        FrameLights lights = setupFrameLights(scene, scene.camera.view, scene.camera.projection(aspect));
+        ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), settings);
         try {
-            checkShadowMapsFit(plan, settings, limits);
+            sizeShadowViews(plan, scene, lights, scene.camera.position(), 64, 36, settings, limits);
         } catch (const Error& e) {
             expected = e.what();
         }
         EXPECT_GT(limits.total, 0u);
         testing::expectNoValidationMessages(*context);
     }
-    if (expected.empty()) GTEST_SKIP() << "this device holds the 8192-texel maps of the default scene (20 GiB)";
+    if (expected.empty()) GTEST_SKIP() << "this device holds the 8192-texel maps of the default scene";
     testing::TempFolder folder;
     const std::string args = cat("render --validate --size 64x36 --shadow-res 8192 --out ", quoted(folder.file("out.png")),
                                  " --stats ", quoted(folder.file("stats.json")));

@@ -45,7 +45,7 @@ uint8_t factorAt(const ShadowRun& run, size_t pixel, uint32_t slot) {
 
 std::string describe(const ShadowSettings& settings) {
     return std::string(shadowFilterName(settings.filter)) + ", " + pointShadowLayoutName(settings.pointLayout) + ", " +
-           std::to_string(settings.resolution) + " texels";
+           shadowResolutionName(settings) + " texels, " + shadowFormatName(settings.format);
 }
 
 std::string describe(const reference::ShadowCounts& counts) {
@@ -102,7 +102,7 @@ size_t clippedCasterSamples(const Scene& scene, const ShadowPlan& plan, std::str
 TEST(ShadowValidation, DefaultSceneMisclassifiesAtMostHalfAPercent) {
     auto context = testing::makeValidatedContext();
     const Scene scene = makeDefaultScene();
-    const ShadowSettings defaults;  // 1024 texels, tent5, cube layout, default bias
+    const ShadowSettings defaults;  // auto resolution, every light, d16, tent5, slices, default bias
     const ShadowRun run = testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(320, 180, defaults));
     testing::saveShadowRun("shadow-default-scene", run);
     EXPECT_EQ(run.plan.shadowedSpots, uint32_t(PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS));
@@ -316,7 +316,7 @@ TEST(ShadowSeams, CubeSeamsNoWorseThanFaceInteriors) {
         const ShadowRun run =
             testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(320, 180, shadows));
         testing::saveShadowRun(std::string("shadow-seams-") + pointShadowLayoutName(layout), run);
-        const float seamTexels = shadows.penumbraTexels() + 1.0f;  // where the filter footprint crosses an edge
+        const float seamTexels = shadows.penumbraTexels(shadows.resolution) + 1.0f;  // where the filter footprint crosses an edge
         const SeamSplit split = splitBySeams(run, seamTexels, shadows.resolution);
         const double seamRate = split.seams.misclassifiedOutsideBand();
         const double interiorRate = split.interiors.misclassifiedOutsideBand();

@@ -33,7 +33,7 @@ TEST(ShippedScenes, SmallRoomRendersAndItsShadowsValidate) {
 
     const reference::EmbreeScene embree(scene);
     const reference::ShadowValidation validation = reference::validateShadows(
-        embree, brute.readShadowFactors(), brute.lights(), brute.shadowPlan(), settings.shadows);
+        embree, brute.readShadowFactors(), brute.lights(), brute.shadowPlan());
     EXPECT_GT(validation.overall.compared, 5000u);
     EXPECT_LE(validation.overall.misclassifiedOutsideBand(), 0.01);
 

@@ -52,34 +52,63 @@ TEST(ToneMapping, TheInputCapChangesNoOutput) {
 
 // ---- shadow-map memory --------------------------------------------------------------------------
 
+// `spots` spot views and six faces for each of `points` point lights, each with a caster (so each
+// needs storage in fixed mode).
 ShadowPlan planWith(uint32_t spots, uint32_t points) {
     ShadowPlan plan;
     plan.shadowedSpots = spots;
     plan.shadowedPoints = points;
+    ShadowView view;
+    view.casters = {0};
+    for (uint32_t s = 0; s < spots; ++s) plan.views.push_back(view);
+    view.isPoint = true;
+    for (uint32_t p = 0; p < 6 * points; ++p) plan.views.push_back(view);
     return plan;
 }
 
-TEST(ShadowMemory, BytesCountALayerPerSpotAndSixPerPoint) {
-    // 8192^2 texels x 4 bytes = 256 MiB a layer; 32 spots + 6 x 8 points = 80 layers = 20 GiB.
-    EXPECT_EQ(shadowMapBytes(planWith(32, 8), 8192), 20 * kGiB);
-    // 1024^2 x 4 = 4 MiB a layer; 1 spot + 6 = 7 layers.
-    EXPECT_EQ(shadowMapBytes(planWith(1, 1), 1024), 28ull << 20);
-    EXPECT_EQ(shadowMapBytes(planWith(0, 0), 8192), 0u);
+ShadowSettings d32(PointShadowLayout layout = PointShadowLayout::Slices) {
+    ShadowSettings settings;
+    settings.format = ShadowFormat::D32;
+    settings.pointLayout = layout;
+    return settings;
+}
+
+TEST(ShadowMemory, BytesCountASquarePerSpotAndSixPerPoint) {
+    // 8192^2 texels x 4 bytes = 256 MiB a view; 32 spots + 6 x 8 points = 80 views = 20 GiB, in the
+    // atlas (slices) or split between the atlas and the cube array: the same bytes.
+    EXPECT_EQ(shadowMapBytes(planWith(32, 8), d32(), 8192), 20 * kGiB);
+    EXPECT_EQ(shadowMapBytes(planWith(32, 8), d32(PointShadowLayout::Cube), 8192), 20 * kGiB);
+    // 16 bits a texel: half.
+    EXPECT_EQ(shadowMapBytes(planWith(32, 8), ShadowSettings{}, 8192), 10 * kGiB);
+    // 1024^2 x 4 = 4 MiB a view; 1 spot + 6 = 7 views.
+    EXPECT_EQ(shadowMapBytes(planWith(1, 1), d32(), 1024), 28ull << 20);
+    EXPECT_EQ(shadowMapBytes(planWith(0, 0), d32(), 8192), 0u);
+}
+
+TEST(ShadowMemory, ViewsWithoutCastersTakeNoAtlasStorage) {
+    ShadowPlan plan = planWith(4, 0);
+    plan.views[1].casters.clear();
+    plan.views[3].casters.clear();
+    EXPECT_EQ(shadowMapBytes(plan, d32(), 1024), 8ull << 20);
 }
 
 ShadowMemoryLimits heapOf(uint64_t bytes, const std::string& name = "the device's largest heap") {
     ShadowMemoryLimits limits;
     limits.total = bytes;
     limits.totalName = name;
+    limits.atlasSide = 1u << 20;  // no side limit unless a test sets one
     return limits;
 }
 
 // The error's whole line, or "no error".
-std::string errorOf(const ShadowPlan& plan, uint32_t resolution, const ShadowMemoryLimits& limits) {
-    ShadowSettings settings;
+std::string errorOf(ShadowPlan plan, uint32_t resolution, const ShadowMemoryLimits& limits,
+                    ShadowSettings settings = d32()) {
     settings.resolution = resolution;
+    FrameLights lights;
+    lights.packed.resize(1);
+    lights.sceneLightIndex.resize(1);
     try {
-        checkShadowMapsFit(plan, settings, limits);
+        sizeShadowViews(plan, Scene{}, lights, glm::vec3(0.0f), 64, 36, settings, limits);
     } catch (const Error& e) {
         return e.what();
     }
@@ -87,7 +116,7 @@ std::string errorOf(const ShadowPlan& plan, uint32_t resolution, const ShadowMem
 }
 
 TEST(ShadowMemory, ARequestOverTheHeapFailsWithOneClearLine) {
-    // 2048: 80 layers x 16 MiB = 1.25 GiB fits; 4096 (5 GiB) does not.
+    // 2048: 80 views x 16 MiB = 1.25 GiB fits; 4096 (5 GiB) does not.
     EXPECT_EQ(errorOf(planWith(32, 8), 8192, heapOf(2 * kGiB)),
               "--shadow-res 8192: the shadow maps of 32 spot and 8 point lights need 20.0 GiB, the device's "
               "largest heap has 2.0 GiB (at most --shadow-res 2048 fits)");
@@ -99,20 +128,31 @@ TEST(ShadowMemory, RequestsThatFitPass) {
     EXPECT_EQ(errorOf(planWith(32, 8), 1024, heapOf(2 * kGiB)), "no error");
 }
 
-TEST(ShadowMemory, AnArrayOverTheLargestImageFails) {
-    // Lavapipe's maxResourceSize is 4 GiB - 1: 32 spot layers at 8192 (8 GiB) exceed it even
-    // with a heap large enough for everything; 4096 (2 GiB) fits.
+TEST(ShadowMemory, AnImageOverTheLargestImageFails) {
+    // Lavapipe's maxResourceSize is 4 GiB - 1: 32 spot views at 8192 (8 GiB) exceed it even with
+    // a heap large enough for everything; 4096 (2 GiB) fits.
     ShadowMemoryLimits limits = heapOf(64 * kGiB);
-    limits.spotArray = 4 * kGiB - 1;
-    limits.pointArray = 4 * kGiB - 1;
+    limits.atlasBytes = 4 * kGiB - 1;
+    limits.cubeArrayBytes = 4 * kGiB - 1;
     EXPECT_EQ(errorOf(planWith(32, 0), 8192, limits),
-              "--shadow-res 8192: the spot shadow array (32 layers) needs 8.0 GiB, the device's largest such image "
-              "holds 4.0 GiB (at most --shadow-res 4096 fits)");
-    // 8 points: 48 layers, 12 GiB at 8192, 3 GiB at 4096.
-    EXPECT_EQ(errorOf(planWith(1, 8), 8192, limits),
-              "--shadow-res 8192: the point shadow array (48 layers) needs 12.0 GiB, the device's largest such "
+              "--shadow-res 8192: the shadow atlas needs 8.0 GiB, the device's largest such image holds 4.0 GiB "
+              "(at most --shadow-res 4096 fits)");
+    // Cube layout, 8 points: 48 faces in the cube array, 12 GiB at 8192, 3 GiB at 4096.
+    EXPECT_EQ(errorOf(planWith(1, 8), 8192, limits, d32(PointShadowLayout::Cube)),
+              "--shadow-res 8192: the point shadow cube array (48 layers) needs 12.0 GiB, the device's largest such "
               "image holds 4.0 GiB (at most --shadow-res 4096 fits)");
-    EXPECT_EQ(errorOf(planWith(32, 8), 4096, limits), "no error");
+    EXPECT_EQ(errorOf(planWith(32, 8), 4096, limits, d32(PointShadowLayout::Cube)), "no error");
+}
+
+TEST(ShadowMemory, AnAtlasWiderThanTheDeviceAllowsFails) {
+    // 16384-texel sides: 80 views of 2048^2 need 80 pages of 2048, 8 to a row, 10 rows = 20480
+    // texels: too tall. 1024: 80 pages of 1024, 16 to a row, 5 rows: fits.
+    ShadowMemoryLimits limits = heapOf(64 * kGiB);
+    limits.atlasSide = 16384;
+    EXPECT_EQ(errorOf(planWith(32, 8), 2048, limits),
+              "--shadow-res 2048: the shadow atlas would be wider or taller than the device's largest 2D image "
+              "(16384 texels) (at most --shadow-res 1024 fits)");
+    EXPECT_EQ(errorOf(planWith(32, 8), 1024, limits), "no error");
 }
 
 TEST(ShadowMemory, WhenNothingFitsTheMessageSuggestsNoResolution) {

@@ -53,7 +53,12 @@ TEST(ShadowPlan, CapsChooseTheMostImportantLights) {
     ASSERT_EQ(lights.spotCount, 43u) << "every spot should be in view and under the light caps";
     ASSERT_EQ(lights.pointCount, 15u);
     const glm::vec3 camera = scene.camera.position();
-    const ShadowPlan plan = planShadows(scene, lights, camera, ShadowSettings{});
+    ShadowSettings settings;  // --shadowed 32,8
+    settings.maxShadowedSpots = 32;
+    settings.maxShadowedPoints = 8;
+    settings.resolution = 256;
+    ShadowPlan plan = planShadows(scene, lights, camera, settings);
+    sizeShadowViews(plan, scene, lights, camera, 160, 90, settings, ShadowMemoryLimits{});
 
     EXPECT_EQ(plan.shadowedSpots, 32u);
     EXPECT_EQ(plan.shadowedPoints, 8u);
@@ -92,6 +97,23 @@ TEST(ShadowPlan, CapsChooseTheMostImportantLights) {
     }
 }
 
+TEST(ShadowPlan, EveryLightIsShadowedByDefault) {
+    Scene scene = planScene();
+    for (int i = 0; i < 40; ++i) {
+        scene.lights.push_back(study::spotLight(glm::vec3(-8.0f + 0.4f * float(i), 3.0f, 0.0f),
+                                                glm::vec3(0.0f, -1.0f, 0.0f), 6.0f, 1.0f, 0.3f, 0.5f));
+    }
+    for (int i = 0; i < 12; ++i) {
+        scene.lights.push_back(study::pointLight(glm::vec3(-6.0f + float(i), 2.0f, 4.0f), 5.0f, 1.0f));
+    }
+    FrameLights lights = frameLights(scene);
+    const ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), ShadowSettings{});
+    EXPECT_EQ(plan.shadowedSpots, 40u);
+    EXPECT_EQ(plan.shadowedPoints, 12u);
+    EXPECT_EQ(plan.droppedByCap, 0u);
+    EXPECT_EQ(plan.views.size(), 40u + 6u * 12u);
+}
+
 TEST(ShadowPlan, SpotWithoutCasterIsSkipped) {
     Scene scene = planScene();
     // Pointing up from above the floor: nothing in its frustum. The other looks down at the floor.
@@ -99,8 +121,13 @@ TEST(ShadowPlan, SpotWithoutCasterIsSkipped) {
     scene.lights.push_back(study::spotLight(glm::vec3(2.0f, 3.0f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f), 6.0f, 10.0f, 0.3f, 0.5f));
     FrameLights lights = frameLights(scene);
     ASSERT_EQ(lights.spotCount, 2u);
-    const ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), ShadowSettings{});
+    ShadowSettings settings;
+    settings.resolution = 1024;
+    ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), settings);
+    sizeShadowViews(plan, scene, lights, scene.camera.position(), 160, 90, settings, ShadowMemoryLimits{});
     ASSERT_EQ(plan.views.size(), 2u);
+    EXPECT_EQ(plan.views[0].resolution, 0u) << "no caster: no storage";
+    EXPECT_EQ(plan.views[1].resolution, 1024u);
     EXPECT_EQ(plan.views[0].gpu.params.x, -1.0f);
     EXPECT_TRUE(plan.views[0].casters.empty());
     EXPECT_GE(plan.views[1].gpu.params.x, 0.0f);

@@ -115,16 +115,15 @@ TEST(VariantTables, ShadowFilterFootprints) {
         {ShadowFilter::Tent7, {3.5f, 36u}}};
     for (const auto& [filter, footprint] : expected) {
         settings.filter = filter;
-        EXPECT_EQ(settings.penumbraTexels(), footprint.first) << shadowFilterName(filter);
+        EXPECT_EQ(settings.penumbraTexels(1024), footprint.first) << shadowFilterName(filter);
         EXPECT_EQ(settings.filterTaps(), footprint.second) << shadowFilterName(filter);
     }
     // The disk's come from its settings: radius 2.5/1024 of the map at 1024 texels is 2.5 texels.
     settings.filter = ShadowFilter::Disk;
-    EXPECT_EQ(settings.penumbraTexels(), 2.5f);
+    EXPECT_EQ(settings.penumbraTexels(1024), 2.5f);
     EXPECT_EQ(settings.filterTaps(), 16u);
-    settings.resolution = 2048;
     settings.diskSamples = 9;
-    EXPECT_EQ(settings.penumbraTexels(), 5.0f);
+    EXPECT_EQ(settings.penumbraTexels(2048), 5.0f);
     EXPECT_EQ(settings.filterTaps(), 9u);
 }
 
