@@ -15,6 +15,7 @@
 #include "shading.h"
 #include "culling.h"
 #include "shadows.h"
+#include "shadow_tent.h"
 
 // Depth test before shading: only the visible fragment of each pixel runs (EQUAL against the
 // prepass). Without it, the statistics variant's buffer writes would make drivers test depth late

@@ -16,41 +16,35 @@ float hashToUnit(vec3 p) {
 // C++ table (lights/shadow_filters.h) by a unit test. A value without a case takes no samples and
 // sets unknownVariant (forward.frag), which shades magenta: it never passes for another filter.
 
-// Tent filters: (N - 1) x (N - 1) hardware bilinear compare taps one texel apart, weighted
-// 1, 2, ..., 2, 1 along each axis. Each tap already filters 2 x 2 texels, so the footprint is
-// N x N texels and the weights fall off linearly towards its edge. 0 for the other filters.
-const uint kTentTaps = SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_TENT3 ? 2u
-                     : SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_TENT5 ? 4u
-                     : SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_TENT7 ? 6u
-                     : 0u;
-
-float tentWeight(uint i) { return float(min(i + 1u, kTentTaps - i)); }
-
-// The filter's sample offsets in shadow-map UV units, one at a time: `count` samples with
-// weights, so 2D layers and cube faces share one loop.
+// The filter's samples, one at a time: `count` samples with offsets and weights, so 2D layers and
+// cube faces share one loop. The tents are Unity's (shadow_tent.h): ((N + 1) / 2)^2 bilinear
+// compare fetches placed and weighted from where the sample point falls inside its texel, which
+// weigh every texel of the footprint by the continuous N x N tent's integral over it.
 uint filterSampleCount() {
     switch (SHADOW_FILTER) {
         case PUNCTUAL_SHADOW_FILTER_HW: return 1u;
-        case PUNCTUAL_SHADOW_FILTER_TENT3:
-        case PUNCTUAL_SHADOW_FILTER_TENT5:
-        case PUNCTUAL_SHADOW_FILTER_TENT7: return kTentTaps * kTentTaps;
+        case PUNCTUAL_SHADOW_FILTER_TENT3: return tentFetchCount(3u);
+        case PUNCTUAL_SHADOW_FILTER_TENT5: return tentFetchCount(5u);
+        case PUNCTUAL_SHADOW_FILTER_TENT7: return tentFetchCount(7u);
         case PUNCTUAL_SHADOW_FILTER_DISK: return SHADOW_SAMPLES;
         default: unknownVariant = true; return 0u;
     }
 }
 
-// Offset (xy, UV units) and weight (z) of sample i. `angle` rotates the disk per pixel.
-vec3 filterSample(uint i, float angle) {
+// Tent fetch i around the shadow-map position uv: offset (xy, UV units) and weight (z).
+vec3 tentSample(uint n, uint i, vec2 uv) {
+    vec3 fetch = tentFetch(uv * frame.shadowMap.x, n, i);
+    return vec3(fetch.xy * frame.shadowMap.y, fetch.z);
+}
+
+// Offset (xy, UV units) and weight (z) of sample i around the shadow-map position uv (in [0, 1]
+// over the layer or cube face). `angle` rotates the disk per pixel.
+vec3 filterSample(uint i, float angle, vec2 uv) {
     switch (SHADOW_FILTER) {
         case PUNCTUAL_SHADOW_FILTER_HW: return vec3(0.0, 0.0, 1.0);
-        case PUNCTUAL_SHADOW_FILTER_TENT3:
-        case PUNCTUAL_SHADOW_FILTER_TENT5:
-        case PUNCTUAL_SHADOW_FILTER_TENT7: {
-            uint x = i % kTentTaps;
-            uint y = i / kTentTaps;
-            vec2 offset = (vec2(x, y) - 0.5 * float(kTentTaps - 1u)) * frame.shadowMap.y;
-            return vec3(offset, tentWeight(x) * tentWeight(y));
-        }
+        case PUNCTUAL_SHADOW_FILTER_TENT3: return tentSample(3u, i, uv);
+        case PUNCTUAL_SHADOW_FILTER_TENT5: return tentSample(5u, i, uv);
+        case PUNCTUAL_SHADOW_FILTER_TENT7: return tentSample(7u, i, uv);
         case PUNCTUAL_SHADOW_FILTER_DISK: {
             // Vogel disk: radius sqrt((i + 0.5) / N) of the full radius, golden-angle steps, so
             // samples cover the disk evenly for any N.
@@ -66,22 +60,25 @@ float filterLayer(sampler2DArrayShadow map, vec2 uv, float layer, float referenc
     float sum = 0.0;
     float weights = 0.0;
     for (uint i = 0u; i < filterSampleCount(); ++i) {
-        vec3 s = filterSample(i, angle);
+        vec3 s = filterSample(i, angle, uv);
         sum += s.z * texture(map, vec4(uv + s.xy, layer, reference));
         weights += s.z;
     }
     return sum / weights;
 }
 
-// Cube faces: a UV offset d on face f moves the lookup direction by 2 d |ma| along the face's
+// Cube faces: the direction's position on face f is uv = (sc / |ma| + 1) / 2 with sc = r.U,
+// tc = r.V (shadows.h), and a UV offset d moves the lookup direction by 2 d |ma| along the face's
 // U or V axis (the face spans [-1, 1] in sc / |ma| over UV [0, 1]).
 float filterCube(vec3 direction, uint face, float cube, float reference, float angle) {
-    vec3 u = cubeFaceU(face) * (2.0 * abs(dot(direction, cubeFaceAxis(face))));
-    vec3 v = cubeFaceV(face) * (2.0 * abs(dot(direction, cubeFaceAxis(face))));
+    float major = abs(dot(direction, cubeFaceAxis(face)));
+    vec2 uv = (vec2(dot(direction, cubeFaceU(face)), dot(direction, cubeFaceV(face))) / major + 1.0) * 0.5;
+    vec3 u = cubeFaceU(face) * (2.0 * major);
+    vec3 v = cubeFaceV(face) * (2.0 * major);
     float sum = 0.0;
     float weights = 0.0;
     for (uint i = 0u; i < filterSampleCount(); ++i) {
-        vec3 s = filterSample(i, angle);
+        vec3 s = filterSample(i, angle, uv);
         sum += s.z * texture(pointShadows, vec4(direction + u * s.x + v * s.y, cube), reference);
         weights += s.z;
     }
