@@ -11,6 +11,7 @@
 // entry whose shader case is missing) shades magenta wherever it is used (every pixel for a light
 // list, every shadow lookup for a filter or layout) instead of passing for another variant.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 #include "gpu_types.h"
 #include "shading.h"
 #include "culling.h"

@@ -56,10 +56,16 @@ vec3 filterSample(uint i, float angle, vec2 uv) {
     }
 }
 
+// [[dont_unroll]] on the two filter loops below is a lavapipe tuning, measured (bench/RESULTS.md,
+// "Tent filters as the seed computes them"): llvmpipe fully unrolls loops of up to 32 iterations
+// (its NIR max_unroll_iterations), and the unrolled sample loops ran up to 2x slower than rolled
+// ones with twice the samples (the old 16-tap tent5: 440 ms forward against 260 ms for the 36-tap
+// tent7; the 32-sample disk 540-610 ms against 283 ms for 33 samples). Kept rolled, the cost grows
+// with the taps. A GPU driver may unroll anyway; the attribute is only a hint to the compiler.
 float filterLayer(sampler2DArrayShadow map, vec2 uv, float layer, float reference, float angle) {
     float sum = 0.0;
     float weights = 0.0;
-    for (uint i = 0u; i < filterSampleCount(); ++i) {
+    [[dont_unroll]] for (uint i = 0u; i < filterSampleCount(); ++i) {
         vec3 s = filterSample(i, angle, uv);
         sum += s.z * texture(map, vec4(uv + s.xy, layer, reference));
         weights += s.z;
@@ -77,7 +83,7 @@ float filterCube(vec3 direction, uint face, float cube, float reference, float a
     vec3 v = cubeFaceV(face) * (2.0 * major);
     float sum = 0.0;
     float weights = 0.0;
-    for (uint i = 0u; i < filterSampleCount(); ++i) {
+    [[dont_unroll]] for (uint i = 0u; i < filterSampleCount(); ++i) {
         vec3 s = filterSample(i, angle, uv);
         sum += s.z * texture(pointShadows, vec4(direction + u * s.x + v * s.y, cube), reference);
         weights += s.z;
