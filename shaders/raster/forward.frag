@@ -11,10 +11,12 @@
 // entry whose shader case is missing) shades magenta wherever it is used (every pixel for a light
 // list, every shadow lookup for a filter or layout) instead of passing for another variant.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 #include "gpu_types.h"
 #include "shading.h"
 #include "culling.h"
 #include "shadows.h"
+#include "shadow_tent.h"
 
 // Depth test before shading: only the visible fragment of each pixel runs (EQUAL against the
 // prepass). Without it, the statistics variant's buffer writes would make drivers test depth late
@@ -80,12 +82,17 @@ uint pixelGridCell() {
 
 #include "shadow_sampling.glsl"
 
-// One light's contribution, with its shadow where it casts one and reaches this point (the
-// lookup is skipped where the attenuation is zero or the light has no shadow).
+// One light's contribution, with its shadow where it casts one and reaches this point. The lookup
+// is skipped where the light has no shadow and wherever the shadow cannot change the result:
+// where the attenuation is zero, and where the surface faces away from the light (facesLight, the
+// test shadeBrdf makes on the same normal and direction, so its result is 0 whatever the shadow
+// and the image stays bit-identical). The validation variant then leaves the light's factor
+// "not reached", as validation skips such pixels too.
 vec3 shadeLight(Surface surface, GpuPunctualLight light) {
     LightSample arrival = sampleLight(light, surface.position);
     float shadow = 1.0;
-    if (SHADOWS && arrival.attenuation > 0.0 && light.angleOffsetShadow.y >= 0.0) {
+    if (SHADOWS && arrival.attenuation > 0.0 && light.angleOffsetShadow.y >= 0.0 &&
+        facesLight(surface, arrival.toLight)) {
         shadow = shadowVisibility(light, arrival.toLight, surface.position, surface.normal);
         if (WRITE_SHADOW_FACTORS) {
             // The light's slot: its view index for spots; shadowed spots + cube index for points.

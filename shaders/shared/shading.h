@@ -96,11 +96,17 @@ PUNCTUAL_FN vec3 fresnelSchlick(vec3 f0, float vDotH) {
     return f0 + (vec3(1.0f) - f0) * f;
 }
 
+// Whether light arriving along `toLight` can reflect at all: N.L > 0. Where it is false (N.L <= 0),
+// shadeBrdf returns exactly 0 whatever the light's radiance, so a caller may skip work that only
+// scales that radiance (the shadow lookup). (For a NaN N.L it is false too, and shadeBrdf returns
+// NaN, again whatever the radiance.)
+PUNCTUAL_FN bool facesLight(Surface s, vec3 toLight) { return dot(s.normal, toLight) > 0.0f; }
+
 // Radiance reflected towards the eye from light arriving along `toLight` with irradiance-scale
 // `lightRadiance` (colour x intensity x attenuation): (diffuse/pi + D V F) x E x NoL.
 PUNCTUAL_FN vec3 shadeBrdf(Surface s, vec3 toLight, vec3 lightRadiance) {
     float nDotL = dot(s.normal, toLight);
-    if (nDotL <= 0.0f) return vec3(0.0f);
+    if (nDotL <= 0.0f) return vec3(0.0f);  // !facesLight
     vec3 h = normalize(s.viewDir + toLight);
     float nDotV = max(dot(s.normal, s.viewDir), 1e-4f);
     float nDotH = saturate1(dot(s.normal, h));

@@ -16,42 +16,36 @@ float hashToUnit(vec3 p) {
 // C++ table (lights/shadow_filters.h) by a unit test. A value without a case takes no samples and
 // sets unknownVariant (forward.frag), which shades magenta: it never passes for another filter.
 
-// Tent filters: (N - 1) x (N - 1) hardware bilinear compare taps one texel apart, weighted
-// 1, 2, ..., 2, 1 along each axis. Each tap already filters 2 x 2 texels, so the footprint is
-// N x N texels and the weights fall off linearly towards its edge. 0 for the other filters.
-const uint kTentTaps = SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_TENT3 ? 2u
-                     : SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_TENT5 ? 4u
-                     : SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_TENT7 ? 6u
-                     : 0u;
-
-float tentWeight(uint i) { return float(min(i + 1u, kTentTaps - i)); }
-
-// The filter's sample offsets in shadow-map UV units, one at a time: `count` samples with
-// weights, so 2D layers and cube faces share one loop.
+// The filter's samples, one at a time: `count` samples with offsets and weights, so 2D layers and
+// cube faces share one loop. The tents are Unity's (shadow_tent.h): ((N + 1) / 2)^2 bilinear
+// compare fetches placed and weighted from where the sample point falls inside its texel, which
+// weigh every texel of the footprint by the continuous N x N tent's integral over it.
 uint filterSampleCount() {
     switch (SHADOW_FILTER) {
         case PUNCTUAL_SHADOW_FILTER_HW: return 1u;
-        case PUNCTUAL_SHADOW_FILTER_TENT3:
-        case PUNCTUAL_SHADOW_FILTER_TENT5:
-        case PUNCTUAL_SHADOW_FILTER_TENT7: return kTentTaps * kTentTaps;
+        case PUNCTUAL_SHADOW_FILTER_TENT3: return tentFetchCount(3u);
+        case PUNCTUAL_SHADOW_FILTER_TENT5: return tentFetchCount(5u);
+        case PUNCTUAL_SHADOW_FILTER_TENT7: return tentFetchCount(7u);
         case PUNCTUAL_SHADOW_FILTER_DISK: return SHADOW_SAMPLES;
         default: unknownVariant = true; return 0u;
     }
 }
 
-// Offset (xy, UV units of a view of `texelSize` = 1 / resolution) and weight (z) of sample i.
-// `angle` rotates the disk per pixel.
-vec3 filterSample(uint i, float angle, float texelSize) {
+// Tent fetch i around the position uv of a view `resolution` texels a side: offset (xy, UV units)
+// and weight (z).
+vec3 tentSample(uint n, uint i, vec2 uv, float resolution) {
+    vec3 fetch = tentFetch(uv * resolution, n, i);
+    return vec3(fetch.xy / resolution, fetch.z);
+}
+
+// Offset (xy, UV units) and weight (z) of sample i around the position uv (in [0, 1] over the view
+// or cube face, `resolution` texels a side). `angle` rotates the disk per pixel.
+vec3 filterSample(uint i, float angle, vec2 uv, float resolution) {
     switch (SHADOW_FILTER) {
         case PUNCTUAL_SHADOW_FILTER_HW: return vec3(0.0, 0.0, 1.0);
-        case PUNCTUAL_SHADOW_FILTER_TENT3:
-        case PUNCTUAL_SHADOW_FILTER_TENT5:
-        case PUNCTUAL_SHADOW_FILTER_TENT7: {
-            uint x = i % kTentTaps;
-            uint y = i / kTentTaps;
-            vec2 offset = (vec2(x, y) - 0.5 * float(kTentTaps - 1u)) * texelSize;
-            return vec3(offset, tentWeight(x) * tentWeight(y));
-        }
+        case PUNCTUAL_SHADOW_FILTER_TENT3: return tentSample(3u, i, uv, resolution);
+        case PUNCTUAL_SHADOW_FILTER_TENT5: return tentSample(5u, i, uv, resolution);
+        case PUNCTUAL_SHADOW_FILTER_TENT7: return tentSample(7u, i, uv, resolution);
         case PUNCTUAL_SHADOW_FILTER_DISK: {
             // Vogel disk: radius sqrt((i + 0.5) / N) of the full radius, golden-angle steps, so
             // samples cover the disk evenly for any N.
@@ -62,6 +56,13 @@ vec3 filterSample(uint i, float angle, float texelSize) {
         default: unknownVariant = true; return vec3(0.0);
     }
 }
+
+// [[dont_unroll]] on the two filter loops below is a lavapipe tuning, measured (bench/RESULTS.md,
+// "Tent filters as the seed computes them"): llvmpipe fully unrolls loops of up to 32 iterations
+// (its NIR max_unroll_iterations), and the unrolled sample loops ran up to 2x slower than rolled
+// ones with twice the samples (the old 16-tap tent5: 440 ms forward against 260 ms for the 36-tap
+// tent7; the 32-sample disk 540-610 ms against 283 ms for 33 samples). Kept rolled, the cost grows
+// with the taps. A GPU driver may unroll anyway; the attribute is only a hint to the compiler.
 
 // Filters the view's square of the atlas around `uv` (the view's own UV, 0..1 across its square).
 // Samples are clamped half a texel inside the square, so a bilinear tap never reads a neighbour's
@@ -74,8 +75,8 @@ float filterAtlas(GpuShadowView view, vec2 uv, float reference, float angle) {
     vec2 highest = vec2(1.0 - 0.5 * texelSize);
     float sum = 0.0;
     float weights = 0.0;
-    for (uint i = 0u; i < filterSampleCount(); ++i) {
-        vec3 s = filterSample(i, angle, texelSize);
+    [[dont_unroll]] for (uint i = 0u; i < filterSampleCount(); ++i) {
+        vec3 s = filterSample(i, angle, uv, view.texel.x);
         vec2 atlasUv = view.atlasRect.xy + clamp(uv + s.xy, lowest, highest) * view.atlasRect.zw;
         sum += s.z * texture(shadowAtlas, vec3(atlasUv, reference));
         weights += s.z;
@@ -83,15 +84,18 @@ float filterAtlas(GpuShadowView view, vec2 uv, float reference, float angle) {
     return sum / weights;
 }
 
-// Cube faces: a UV offset d on face f moves the lookup direction by 2 d |ma| along the face's
+// Cube faces: the direction's position on face f is uv = (sc / |ma| + 1) / 2 with sc = r.U,
+// tc = r.V (shadows.h), and a UV offset d moves the lookup direction by 2 d |ma| along the face's
 // U or V axis (the face spans [-1, 1] in sc / |ma| over UV [0, 1]).
-float filterCube(vec3 direction, uint face, float cube, float reference, float angle, float texelSize) {
-    vec3 u = cubeFaceU(face) * (2.0 * abs(dot(direction, cubeFaceAxis(face))));
-    vec3 v = cubeFaceV(face) * (2.0 * abs(dot(direction, cubeFaceAxis(face))));
+float filterCube(vec3 direction, uint face, float cube, float reference, float angle, float resolution) {
+    float major = abs(dot(direction, cubeFaceAxis(face)));
+    vec2 uv = (vec2(dot(direction, cubeFaceU(face)), dot(direction, cubeFaceV(face))) / major + 1.0) * 0.5;
+    vec3 u = cubeFaceU(face) * (2.0 * major);
+    vec3 v = cubeFaceV(face) * (2.0 * major);
     float sum = 0.0;
     float weights = 0.0;
-    for (uint i = 0u; i < filterSampleCount(); ++i) {
-        vec3 s = filterSample(i, angle, texelSize);
+    [[dont_unroll]] for (uint i = 0u; i < filterSampleCount(); ++i) {
+        vec3 s = filterSample(i, angle, uv, resolution);
         sum += s.z * texture(pointShadows, vec4(direction + u * s.x + v * s.y, cube), reference);
         weights += s.z;
     }
@@ -137,7 +141,7 @@ float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3
             case PUNCTUAL_POINT_SHADOW_CUBE: {
                 float reference = shadowReference(
                     perspectiveDepth(abs(dot(biasedDirection, cubeFaceAxis(face))), view.params.z, view.params.w));
-                visibility = filterCube(biasedDirection, face, view.atlasRect.x, reference, angle, view.texel.y);
+                visibility = filterCube(biasedDirection, face, view.atlasRect.x, reference, angle, view.texel.x);
                 break;
             }
             case PUNCTUAL_POINT_SHADOW_SLICES: {

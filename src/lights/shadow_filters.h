@@ -30,9 +30,12 @@ struct ShadowFilterFootprint {
                             // (ShadowSettings); the two fields above are then unused
 };
 
-// An N x N tent (N odd) is (N - 1) x (N - 1) bilinear taps one texel apart (each tap reads 2 x 2
-// texels), so it reaches N / 2 texels from the centre.
-constexpr ShadowFilterFootprint tentFootprint(uint32_t n) { return {float(n) * 0.5f, (n - 1) * (n - 1), false}; }
+// An N x N tent (N odd) reaches N / 2 texels from the centre. Its ((N + 1) / 2)^2 bilinear taps,
+// placed from the sample point's position inside its texel, cover the (N + 1) x (N + 1) texels
+// it may touch (Unity's SampleShadow_ComputeSamples_Tent_NxN; shaders/shared/shadow_tent.h).
+constexpr ShadowFilterFootprint tentFootprint(uint32_t n) {
+    return {float(n) * 0.5f, ((n + 1) / 2) * ((n + 1) / 2), false};
+}
 
 struct ShadowFilterInfo {
     ShadowFilter value;
@@ -48,11 +51,11 @@ inline constexpr std::array<ShadowFilterInfo, 5> kShadowFilters = {{
     {ShadowFilter::Hardware, "hw", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_SHADOW_FILTER_HW), {0.5f, 1, false}, true,
      "one hardware bilinear compare of 2x2 texels"},
     {ShadowFilter::Tent3, "tent3", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_SHADOW_FILTER_TENT3), tentFootprint(3), false,
-     "tent over 3x3 texels, 2x2 bilinear taps"},
+     "tent over 3x3 texels, 4 bilinear taps placed per pixel"},
     {ShadowFilter::Tent5, "tent5", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_SHADOW_FILTER_TENT5), tentFootprint(5), true,
-     "tent over 5x5 texels, 4x4 bilinear taps"},
+     "tent over 5x5 texels, 9 bilinear taps placed per pixel"},
     {ShadowFilter::Tent7, "tent7", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_SHADOW_FILTER_TENT7), tentFootprint(7), false,
-     "tent over 7x7 texels, 6x6 bilinear taps"},
+     "tent over 7x7 texels, 16 bilinear taps placed per pixel"},
     {ShadowFilter::Disk, "disk", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_SHADOW_FILTER_DISK), {0.0f, 0, true}, false,
      "--shadow-samples taps on a disk of radius --shadow-penumbra"},
 }};

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
 
 #include "shading.h"
 
@@ -131,6 +132,22 @@ TEST(Shading, LightBelowHorizonGivesNothing) {
     const glm::vec3 n(0.0f, 1.0f, 0.0f);
     const gpu::Surface surface = gpu::makeSurface(glm::vec3(0.0f), n, n, glm::vec3(1.0f), 0.0f, 0.5f);
     EXPECT_EQ(gpu::shadeBrdf(surface, glm::vec3(0.0f, -1.0f, 0.0f), glm::vec3(1.0f)), glm::vec3(0.0f));
+}
+
+TEST(Shading, FacesLightExactlyWhereTheBrdfCanBeNonZero) {
+    // The forward shader skips a shadow lookup where facesLight is false, which must be exactly
+    // where shadeBrdf gives 0 whatever the radiance: N.L <= 0, the horizon (N.L = 0) included.
+    const glm::vec3 n(0.0f, 1.0f, 0.0f);
+    const gpu::Surface surface = gpu::makeSurface(glm::vec3(0.0f), n, n, glm::vec3(1.0f), 0.0f, 0.5f);
+    const glm::vec3 directions[] = {{0.0f, 1.0f, 0.0f},  {0.6f, 0.8f, 0.0f},   {1.0f, 1e-6f, 0.0f},
+                                    {1.0f, 0.0f, 0.0f},  {0.0f, 0.0f, -1.0f},  {1.0f, -1e-6f, 0.0f},
+                                    {0.6f, -0.8f, 0.0f}, {0.0f, -1.0f, 0.0f}};
+    const bool expected[] = {true, true, true, false, false, false, false, false};
+    for (size_t i = 0; i < std::size(directions); ++i) {
+        EXPECT_EQ(gpu::facesLight(surface, directions[i]), expected[i]) << i;
+        const glm::vec3 radiance = gpu::shadeBrdf(surface, directions[i], glm::vec3(1e6f));
+        EXPECT_EQ(radiance != glm::vec3(0.0f), expected[i]) << i;
+    }
 }
 
 TEST(Shading, LambertCosineLaw) {
