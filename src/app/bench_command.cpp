@@ -48,15 +48,17 @@ Sweeps, on SCENE (default: the built-in scene) with generated lights:
   light counts 0 .. 64 spot + 32 point (2:1 mix, spot-only and point-only series)
   x the methods )" + joinNames(render::methodNames(), ", ") + R"( (shadows off);
   shadows off and on at the largest count, per method;
-  shadow resolutions 256..2048 x the filters )" + joinNames(shadowFilterNames(), ", ") + R"( (tiled),
-  each validated against Embree.
+  shadow resolution auto and fixed 256..2048 (2048: the 32 spots and 8 points that matter
+  most), each at 16 and 32 bits, and 1024 at 32 bits for 32 + 8 lights (the former default);
+  the filters )" + joinNames(shadowFilterNames(), ", ") + R"( at auto resolution;
+  each shadow configuration validated against Embree (edge band one texel, and one pixel).
 Every configuration renders one warm-up frame and N timed frames (default 5, quick 3) and keeps
 the median and spread of each pass. Writes DIR/results.csv, DIR/results.json and DIR/images/.
 Then the failure study (DIR/failures.csv): acne against bias, peter-panning against bias, cube
 seams against resolution and layout, the pancaking leak, spots widening towards 90 degrees, tile
 depth discontinuities (tiled against clustered), per-object lists on large objects, and light
 counts beyond the caps.
---quick: 320x180, fewer counts, resolutions 256 and 1024, filters )" +
+--quick: 320x180, fewer counts, resolutions auto, 256 and 1024, filters )" +
            joinNames(quickFilters, " and ") + R"( (under 3 minutes
 on 2 CPU cores). Default size: 1280x720 (quick: 320x180).
 Charts: /usr/bin/python3 bench/plot_results.py DIR && /usr/bin/python3 bench/plot_failures.py DIR

@@ -123,6 +123,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             }
         } else if (arg == "--shadowed") {
             parseShadowedCounts(value(), options.shadows);
+        } else if (arg == "--shadow-texels-per-pixel") {
+            options.shadows.texelsPerPixel = parseFloat(arg, value());
         } else if (arg == "--shadow-budget") {
             options.shadows.budgetBytes = uint64_t(parseWhole(arg, value())) << 20;
         } else if (arg == "--shadow-format") {
@@ -202,6 +204,8 @@ options:
   --shadow-res auto|N  auto (default): each shadow view the power-of-two resolution at which
                        one texel covers about one screen pixel where it is seen, within
                        --shadow-budget; N: every view N x N texels (a power of two, 16-8192)
+  --shadow-texels-per-pixel X  auto: the shadow texels a screen pixel should span where a
+                       view's receivers are seen, 0.25 to 16 (default 1)
   --shadow-budget MiB  the most memory auto resolution may give the shadow atlas (default 64)
   --shadow-format F    d16 (default) or d32: the shadow maps' depth format
   --shadow-filter F    the shadow filter:

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <numeric>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -136,6 +135,9 @@ void validateShadowSettings(const ShadowSettings& settings) {
     if (settings.autoResolution() && settings.pointLayout == PointShadowLayout::Cube) {
         throw Error("--point-shadow-layout cube",
                     "a cube map's faces share one resolution: use it with a fixed --shadow-res N, or use slices");
+    }
+    if (!std::isfinite(settings.texelsPerPixel) || settings.texelsPerPixel < 0.25f || settings.texelsPerPixel > 16.0f) {
+        throw Error("--shadow-texels-per-pixel", "must be from 0.25 to 16");
     }
     if (settings.budgetBytes < (1ull << 20) || settings.budgetBytes > (64ull << 30)) {
         throw Error("--shadow-budget", "must be from 1 to 65536 MiB");
@@ -457,10 +459,7 @@ void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& li
     for (uint32_t v = 0; v < plan.views.size(); ++v) {
         ShadowView& view = plan.views[v];
         view.demand = demand[v];
-        static const float expDensity = std::getenv("PUNCTUAL_EXP_DENSITY") ? std::atof(std::getenv("PUNCTUAL_EXP_DENSITY")) : 1.0f;
-        static const bool expFill = std::getenv("PUNCTUAL_EXP_FACEFILL") != nullptr;
-        view.demandedTier = shadowTierFor(demand[v] * expDensity, settings.minTier, settings.maxTier);
-        if (expFill && view.demandedTier == 0 && view.isPoint) view.demandedTier = settings.minTier;
+        view.demandedTier = shadowTierFor(demand[v] * settings.texelsPerPixel, settings.minTier, settings.maxTier);
         // A view with no caster is lit everywhere: it needs no storage whatever its receivers.
         tiers.push_back(view.casters.empty() ? 0u : view.demandedTier);
     }

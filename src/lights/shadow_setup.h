@@ -35,6 +35,9 @@ struct ShadowSettings {
     // tier its visible receivers need (--shadow-res auto, the default).
     uint32_t resolution = kAutoResolution;
     static constexpr uint32_t kAutoResolution = 0;
+    // auto: the shadow texels one screen pixel should span where a view's receivers are seen (the
+    // tier rule's target density; see shadow_resolution.h).
+    float texelsPerPixel = 1.0f;
     uint32_t minTier = 16;     // auto: the smallest and largest tiers a view may get
     uint32_t maxTier = 2048;
     uint64_t budgetBytes = 64ull << 20;  // auto: the atlas's largest size (--shadow-budget MiB)

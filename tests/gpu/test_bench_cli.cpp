@@ -37,10 +37,13 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     std::string header;
     std::getline(csv, header);
     EXPECT_EQ(header,
-              "config,series,method,spot,point,shadows,shadow_res,shadow_filter,point_layout,frames,depth_ms,culling_ms,"
-              "shadows_ms,forward_ms,tonemap_ms,total_ms,depth_spread_ms,culling_spread_ms,shadows_spread_ms,"
-              "forward_spread_ms,tonemap_spread_ms,total_spread_ms,tested_per_pixel,affecting_per_pixel,"
-              "efficiency,missed_energy,image_error,pixels_off,shadow_misclassified,shadow_false_shadow,shadow_false_lit");
+              "config,series,method,spot,point,shadows,shadow_res,shadow_format,shadow_filter,point_layout,"
+              "shadowed_spots,shadowed_points,frames,depth_ms,culling_ms,shadows_ms,forward_ms,tonemap_ms,total_ms,"
+              "depth_spread_ms,culling_spread_ms,shadows_spread_ms,forward_spread_ms,tonemap_spread_ms,"
+              "total_spread_ms,tested_per_pixel,affecting_per_pixel,efficiency,missed_energy,image_error,pixels_off,"
+              "shadow_views,shadow_memory_bytes,shadow_texels_rendered,shadow_filter_taps,shadow_reduced_views,"
+              "shadow_misclassified,shadow_misclassified_all,shadow_misclassified_1px,shadow_false_shadow,"
+              "shadow_false_lit");
     const size_t columns = size_t(std::count(header.begin(), header.end(), ',')) + 1;
     size_t rows = 0;
     std::set<std::string> series, methods;

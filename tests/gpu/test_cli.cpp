@@ -3,6 +3,8 @@
 // output file.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -49,10 +51,35 @@ TEST(Cli, RenderWritesImageAndStats) {
     EXPECT_GT(stats["gpu_ms"]["forward"].get<double>(), 0.0);
     EXPECT_GT(stats["gpu_ms"]["culling"].get<double>(), 0.0);  // tiled culling is the default
     EXPECT_GT(stats["gpu_ms"]["shadows"].get<double>(), 0.0);  // shadows are on by default
-    EXPECT_EQ(stats["shadows"]["shadowed_spots"].get<int>(), 32);
-    EXPECT_EQ(stats["shadows"]["shadowed_points"].get<int>(), 8);
-    EXPECT_EQ(stats["shadows"]["views_rendered"].get<int>() + stats["shadows"]["views_skipped"].get<int>(), 32 + 6 * 8);
-    EXPECT_GT(stats["shadows"]["memory_bytes"].get<double>(), 0.0);
+    // Every light is shadowed, each view at its own tier within the 64 MiB budget.
+    const nlohmann::json& shadows = stats["shadows"];
+    EXPECT_EQ(shadows["shadowed_spots"].get<int>(), 64);
+    EXPECT_EQ(shadows["shadowed_points"].get<int>(), 32);
+    EXPECT_EQ(shadows["views_rendered"].get<int>() + shadows["views_skipped"].get<int>(), 64 + 6 * 32);
+    ASSERT_EQ(shadows["views"].size(), 64u + 6u * 32u);
+    EXPECT_EQ(shadows["mode"].get<std::string>(), "auto");
+    EXPECT_EQ(shadows["resolution"].get<std::string>(), "auto");
+    EXPECT_EQ(shadows["format"].get<std::string>(), "d16");
+    EXPECT_EQ(shadows["budget_bytes"].get<uint64_t>(), 64ull << 20);
+    EXPECT_GT(shadows["memory_bytes"].get<double>(), 0.0);
+    EXPECT_LE(shadows["memory_bytes"].get<uint64_t>(), shadows["budget_bytes"].get<uint64_t>());
+    EXPECT_EQ(shadows["filter_taps"].get<int>(), 9);  // tent5: Unity's 3 x 3 bilinear taps
+    // texels_rendered is the sum of the rendered views' squares, and tiers counts them.
+    uint64_t texels = 0;
+    int rendered = 0;
+    std::map<std::string, int> tiers;
+    for (const auto& view : shadows["views"]) {
+        if (!view["rendered"].get<bool>()) continue;
+        const uint64_t side = view["resolution"].get<uint64_t>();
+        texels += side * side;
+        ++rendered;
+        ++tiers[std::to_string(side)];
+        EXPECT_LE(side, view["demanded_resolution"].get<uint64_t>());
+    }
+    EXPECT_EQ(shadows["texels_rendered"].get<uint64_t>(), texels);
+    EXPECT_EQ(shadows["views_rendered"].get<int>(), rendered);
+    EXPECT_EQ(shadows["tiers"].get<std::map<std::string, int>>(), tiers);
+    EXPECT_NE(run.out.find("shadow resolution: auto; views at "), std::string::npos) << run.out;
     EXPECT_EQ(stats["shadows"]["faces_rendered"], stats["shadows"]["views_rendered"]);
     EXPECT_EQ(stats["shadows"]["faces_skipped"], stats["shadows"]["views_skipped"]);
     EXPECT_EQ(stats["culling"]["method"].get<std::string>(), "tiled");

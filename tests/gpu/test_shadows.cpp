@@ -99,27 +99,49 @@ size_t clippedCasterSamples(const Scene& scene, const ShadowPlan& plan, std::str
 
 // ---- 1. the default scene -----------------------------------------------------------------------
 
-TEST(ShadowValidation, DefaultSceneMisclassifiesAtMostHalfAPercent) {
+// The default scene's shadows against Embree, outside the one-texel edge band: `maxMisclassified`
+// per light type, with real shadows and lit pixels of each type in the frame.
+void expectDefaultSceneAccuracy(const ShadowSettings& shadows, uint32_t spots, uint32_t points, double maxMisclassified,
+                                const char* name) {
     auto context = testing::makeValidatedContext();
     const Scene scene = makeDefaultScene();
-    const ShadowSettings defaults;  // auto resolution, every light, d16, tent5, slices, default bias
-    const ShadowRun run = testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(320, 180, defaults));
-    testing::saveShadowRun("shadow-default-scene", run);
-    EXPECT_EQ(run.plan.shadowedSpots, uint32_t(PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS));
-    EXPECT_EQ(run.plan.shadowedPoints, uint32_t(PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS));
-
-    for (const bool points : {false, true}) {
-        const reference::ShadowCounts& counts = points ? run.validation.points : run.validation.spots;
-        const char* type = points ? "points" : "spots";
+    const ShadowRun run = testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(320, 180, shadows));
+    testing::saveShadowRun(name, run);
+    EXPECT_EQ(run.plan.shadowedSpots, spots);
+    EXPECT_EQ(run.plan.shadowedPoints, points);
+    for (const bool isPoint : {false, true}) {
+        const reference::ShadowCounts& counts = isPoint ? run.validation.points : run.validation.spots;
+        const char* type = isPoint ? "points" : "spots";
         EXPECT_GT(counts.comparedOutsideBand, 10000u) << type << ": too few pixels compared to mean anything";
-        EXPECT_LE(counts.misclassifiedOutsideBand(), 0.005) << type << ": " << describe(counts);
+        EXPECT_LE(counts.misclassifiedOutsideBand(), maxMisclassified) << type << ": " << describe(counts);
         // Not vacuous: the frame has real shadows of this type, and lit pixels too.
-        EXPECT_GE(countVerdicts(run.validation, points, PixelVerdict::AgreeShadow), 500u) << type;
-        EXPECT_GE(countVerdicts(run.validation, points, PixelVerdict::AgreeLit), 5000u) << type;
-        std::printf("[ shadows  ] default scene %s: %s, agree shadow %zu\n", type, describe(counts).c_str(),
-                    countVerdicts(run.validation, points, PixelVerdict::AgreeShadow));
+        EXPECT_GE(countVerdicts(run.validation, isPoint, PixelVerdict::AgreeShadow), 500u) << type;
+        EXPECT_GE(countVerdicts(run.validation, isPoint, PixelVerdict::AgreeLit), 5000u) << type;
+        std::printf("[ shadows  ] %s %s: %s, agree shadow %zu\n", name, type, describe(counts).c_str(),
+                    countVerdicts(run.validation, isPoint, PixelVerdict::AgreeShadow));
     }
     testing::expectNoValidationMessages(*context);
+}
+
+// The former default: 1024 texels at 32 bits for the 32 spots and 8 points that matter most.
+TEST(ShadowValidation, DefaultSceneAtAFixed1024MisclassifiesAtMostHalfAPercent) {
+    ShadowSettings fixed;
+    fixed.resolution = 1024;
+    fixed.format = ShadowFormat::D32;
+    fixed.maxShadowedSpots = 32;
+    fixed.maxShadowedPoints = 8;
+    expectDefaultSceneAccuracy(fixed, 32, 8, 0.005, "shadow-default-scene-fixed-1024");
+}
+
+// The default (auto resolution, every light, 16 bits): each view at about one texel per pixel, so
+// texels are 4 to 16 times wider than at 1024 in a 320x180 frame, and the bias, which the design
+// notes scale by the texel (x (1 + penumbra) = 3.5 texels for tent5), moves contact edges by a
+// few pixels. Measured (bench/RESULTS.md, "Shadows fitted to what the frame needs"): 0.46% of
+// spot and 1.35% of point tests; the bound leaves room for noise, not for a regression to the
+// 4-5% of a 16-texel floor.
+TEST(ShadowValidation, DefaultSceneAtAutoResolutionMisclassifiesAtMostTwoPercent) {
+    expectDefaultSceneAccuracy(ShadowSettings{}, PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS, PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS,
+                               0.02, "shadow-default-scene-auto");
 }
 
 // ---- 2. acne ------------------------------------------------------------------------------------
@@ -416,7 +438,8 @@ TEST(ShadowWideSpot, OuterConeNear90DegreesStaysFinite) {
         const std::string what = "outer cone " + std::to_string(outer / kDegree) + " degrees";
         const Scene scene = testing::wideSpotScene(outer, true);
         ASSERT_NO_THROW(validateLights(scene.lights, scene.source)) << what;
-        const ShadowSettings shadows;  // 1024 texels: an 80-degree frustum spreads them thin
+        ShadowSettings shadows;  // 1024 texels: an 80-degree frustum spreads them thin
+        shadows.resolution = 1024;
         const ShadowRun run = testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(kWidth, kHeight, shadows));
         testing::saveShadowRun(what, run);
         ASSERT_EQ(run.validation.lights.size(), 1u) << what;

@@ -29,17 +29,22 @@ TEST(ValidateCli, WritesReportHtmlMapsAndExr) {
     EXPECT_EQ(run.err, "");  // validation layers printed nothing
 
     const nlohmann::json report = nlohmann::json::parse(readText(dir + "/report.json"));
-    ASSERT_EQ(report["lights"].size(), 40u);  // 32 spots + 8 points shadowed
+    ASSERT_EQ(report["lights"].size(), 96u);  // every light is shadowed: 64 spots + 32 points
     for (const char* part : {"overall", "spot", "point"}) {
         const auto& counts = report[part];
         EXPECT_GT(counts["compared"].get<int>(), 0) << part;
         EXPECT_LE(counts["false_shadow"].get<int>() + counts["false_lit"].get<int>(), counts["compared"].get<int>());
         EXPECT_TRUE(counts["outside_edge_band"].contains("misclassified_fraction")) << part;
+        // Over every compared pixel, no band excluded.
+        EXPECT_DOUBLE_EQ(counts["misclassified_fraction"].get<double>(),
+                         double(counts["false_shadow"].get<int>() + counts["false_lit"].get<int>()) /
+                             counts["compared"].get<double>())
+            << part;
     }
     const std::string html = readText(dir + "/report.html");
     EXPECT_NE(html.find("gpu.png"), std::string::npos);
     EXPECT_NE(html.find("reference.png"), std::string::npos);
-    EXPECT_NE(html.find("mismatch-39.png"), std::string::npos);
+    EXPECT_NE(html.find("mismatch-95.png"), std::string::npos);
     EXPECT_EQ(readPng(dir + "/mismatch-0.png").width, 96u);
     EXPECT_EQ(readPng(dir + "/reference.png").height, 54u);
 
@@ -68,7 +73,45 @@ TEST(ValidateCli, WritesReportHtmlMapsAndExr) {
     }
     EXPECT_GT(reached, 0);
     std::free(rgba);
-    EXPECT_TRUE(std::filesystem::exists(dir + "/shadow-factor-39.exr"));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/shadow-factor-95.exr"));
+}
+
+// A coarse map (64 texels a side) has texels many pixels wide: its texel band hides most of its
+// edges' error, and a band of one screen pixel does not. The verdicts do not depend on the band.
+TEST(ValidateCli, AnEdgeBandOfScreenPixelsDoesNotWidenWithTheTexels) {
+    testing::TempFolder folder;
+    auto report = [&](const std::string& name, const std::string& band) {
+        const std::string dir = folder.file(name);
+        const RunResult run = runPunctual(folder, "validate --validate --size 160x90 --shadow-res 64 --out-dir '" + dir +
+                                                      "'" + band);
+        EXPECT_EQ(run.exitCode, 0) << run.err;
+        return nlohmann::json::parse(readText(dir + "/report.json"));
+    };
+    const nlohmann::json texel = report("texel", "");
+    const nlohmann::json pixel = report("pixel", " --edge-band-px 1");
+    EXPECT_EQ(texel["edge_band_px"].get<double>(), 0.0);
+    EXPECT_EQ(pixel["edge_band_px"].get<double>(), 1.0);
+    EXPECT_NE(pixel["rule"].get<std::string>().find("1 screen pixel"), std::string::npos);
+    const nlohmann::json& t = texel["overall"];
+    const nlohmann::json& p = pixel["overall"];
+    EXPECT_EQ(t["compared"], p["compared"]);
+    EXPECT_EQ(t["false_shadow"], p["false_shadow"]);
+    EXPECT_EQ(t["false_lit"], p["false_lit"]);
+    EXPECT_EQ(t["misclassified_fraction"], p["misclassified_fraction"]);
+    EXPECT_GT(p["edge_band"].get<int>(), 0);
+    EXPECT_LT(2 * p["edge_band"].get<int>(), t["edge_band"].get<int>()) << "a 64-texel map's texels span many pixels";
+    EXPECT_GE(p["outside_edge_band"]["false_lit"].get<int>() + p["outside_edge_band"]["false_shadow"].get<int>(),
+              t["outside_edge_band"]["false_lit"].get<int>() + t["outside_edge_band"]["false_shadow"].get<int>());
+}
+
+TEST(ValidateCli, ABadEdgeBandFailsWithOneLine) {
+    testing::TempFolder folder;
+    for (const char* value : {"-1", "65", "x", "1px"}) {
+        const std::string args = std::string("validate --edge-band-px ") + value + " --out-dir '" + folder.file("v") + "'";
+        const RunResult run = runPunctual(folder, args);
+        testing::expectOneClearError(run, args, "--edge-band-px: expected a number of screen pixels from 0 to 64");
+        EXPECT_FALSE(std::filesystem::exists(folder.file("v"))) << args;
+    }
 }
 
 }  // namespace

@@ -40,10 +40,10 @@ TEST(VariantHelp, RenderHelpListsEveryVariant) {
     for (const PointShadowLayoutInfo& layout : kPointShadowLayouts) {
         EXPECT_TRUE(listsEntry(run.out, layout.name, layout.description)) << layout.name << "\n" << run.out;
     }
-    // The defaults of RenderOptions: tiled culling, tent5 filter, cube layout.
+    // The defaults of RenderOptions: tiled culling, tent5 filter, slices layout.
     EXPECT_TRUE(listsEntry(run.out, "tiled", std::string(render::kLightListMethods[2].description) + " (default)"));
     EXPECT_TRUE(listsEntry(run.out, "tent5", std::string(kShadowFilters[2].description) + " (default)"));
-    EXPECT_TRUE(listsEntry(run.out, "cube", std::string(kPointShadowLayouts[0].description) + " (default)"));
+    EXPECT_TRUE(listsEntry(run.out, "slices", std::string(kPointShadowLayouts[1].description) + " (default)"));
 }
 
 TEST(VariantHelp, BenchHelpNamesTheSweptVariants) {
@@ -52,7 +52,7 @@ TEST(VariantHelp, BenchHelpNamesTheSweptVariants) {
     ASSERT_EQ(run.exitCode, 0) << run.err;
     EXPECT_NE(run.out.find("the methods brute, per-object, tiled, clustered (shadows off)"), std::string::npos)
         << run.out;
-    EXPECT_NE(run.out.find("the filters hw, tent3, tent5, tent7, disk (tiled)"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("the filters hw, tent3, tent5, tent7, disk at auto resolution"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("filters hw and tent5 (under 3 minutes"), std::string::npos) << run.out;
 }
 

@@ -16,6 +16,7 @@
 #include "lights/shadow_budget.h"
 #include "lights/shadow_resolution.h"
 #include "lights/shadow_setup.h"
+#include "metrics/shadow_density.h"
 #include "scene/study_scenes.h"
 #include "shadow_test_scenes.h"
 
@@ -103,6 +104,48 @@ TEST(ShadowResolution, APointLightsFacesNeedWhatTheirOwnReceiversNeed) {
             EXPECT_EQ(d.demand[face], 0.0f) << "face " << face;
         }
     }
+}
+
+TEST(ShadowDensity, TexelsPerPixelAreTheResolutionOverTheDemand) {
+    Scene scene = floorSeenFromAbove();
+    // The 128-demand spot of the test above, at a fixed 256 texels: 2 texels per pixel wherever
+    // it reaches; nothing outside its cone. At auto resolution it gets its tier, 128: 1.
+    scene.lights.push_back(study::spotLight(glm::vec3(-4.0f, 2.5f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f), 8.0f, 10.0f,
+                                            glm::radians(30.0f), glm::radians(45.0f)));
+    for (const auto& [resolution, expected] : {std::pair{256u, 2.0f}, std::pair{ShadowSettings::kAutoResolution, 1.0f}}) {
+        FrameLights lights = setupFrameLights(scene, scene.camera.view, scene.camera.projection(1.0f));
+        ShadowSettings settings;
+        settings.resolution = resolution;
+        ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), settings);
+        sizeShadowViews(plan, scene, lights, scene.camera.position(), kFrame, kFrame, settings, ShadowMemoryLimits{});
+        ASSERT_TRUE(plan.views[0].rendered());
+        const ShadowDensityImage image = computeShadowDensity(scene, lights, plan, kFrame, kFrame);
+        size_t reached = 0;
+        for (uint32_t y = 0; y < kFrame; ++y) {
+            for (uint32_t x = 0; x < kFrame; ++x) {
+                const float density = image.density[size_t(y) * kFrame + x];
+                // The floor point under pixel (x, y): 20 m across 512 pixels, centred on the origin.
+                const float fx = (float(x) + 0.5f) * kPixel - 10.0f;
+                const float fz = (float(y) + 0.5f) * kPixel - 10.0f;
+                const float fromAxis = std::hypot(fx + 4.0f, fz);  // cone radius at the floor: 2.5 m
+                if (std::abs(fromAxis - 2.5f) < 0.1f) continue;  // the rim, either way
+                if (fromAxis < 2.5f) {
+                    ++reached;
+                    ASSERT_NEAR(density, expected, 1e-3f) << x << ", " << y;
+                } else {
+                    ASSERT_EQ(density, 0.0f) << x << ", " << y;
+                }
+            }
+        }
+        EXPECT_GT(reached, 10000u);
+    }
+    // The legend's picture: the frame 1:1 with a strip below.
+    FrameLights lights = setupFrameLights(scene, scene.camera.view, scene.camera.projection(1.0f));
+    ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), ShadowSettings{});
+    sizeShadowViews(plan, scene, lights, scene.camera.position(), 64, 64, ShadowSettings{}, ShadowMemoryLimits{});
+    const ImageRgba8 picture = renderShadowDensity(computeShadowDensity(scene, lights, plan, 64, 64), "density");
+    EXPECT_GE(picture.width, 64u);
+    EXPECT_GT(picture.height, 64u);
 }
 
 TEST(ShadowResolution, SurfacesFacingAwayFromTheLightNeedNothing) {
