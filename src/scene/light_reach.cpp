@@ -61,7 +61,7 @@ LightReach::LightReach(const Scene& scene, uint32_t gridSide) : bvh_(scene) {
 
 bool LightReach::reaches(const Light& light) const {
     if (light.type == LightType::Directional) return true;
-    const float cosOuter = float(portableCos(light.outerConeAngle));
+    const float cosOuter = float(portableCos(double(light.outerConeAngle)));
     uint32_t rays = 0;
     for (const Sample& sample : samples_) {
         const glm::vec3 toLight = light.position - sample.point;
