@@ -59,12 +59,31 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
         methods.insert(method);
     }
     EXPECT_GE(rows, 30u);
-    EXPECT_EQ(series, (std::set<std::string>{"mix", "spot-only", "point-only", "shadows", "shadow-quality"}));
+    EXPECT_EQ(series,
+              (std::set<std::string>{"mix", "spot-only", "point-only", "shadows", "shadow-quality", "shadow-filters"}));
     EXPECT_EQ(methods, (std::set<std::string>{"brute", "per-object", "tiled", "clustered"}));
 
     const nlohmann::json json = nlohmann::json::parse(readText(dir + "/results.json"));
     EXPECT_EQ(json["configurations"].size(), rows);
     EXPECT_TRUE(json["quick"].get<bool>());
+    // The shadow sweep: auto against fixed resolutions at 16 and 32 bits, and the former default;
+    // every row with its memory, texels and accuracy, and per-light counts for the target's
+    // comparison on the lights two settings both shadow.
+    std::set<std::string> shadowSettings;
+    for (const auto& row : json["configurations"]) {
+        if (row["series"] != "shadow-quality") continue;
+        shadowSettings.insert(row["shadow_res"].get<std::string>() + "-" + row["shadow_format"].get<std::string>() + "-" +
+                              row["shadowed_spots"].get<std::string>() + "+" + row["shadowed_points"].get<std::string>());
+        for (const char* column : {"shadow_memory_bytes", "shadow_texels_rendered", "shadow_misclassified_all",
+                                   "shadow_misclassified_1px"}) {
+            EXPECT_NE(row[column].get<std::string>(), "") << row["config"] << ": " << column;
+        }
+        ASSERT_TRUE(row.contains("shadow_lights")) << row["config"];
+        EXPECT_EQ(row["shadow_lights"].size(),
+                  std::stoul(row["shadowed_spots"].get<std::string>()) + std::stoul(row["shadowed_points"].get<std::string>()));
+    }
+    EXPECT_EQ(shadowSettings, (std::set<std::string>{"auto-d16-64+32", "auto-d32-64+32", "256-d16-64+32", "256-d32-64+32",
+                                                     "1024-d16-64+32", "1024-d32-64+32", "1024-d32-32+8"}));
     // The names the chart scripts read instead of lists of their own: every pass has its columns.
     EXPECT_EQ(json["passes"], nlohmann::json({"depth", "culling", "shadows", "forward", "tonemap"}));
     EXPECT_EQ(json["methods"], nlohmann::json({"brute", "per-object", "tiled", "clustered"}));

@@ -76,14 +76,14 @@ TEST(ValidateCli, WritesReportHtmlMapsAndExr) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/shadow-factor-95.exr"));
 }
 
-// A coarse map (64 texels a side) has texels many pixels wide: its texel band hides most of its
+// A coarse map (16 texels a side) has texels many pixels wide: its texel band hides most of its
 // edges' error, and a band of one screen pixel does not. The verdicts do not depend on the band.
 TEST(ValidateCli, AnEdgeBandOfScreenPixelsDoesNotWidenWithTheTexels) {
     testing::TempFolder folder;
     auto report = [&](const std::string& name, const std::string& band) {
         const std::string dir = folder.file(name);
-        const RunResult run = runPunctual(folder, "validate --validate --size 160x90 --shadow-res 64 --out-dir '" + dir +
-                                                      "'" + band);
+        const RunResult run = runPunctual(folder, "validate --validate --size 320x180 --shadow-res 16 --shadowed 8,4 "
+                                                      "--out-dir '" + dir + "'" + band);
         EXPECT_EQ(run.exitCode, 0) << run.err;
         return nlohmann::json::parse(readText(dir + "/report.json"));
     };
@@ -99,7 +99,7 @@ TEST(ValidateCli, AnEdgeBandOfScreenPixelsDoesNotWidenWithTheTexels) {
     EXPECT_EQ(t["false_lit"], p["false_lit"]);
     EXPECT_EQ(t["misclassified_fraction"], p["misclassified_fraction"]);
     EXPECT_GT(p["edge_band"].get<int>(), 0);
-    EXPECT_LT(2 * p["edge_band"].get<int>(), t["edge_band"].get<int>()) << "a 64-texel map's texels span many pixels";
+    EXPECT_LT(2 * p["edge_band"].get<int>(), t["edge_band"].get<int>()) << "a 16-texel map's texels span many pixels";
     EXPECT_GE(p["outside_edge_band"]["false_lit"].get<int>() + p["outside_edge_band"]["false_shadow"].get<int>(),
               t["outside_edge_band"]["false_lit"].get<int>() + t["outside_edge_band"]["false_shadow"].get<int>());
 }
