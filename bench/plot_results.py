@@ -300,6 +300,21 @@ def chart_culling_efficiency(rows, names):
     return fig
 
 
+def finish_shadow_pareto(fig, ax, points, front, error, cost, title, legend):
+    """The shadow Pareto charts' common end: the front, a log cost axis when the costs are wide, a
+    percent error axis, labels (both lower is better), title and legend."""
+    draw_front(ax, points, front)
+    if is_wide([p[1] for p in points]):
+        ax.set_yscale("log")
+    ax.xaxis.set_major_formatter(PercentFormatter(xmax=1.0))
+    ax.set_xlabel(f"{error} (lower is better)")
+    ax.set_ylabel(f"{cost} (lower is better)")
+    ax.set_title(title)
+    ax.legend(title=legend)
+    fig.tight_layout()
+    return fig
+
+
 def chart_shadow_pareto(rows, names):
     """Whole-frame time against the fraction of shadow tests misclassified (outside the edge
     band, against the Embree reference), one point per shadow resolution and filter. The Pareto
@@ -321,16 +336,9 @@ def chart_shadow_pareto(rows, names):
     for (x, y), r in zip(points, rs):
         ax.annotate(varying_label(r, rs, fields), (x, y), xytext=(5, 4),
                     textcoords="offset points", fontsize=7)
-    draw_front(ax, points, front)
-    if is_wide([p[1] for p in points]):
-        ax.set_yscale("log")
-    ax.xaxis.set_major_formatter(PercentFormatter(xmax=1.0))
-    ax.set_xlabel("shadow tests misclassified outside the edge band (lower is better)")
-    ax.set_ylabel("whole frame: median GPU ms (lower is better)")
-    ax.set_title("shadow quality: speed against accuracy (resolution x filter)")
-    ax.legend(title="filter")
-    fig.tight_layout()
-    return fig
+    return finish_shadow_pareto(fig, ax, points, front, "shadow tests misclassified outside the edge band",
+                                "whole frame: median GPU ms",
+                                "shadow quality: speed against accuracy (resolution x filter)", "filter")
 
 
 def chart_shadow_memory(rows, names):
@@ -356,16 +364,9 @@ def chart_shadow_memory(rows, names):
         if r.get("shadowed_spots") and r.get("shadowed_points"):
             label += f" ({r['shadowed_spots']}+{r['shadowed_points']} lights)"
         ax.annotate(label, (x, y), xytext=(5, 4), textcoords="offset points", fontsize=7)
-    draw_front(ax, points, front)
-    if is_wide([p[1] for p in points]):
-        ax.set_yscale("log")
-    ax.xaxis.set_major_formatter(PercentFormatter(xmax=1.0))
-    ax.set_xlabel("shadow tests misclassified outside a 1-pixel edge band (lower is better)")
-    ax.set_ylabel("shadow memory, MiB (lower is better)")
-    ax.set_title("shadow memory against accuracy (resolution x depth format)")
-    ax.legend(title="format")
-    fig.tight_layout()
-    return fig
+    return finish_shadow_pareto(fig, ax, points, front, "shadow tests misclassified outside a 1-pixel edge band",
+                                "shadow memory, MiB", "shadow memory against accuracy (resolution x depth format)",
+                                "format")
 
 
 def assignment_error_column(rows):
