@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "lights/shadow_sizing.h"
+
 namespace punctual::app {
 
 nlohmann::json frameStatsJson(const render::FrameResult& result, const render::Renderer& renderer,

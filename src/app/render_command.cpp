@@ -11,6 +11,7 @@
 #include "core/image.h"
 #include "core/log.h"
 #include "core/output_files.h"
+#include "lights/shadow_sizing.h"
 #include "metrics/heatmap.h"
 #include "metrics/shadow_density.h"
 #include "render/renderer.h"

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/output_files.h"
 #include "core/output_folder.h"
+#include "lights/shadow_sizing.h"
 #include "reference/reference_renderer.h"
 #include "reference/shadow_validation.h"
 #include "render/renderer.h"

@@ -109,39 +109,9 @@ struct ShadowPlan {
 // Chooses the shadowed lights (by lightImportance, see light_setup.h), builds their views (casters,
 // near and far planes) and writes each shadowed light's first view index and strength into
 // `lights.packed` (angleOffsetShadow.y and .w). Lights without a shadow keep y = -1. The views
-// have no resolution yet: sizeShadowViews gives them one.
+// have no resolution yet: sizeShadowViews (lights/shadow_sizing.h) gives them one.
 ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3& cameraPosition,
                        const ShadowSettings& settings);
-
-// What the device can hold of the shadow maps: all of them together (`total`, named by
-// `totalName`, e.g. "the device's largest heap"), the atlas's side (maxImageDimension2D) and
-// bytes (maxResourceSize), and the cube array's bytes.
-struct ShadowMemoryLimits {
-    uint64_t total = std::numeric_limits<uint64_t>::max();
-    std::string totalName = "the device's largest heap";
-    uint32_t atlasSide = 16384;
-    uint64_t atlasBytes = std::numeric_limits<uint64_t>::max();
-    uint64_t cubeArrayBytes = std::numeric_limits<uint64_t>::max();
-};
-
-// Gives every view of `plan` its resolution and storage, and fills the GPU views:
-//  - fixed mode: every view with a caster at settings.resolution; throws Error("--shadow-res N",
-//    ...) saying what is needed, what the device has and the largest resolution that fits when
-//    the maps do not fit `limits` (before anything is allocated);
-//  - auto mode: each view its demanded tier from the receivers the frame shows (frameWidth x
-//    frameHeight, see shadow_resolution.h), fitted to min(budget, what the device has).
-void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& lights, const glm::vec3& cameraPosition,
-                     uint32_t frameWidth, uint32_t frameHeight, const ShadowSettings& settings,
-                     const ShadowMemoryLimits& limits);
-
-// Bytes of the fixed-mode maps of `plan` at `resolution` texels a side: the atlas (spots and
-// slices) and the cube array. A lower bound of what the device allocates (it may pad).
-uint64_t shadowMapBytes(const ShadowPlan& plan, const ShadowSettings& settings, uint32_t resolution);
-
-// The resolutions the rendered views of `plan` use, largest first, each with how many views use
-// it; and the same as text, e.g. "4 x 1024, 18 x 512, 40 x 256" ("none" for no view).
-std::vector<std::pair<uint32_t, uint32_t>> shadowTierCounts(const ShadowPlan& plan);
-std::string describeShadowTiers(const ShadowPlan& plan);
 
 // The matrix of cube face `face` of a light at `position`: clip.x = dot(r, U) / scale,
 // clip.y = dot(r, V) / scale, clip.w = dot(r, axis) for r = p - position (see shadows.h), and a

@@ -9,6 +9,7 @@
 #include "core/log.h"
 #include "culling.h"
 #include "gpu_types.h"
+#include "lights/shadow_sizing.h"
 #include "render/depth_prepass.h"
 #include "render/forward_pass.h"
 #include "render/frame_bindings.h"

@@ -8,6 +8,7 @@
 #include <vulkan/vulkan.h>
 
 #include "lights/shadow_setup.h"
+#include "lights/shadow_sizing.h"
 #include "vk/handle.h"
 #include "vk/image.h"
 

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "gpu_test_support.h"
 #include "lights/shadow_setup.h"
+#include "lights/shadow_sizing.h"
 #include "render/shadow_maps.h"
 #include "scene/default_scene.h"
 

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "lights/shadow_setup.h"
+#include "lights/shadow_sizing.h"
 #include "shading.h"
 
 namespace punctual {

@@ -10,6 +10,7 @@
 
 #include "lights/light_setup.h"
 #include "lights/shadow_setup.h"
+#include "lights/shadow_sizing.h"
 #include "scene/study_scenes.h"
 #include "shadow_test_scenes.h"
 #include "shadows.h"

@@ -16,6 +16,7 @@
 #include "lights/shadow_budget.h"
 #include "lights/shadow_resolution.h"
 #include "lights/shadow_setup.h"
+#include "lights/shadow_sizing.h"
 #include "metrics/shadow_density.h"
 #include "scene/study_scenes.h"
 #include "shadow_test_scenes.h"
