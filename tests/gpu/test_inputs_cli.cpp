@@ -18,6 +18,7 @@
 #include "gpu_test_support.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
+#include "warning_capture.h"
 
 namespace punctual {
 namespace {
@@ -41,21 +42,7 @@ RunResult runBounded(const testing::TempFolder& folder, const std::string& args)
     return result;
 }
 
-// Captures warnings for the lifetime of the object.
-class WarningCapture {
-public:
-    WarningCapture()
-        : previous_(log::setSink([this](const std::string& level, const std::string& message) {
-              if (level == "warning") warnings.push_back(message);
-          })) {}
-    ~WarningCapture() { log::setSink(previous_); }
-    WarningCapture(const WarningCapture&) = delete;
-    WarningCapture& operator=(const WarningCapture&) = delete;
-    std::vector<std::string> warnings;
-
-private:
-    log::Sink previous_;
-};
+using testing::WarningCapture;
 
 // What a test scene holds besides its geometry (all optional).
 struct SceneParts {

@@ -14,6 +14,7 @@
 #include "core/log.h"
 #include "gltf_test_files.h"
 #include "scene/gltf_loader.h"
+#include "warning_capture.h"
 
 namespace punctual {
 namespace {
@@ -108,21 +109,7 @@ private:
     }
 };
 
-// Captures warnings for the lifetime of the object, then restores the previous sink.
-class WarningCapture {
-public:
-    WarningCapture()
-        : previous_(log::setSink([this](const std::string& level, const std::string& message) {
-              if (level == "warning") warnings.push_back(message);
-          })) {}
-    ~WarningCapture() { log::setSink(previous_); }
-    WarningCapture(const WarningCapture&) = delete;
-    WarningCapture& operator=(const WarningCapture&) = delete;
-    std::vector<std::string> warnings;
-
-private:
-    log::Sink previous_;
-};
+using testing::WarningCapture;
 
 void expectVec3Near(const glm::vec3& actual, const glm::vec3& expected, float tolerance = 1e-5f) {
     EXPECT_NEAR(actual.x, expected.x, tolerance);

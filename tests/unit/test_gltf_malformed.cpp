@@ -20,6 +20,7 @@
 #include "core/log.h"
 #include "gltf_test_files.h"
 #include "scene/gltf_loader.h"
+#include "warning_capture.h"
 
 namespace punctual {
 namespace {
@@ -304,21 +305,7 @@ TEST_F(GltfMalformed, EveryTruncationIsAnError) {
 
 // ---- files a URI names that are not regular files ----------------------------------------------
 
-// Captures warnings for the lifetime of the object, then restores the previous sink.
-class WarningCapture {
-public:
-    WarningCapture()
-        : previous_(log::setSink([this](const std::string& level, const std::string& message) {
-              if (level == "warning") warnings.push_back(message);
-          })) {}
-    ~WarningCapture() { log::setSink(previous_); }
-    WarningCapture(const WarningCapture&) = delete;
-    WarningCapture& operator=(const WarningCapture&) = delete;
-    std::vector<std::string> warnings;
-
-private:
-    log::Sink previous_;
-};
+using testing::WarningCapture;
 
 struct LoadOutcome {
     std::optional<std::string> error;  // what loadGltf threw, if it threw
