@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "core/output_files.h"
 #include "core/output_folder.h"
+#include "lights/shadow_sizing.h"
 #include "metrics/heatmap.h"
 #include "metrics/image_diff.h"
 #include "reference/embree_scene.h"
@@ -310,13 +311,9 @@ int runBenchCommand(const std::vector<std::string>& args) {
         }
         if (config.shadows.enabled) {
             const ShadowPlan& shadowPlan = renderer.shadowPlan();
-            uint64_t texels = 0;
-            for (const ShadowView& view : shadowPlan.views) {
-                if (view.rendered()) texels += uint64_t(view.resolution) * view.resolution;
-            }
             row["shadow_views"] = std::to_string(shadowPlan.viewsRendered);
             row["shadow_memory_bytes"] = std::to_string(renderer.shadowMemoryBytes());
-            row["shadow_texels_rendered"] = std::to_string(texels);
+            row["shadow_texels_rendered"] = std::to_string(shadowTexelsRendered(shadowPlan));
             row["shadow_filter_taps"] = std::to_string(config.shadows.filterTaps());
             row["shadow_reduced_views"] = std::to_string(shadowPlan.reductions.size());
         }

@@ -62,9 +62,7 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
     const ShadowPlan& plan = renderer.shadowPlan();
     const FrameLights& lights = renderer.lights();
     nlohmann::json views = nlohmann::json::array();
-    uint64_t texelsRendered = 0;
     for (const ShadowView& view : plan.views) {
-        if (view.rendered()) texelsRendered += uint64_t(view.resolution) * view.resolution;
         nlohmann::json entry = {{"light", lights.sceneLightIndex[view.packedLight]},
                                 {"face", view.face},
                                 {"resolution", view.resolution},
@@ -95,7 +93,7 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
         {"budget_bytes", settings.autoResolution() ? plan.budgetBytes : 0},
         {"memory_bytes", renderer.shadowMemoryBytes()},
         {"atlas", {{"width", plan.atlas.width}, {"height", plan.atlas.height}}},
-        {"texels_rendered", texelsRendered},
+        {"texels_rendered", shadowTexelsRendered(plan)},
         {"filter", shadowFilterName(settings.filter)},
         {"filter_taps", settings.filterTaps()},
         {"samples", settings.diskSamples},

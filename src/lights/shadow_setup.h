@@ -98,7 +98,6 @@ struct ShadowPlan {
     uint32_t viewsSkipped = 0;      // the others (no caster, or no visible receiver in auto mode)
     AtlasLayout atlas;              // spot views and point slices
     uint32_t cubeResolution = 0;    // cube layout: the cube array's side (fixed mode only)
-    uint64_t bytes = 0;             // the atlas's and the cube array's, per the format
     uint64_t budgetBytes = 0;       // auto: the budget the views were fitted to
     std::vector<ShadowReduction> reductions;  // auto: views given less than their tier asked
     std::string reducedBy;          // what forced the reductions

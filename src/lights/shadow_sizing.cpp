@@ -88,6 +88,14 @@ std::vector<std::pair<uint32_t, uint32_t>> shadowTierCounts(const ShadowPlan& pl
     return tiers;
 }
 
+uint64_t shadowTexelsRendered(const ShadowPlan& plan) {
+    uint64_t texels = 0;
+    for (const ShadowView& view : plan.views) {
+        if (view.rendered()) texels += uint64_t(view.resolution) * view.resolution;
+    }
+    return texels;
+}
+
 std::string describeShadowTiers(const ShadowPlan& plan) {
     std::string text;
     for (const auto& [resolution, count] : shadowTierCounts(plan)) {
@@ -165,7 +173,6 @@ void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& li
             view.rect = plan.atlas.rects[v];
         }
         plan.cubeResolution = settings.pointLayout == PointShadowLayout::Cube && plan.shadowedPoints > 0 ? settings.resolution : 0;
-        plan.bytes = plan.atlas.texels() * settings.texelBytes() + cubeArrayBytes(plan, settings, settings.resolution);
         finishViews(plan, lights, settings);
         return;
     }
@@ -197,7 +204,6 @@ void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& li
     }
     const ShadowAllocation allocation = fitShadowBudget(tiers, lightRanks(plan, scene, lights, cameraPosition), budget);
     plan.atlas = allocation.atlas;
-    plan.bytes = allocation.bytes;
     plan.budgetBytes = budget.bytes;
     plan.reductions = allocation.reductions;
     plan.reducedBy = allocation.limitName;

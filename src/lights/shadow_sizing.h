@@ -49,4 +49,7 @@ uint64_t shadowMapBytes(const ShadowPlan& plan, const ShadowSettings& settings, 
 std::vector<std::pair<uint32_t, uint32_t>> shadowTierCounts(const ShadowPlan& plan);
 std::string describeShadowTiers(const ShadowPlan& plan);
 
+// Texels drawn into by the rendered views of `plan` (the sum of their squares).
+uint64_t shadowTexelsRendered(const ShadowPlan& plan);
+
 }  // namespace punctual
