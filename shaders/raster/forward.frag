@@ -36,6 +36,7 @@ layout(constant_id = PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT) const uint POINT_SHADOW_
 // Validation variant: also writes this pixel's surface and every shadowed light's shadow factor
 // into shadowDebug, for comparison with ray-traced visibility. Never used for timing.
 layout(constant_id = PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS) const bool WRITE_SHADOW_FACTORS = false;
+layout(constant_id = PUNCTUAL_SPEC_SHADOW_RECEIVER_PLANE) const bool SHADOW_RECEIVER_PLANE = true;
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHTS) readonly buffer LightBlock { GpuPunctualLight lights[]; };
@@ -52,6 +53,7 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_OBJECT_LIGHTS) readonly buffe
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_STATS) writeonly buffer LightStatsBlock { uvec4 lightStats[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_VIEWS) readonly buffer ShadowViewBlock { GpuShadowView shadowViews[]; };
 layout(set = 0, binding = PUNCTUAL_BINDING_SHADOW_ATLAS) uniform sampler2DShadow shadowAtlas;
+layout(set = 0, binding = PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH) uniform sampler2D shadowAtlasDepth;
 layout(set = 0, binding = PUNCTUAL_BINDING_POINT_SHADOWS) uniform samplerCubeArrayShadow pointShadows;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_DEBUG) writeonly buffer ShadowDebugBlock { uint shadowDebug[]; };
 layout(push_constant) uniform DrawConstants { uint objectIndex; } draw;

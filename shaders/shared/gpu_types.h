@@ -33,6 +33,7 @@
 #define PUNCTUAL_BINDING_SHADOW_VIEWS 11  // GpuShadowView per rendered shadow view
 #define PUNCTUAL_BINDING_SHADOW_ATLAS 12 // sampler2DShadow: every spot view and point slice (lights/shadow_atlas.h)
 #define PUNCTUAL_BINDING_POINT_SHADOWS 13 // samplerCubeArrayShadow: one cube per shadowed point (cube layout)
+#define PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH 14 // sampler2D: the atlas's raw depths, gathered for receiver-plane compares
 #define PUNCTUAL_BINDING_SHADOW_DEBUG 15  // validation: per-pixel surface and shadow factors (see below)
 
 // Shadow validation buffer (forward shader's WRITE_SHADOW_FACTORS variant), in 32-bit words:
@@ -85,6 +86,7 @@
 #define PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT 7
 #define PUNCTUAL_SPEC_SHADOWS 8
 #define PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS 9
+#define PUNCTUAL_SPEC_SHADOW_RECEIVER_PLANE 10
 
 PUNCTUAL_NAMESPACE_BEGIN
 
@@ -117,7 +119,8 @@ struct GpuFrame {
     vec4 depthToView;     // xy: (a, b) with view distance = a / (depth + b) (see culling.h); zw: unused
     vec4 ndcToView;       // (1/P00, 1/P11, P20, P21): view ray through an NDC point (see culling.h)
     vec4 shadowBias;      // depth, slope-scaled depth, normal, sin-scaled normal offsets (x texel size x (1 + penumbra))
-    vec4 shadowMap;       // xy: the atlas's size in texels, z: disk radius (a view's UV units), w: unused
+    vec4 shadowMap;       // xy: the atlas's size in texels, z: disk radius (a view's UV units), w: the depth
+                          // format's rounding, subtracted by receiver-plane compares (shadowDepthQuantum)
     uvec4 shadowCounts;   // x: shadowed spots (their views come first), y: shadowed points
 };
 
@@ -130,8 +133,8 @@ struct GpuShadowView {
                      // z: near, w: far (metres along the view axis)
     vec4 atlasRect;  // xy: the view's top-left corner in atlas UV, zw: its size in atlas UV;
                      // cube layout: x is the light's cube in the cube array
-    vec4 texel;      // x: resolution (texels a side), y: 1 / resolution, z: the filter's reach in
-                     // texels at this resolution (the bias's penumbra), w: unused
+    vec4 texel;      // x: resolution (texels a side), y: 1 / resolution, z: the bias's penumbra in
+                     // texels (ShadowSettings::biasPenumbraTexels), w: unused
 };
 
 // Written on the GPU each frame (clustered culling): depth-range pass, then slice-boundaries pass.

@@ -20,6 +20,23 @@ float hashToUnit(vec3 p) {
 // cube faces share one loop. The tents are Unity's (shadow_tent.h): ((N + 1) / 2)^2 bilinear
 // compare fetches placed and weighted from where the sample point falls inside its texel, which
 // weigh every texel of the footprint by the continuous N x N tent's integral over it.
+// The footprint filters' size N (1: the hardware's 2 x 2, else the N x N tent), 0 for the disk.
+uint filterFootprint() {
+    switch (SHADOW_FILTER) {
+        case PUNCTUAL_SHADOW_FILTER_HW: return 1u;
+        case PUNCTUAL_SHADOW_FILTER_TENT3: return 3u;
+        case PUNCTUAL_SHADOW_FILTER_TENT5: return 5u;
+        case PUNCTUAL_SHADOW_FILTER_TENT7: return 7u;
+        case PUNCTUAL_SHADOW_FILTER_DISK: return 0u;
+        default: unknownVariant = true; return 0u;
+    }
+}
+
+// Receiver-plane compares apply to the footprint filters on the atlas; the disk's rotated samples
+// and the cube array's hardware lookups keep the notes' per-tap compares. The C++ side makes the
+// same choice for the bias (ShadowSettings::biasPenumbraTexels).
+bool receiverPlaneCompares() { return SHADOW_RECEIVER_PLANE && filterFootprint() > 0u; }
+
 uint filterSampleCount() {
     switch (SHADOW_FILTER) {
         case PUNCTUAL_SHADOW_FILTER_HW: return 1u;
@@ -84,6 +101,65 @@ float filterAtlas(GpuShadowView view, vec2 uv, float reference, float angle) {
     return sum / weights;
 }
 
+// The receiver's depth to compare, at most 1: the far plane is fitted to the deepest object in the
+// view (shadow_setup.cpp), and a receiver the bias pushes beyond it lies behind every caster the
+// map holds, which is what comparing it at the far plane says (a cleared texel, 1, stays lit).
+float shadowReference(float depth) { return min(depth, 1.0); }
+
+// One texel's compare with the receiver plane (receiverPlaneDepthSlope, shadows.h): lit (1) when
+// the plane's depth under the texel's centre, at most 1 (shadowReference), is no deeper than the
+// caster's. The planes are exact, so what is left to cover is the depth format's rounding
+// (frame.shadowMap.w, a constant in depth units like a rasterizer's constant depth bias).
+float compareWithPlane(float casterDepth, float planeDepth) {
+    return shadowReference(planeDepth) - frame.shadowMap.w <= casterDepth ? 1.0 : 0.0;
+}
+
+// The hardware 2 x 2 or N x N tent footprint (filterFootprint) with each texel compared with the
+// receiver plane under its own centre, `slopeUv` the plane's depth per UV unit. The N + 1 texels a
+// side (shadow_tent.h) are read as ((N + 1) / 2)^2 gathers of 2 x 2 raw depths, each at the
+// corner its four texels share (the gather's most robust position, half a texel from a change of
+// texels), and weighed by the tent's exact per-texel weights. Gathers are clamped inside the
+// view's square (clamp to edge, as filterAtlas); a clamped texel's plane depth is taken under the
+// texel actually read.
+float filterAtlasReceiverPlane(GpuShadowView view, vec2 uv, float depth, vec2 slopeUv) {
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
+    uint n = filterFootprint();
+    float resolution = view.texel.x;
+    vec2 position = uv * resolution;    // the sample point, in texels
+    vec2 slope = slopeUv / resolution;  // the plane's depth per texel
+    vec2 o = tentCornerOffset(position);
+    uint perAxis = tentFetchesPerAxis(n);
+    float sum = 0.0;
+    [[dont_unroll]] for (uint i = 0u; i < perAxis * perAxis; ++i) {
+        vec3 u = tentAxisTexelPair(o.x, n, i % perAxis);
+        vec3 v = tentAxisTexelPair(o.y, n, i / perAxis);
+        vec2 gatherCorner = clamp(position + vec2(u.x, v.x) + 0.5, vec2(1.0), vec2(resolution - 1.0));
+        vec2 low = gatherCorner - 0.5 - position;  // centres of the texels read, from the sample point
+        vec2 high = low + 1.0;
+        vec4 casters = textureGather(shadowAtlasDepth, view.atlasRect.xy + gatherCorner / resolution * view.atlasRect.zw, 0);
+        // textureGather's order: (u0, v1), (u1, v1), (u1, v0), (u0, v0).
+        sum += u.y * v.z * compareWithPlane(casters.x, depth + dot(slope, vec2(low.x, high.y)));
+        sum += u.z * v.z * compareWithPlane(casters.y, depth + dot(slope, high));
+        sum += u.z * v.y * compareWithPlane(casters.z, depth + dot(slope, vec2(high.x, low.y)));
+        sum += u.y * v.y * compareWithPlane(casters.w, depth + dot(slope, low));
+    }
+    return sum;  // the tent's weights sum to 1
+}
+
+// A spot view or point slice of the atlas, from the biased receiver and its normal: per-texel
+// receiver-plane compares where they apply (receiverPlaneCompares), the notes' per-tap compares
+// otherwise.
+float filterAtlasView(GpuShadowView view, vec3 biased, vec3 normal, float angle) {
+    vec4 clip = view.viewProjection * vec4(biased, 1.0);
+    if (clip.w <= 0.0) return 1.0;
+    vec3 ndc = clip.xyz / clip.w;  // perspective: divide by w
+    vec2 uv = ndc.xy * 0.5 + 0.5;
+    if (receiverPlaneCompares()) {
+        return filterAtlasReceiverPlane(view, uv, ndc.z, receiverPlaneDepthSlope(view.viewProjection, biased, normal));
+    }
+    return filterAtlas(view, uv, shadowReference(ndc.z), angle);
+}
+
 // Cube faces: the direction's position on face f is uv = (sc / |ma| + 1) / 2 with sc = r.U,
 // tc = r.V (shadows.h), and a UV offset d moves the lookup direction by 2 d |ma| along the face's
 // U or V axis (the face spans [-1, 1] in sc / |ma| over UV [0, 1]).
@@ -102,10 +178,6 @@ float filterCube(vec3 direction, uint face, float cube, float reference, float a
     return sum / weights;
 }
 
-// The receiver's depth to compare, at most 1: the far plane is fitted to the deepest object in the
-// view (shadow_setup.cpp), and a receiver the bias pushes beyond it lies behind every caster the
-// map holds, which is what comparing it at the far plane says (a cleared texel, 1, stays lit).
-float shadowReference(float depth) { return min(depth, 1.0); }
 
 // Fraction of `light` reaching `position` past the shadow casters (1 = lit), blended by the
 // light's shadow strength. Called only where the light's attenuation is non-zero.
@@ -121,10 +193,7 @@ float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3
         float linearDepth = abs(dot(lightPosition - position, light.directionAngleScale.xyz));
         float texel = shadowTexelWorldSize(linearDepth, view.params.y, view.texel.x);
         vec3 biased = applyShadowBias(position, normal, toLight, texel, view.texel.z, frame.shadowBias);
-        vec4 clip = view.viewProjection * vec4(biased, 1.0);
-        if (clip.w <= 0.0) return 1.0;
-        vec3 ndc = clip.xyz / clip.w;  // perspective: divide by w
-        visibility = filterAtlas(view, ndc.xy * 0.5 + 0.5, shadowReference(ndc.z), angle);
+        visibility = filterAtlasView(view, biased, normal, angle);
     } else {
         // Point: the face is the major axis of the light-to-point direction.
         vec3 direction = position - lightPosition;
@@ -145,9 +214,7 @@ float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3
                 break;
             }
             case PUNCTUAL_POINT_SHADOW_SLICES: {
-                vec4 clip = view.viewProjection * vec4(biased, 1.0);
-                vec3 ndc = clip.xyz / clip.w;
-                visibility = filterAtlas(view, ndc.xy * 0.5 + 0.5, shadowReference(ndc.z), angle);
+                visibility = filterAtlasView(view, biased, normal, angle);
                 break;
             }
             default:

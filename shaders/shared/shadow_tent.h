@@ -63,16 +63,26 @@ PUNCTUAL_FN float tentTexelWeight(float x, float h) {
 // in [-0.5, 0.5), for t the sample point in texel units (uv x resolution).
 PUNCTUAL_FN vec2 tentCornerOffset(vec2 texelPosition) { return texelPosition - floor(texelPosition + 0.5f); }
 
+// Texel pair m (0 .. tentFetchesPerAxis(n) - 1) along one axis, texels 2m and 2m + 1 of the
+// N + 1 the tent touches, for a sample point at `o` from its nearest texel corner: x = the centre
+// of texel 2m relative to the sample point, in texels (texel 2m + 1's is one further), y and z =
+// the two texels' tent weights. N = 1 is the hardware's 2 x 2 footprint: the sample point's
+// bilinear weights (0.5 - o and 0.5 + o, one minus each centre's distance), which the "tent" of
+// base 1 would not give (it is a triangle, bilinear filtering a box).
+PUNCTUAL_FN vec3 tentAxisTexelPair(float o, uint n, uint m) {
+    float h = 0.5f * float(n);
+    float first = float(2u * m) - h - o;  // centre of texel 2m, from the sample point
+    if (n == 1u) return vec3(first, 1.0f - abs(first), 1.0f - abs(first + 1.0f));
+    return vec3(first, tentTexelWeight(first, h), tentTexelWeight(first + 1.0f, h));
+}
+
 // Fetch m (0 .. tentFetchesPerAxis(n) - 1) along one axis for a sample point at `o` from its
 // nearest texel corner: x = the fetch's weight (its two texels' weights), y = its position
 // relative to the sample point, in texels.
 PUNCTUAL_FN vec2 tentAxisFetch(float o, uint n, uint m) {
-    float h = 0.5f * float(n);
-    float first = float(2u * m) - h - o;  // centre of texel 2m, from the sample point
-    float a = tentTexelWeight(first, h);
-    float b = tentTexelWeight(first + 1.0f, h);
-    float weight = a + b;
-    return vec2(weight, first + b / weight);
+    vec3 pair = tentAxisTexelPair(o, n, m);
+    float weight = pair.y + pair.z;
+    return vec2(weight, pair.x + pair.z / weight);
 }
 
 // Fetch i (0 .. tentFetchCount(n) - 1, row by row) of the N x N tent around the sample point at

@@ -95,6 +95,39 @@ PUNCTUAL_FN vec3 applyShadowBias(vec3 position, vec3 normal, vec3 toLight, float
     return position + toLight * (scale * (bias.x + tanTheta * bias.y)) + normal * (scale * (bias.z + sinTheta * bias.w));
 }
 
+// Receiver-plane depth (Isidoro, "Shadow mapping: GPU-based tips and techniques", GDC 2006): the
+// slope of the receiver's depth across a shadow view, so that each texel a filter reads is
+// compared with the receiver's own depth under that texel rather than under the sample point. The
+// notes' bias has to cover the difference (the slope times the filter's reach), which is why it
+// grows with the penumbra; this compare does not need it to.
+//
+// The plane through `position` with normal `normal` maps, under the view's perspective projection
+// VP, to a plane in the view's NDC: with w affine over a world plane, x/w, y/w and z/w are ratios
+// of affine functions with the same denominator, and eliminating the two plane parameters leaves
+// z_ndc affine in (x_ndc, y_ndc). So one gradient gives the depth under every texel, exactly.
+// The slope comes from the normal, not from screen derivatives, which the forward shader's
+// per-light loop (non-uniform control flow) leaves undefined. With s, t two unit tangents and
+// c = VP (position, 1):
+//   d(ndc)/ds = ((VP s).xyz c.w - c.xyz (VP s).w) / c.w^2    (quotient rule; s a direction, w = 0)
+//   J = [d(uv)/ds  d(uv)/dt] with uv = ndc.xy / 2 + 1/2, so d(uv) = d(ndc.xy) / 2
+//   dz/d(uv) = [dz/ds  dz/dt] J^-1                             (chain rule, row vector)
+// Returns dz/du, dz/dv (NDC depth per UV unit of the view). A plane seen edge-on (J singular:
+// every texel under it is the same line) has no defined slope and returns 0.
+PUNCTUAL_FN vec2 receiverPlaneDepthSlope(mat4 viewProjection, vec3 position, vec3 normal) {
+    vec3 s = normalize(abs(normal.x) > 0.5f ? cross(normal, vec3(0.0f, 1.0f, 0.0f)) : cross(normal, vec3(1.0f, 0.0f, 0.0f)));
+    vec3 t = cross(normal, s);
+    vec4 c = viewProjection * vec4(position, 1.0f);
+    vec4 cs = viewProjection * vec4(s, 0.0f);
+    vec4 ct = viewProjection * vec4(t, 0.0f);
+    vec3 ds = (vec3(cs) * c.w - vec3(c) * cs.w) / (c.w * c.w);
+    vec3 dt = (vec3(ct) * c.w - vec3(c) * ct.w) / (c.w * c.w);
+    mat2 uvJacobian = mat2(0.5f * vec2(ds), 0.5f * vec2(dt));  // columns d(uv)/ds, d(uv)/dt
+    // Singular relative to the Jacobian's own scale (metres per texel vary with the scene's units).
+    float det = determinant(uvJacobian);
+    if (abs(det) <= 1e-6f * (dot(uvJacobian[0], uvJacobian[0]) + dot(uvJacobian[1], uvJacobian[1]))) return vec2(0.0f);
+    return vec2(ds.z, dt.z) * inverse(uvJacobian);
+}
+
 PUNCTUAL_NAMESPACE_END
 
 #endif

@@ -99,6 +99,7 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
         {"samples", settings.diskSamples},
         {"penumbra", settings.diskRadius},
         {"bias", {settings.bias.x, settings.bias.y, settings.bias.z, settings.bias.w}},
+        {"receiver_plane", settings.receiverPlane},
         {"strength", settings.strength},
         {"point_layout", pointShadowLayoutName(settings.pointLayout)},
         {"shadowed_spots", plan.shadowedSpots},

@@ -137,6 +137,10 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             options.shadows.diskSamples = parseWhole(arg, value());
         } else if (arg == "--shadow-bias") {
             options.shadows.bias = parseBias(value());
+        } else if (arg == "--shadow-receiver-plane") {
+            const std::string& text = value();
+            if (text != "on" && text != "off") throw Error(arg, "expected on or off, got '" + text + "'");
+            options.shadows.receiverPlane = text == "on";
         } else if (arg == "--shadow-penumbra") {
             options.shadows.diskRadius = parseFloat(arg, value());
         } else if (arg == "--shadow-strength") {
@@ -213,7 +217,11 @@ options:
            R"(  --shadow-samples N   disk filter samples, 1 to 64 (default 16)
   --shadow-penumbra W  disk radius in shadow-map UV units (default 0.00244 = 2.5/1024)
   --shadow-bias D,S,N,SN  depth, slope-scaled, normal and sin-scaled normal bias, in texels
-                       at the receiver (default 1,1,1,0)
+                       at the receiver (default 1,1,0,0), widened by the filter's reach
+                       where receiver-plane compares are off
+  --shadow-receiver-plane on|off  on (default): hw and tent filters compare each texel with
+                       the receiver's plane under it, so the bias need not cover the filter's
+                       reach; off: the design notes' compares (disk and cube maps always)
   --shadow-strength S  0 (no shadow) to 1 (default 1), times each light's own strength
   --point-shadow-layout L  how point lights' shadow maps are stored:
 )" + variantHelp(kPointShadowLayouts, defaults.shadows.pointLayout, kListIndent) +

@@ -114,6 +114,16 @@ float ShadowSettings::penumbraTexels(uint32_t viewResolution) const {
     return info->footprint.fromDiskSettings ? diskRadius * float(viewResolution) : info->footprint.penumbraTexels;
 }
 
+float ShadowSettings::biasPenumbraTexels(uint32_t viewResolution, bool onAtlas) const {
+    const ShadowFilterInfo* info = findVariant(kShadowFilters, filter);
+    const bool footprintFilter = info && !info->footprint.fromDiskSettings;
+    return receiverPlane && onAtlas && footprintFilter ? 0.0f : penumbraTexels(viewResolution);
+}
+
+float shadowDepthQuantum(ShadowFormat format) {
+    return format == ShadowFormat::D16 ? 2.0f / 65535.0f : 1.0f / float(1u << 20);
+}
+
 const char* shadowFormatName(ShadowFormat format) { return format == ShadowFormat::D16 ? "d16" : "d32"; }
 
 std::string shadowResolutionName(const ShadowSettings& settings) {

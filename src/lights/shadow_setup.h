@@ -49,8 +49,12 @@ struct ShadowSettings {
     // Disk radius in shadow-map UV units: a fixed share of the map, so the penumbra does not
     // change with the resolution (the design notes' "penumbra independent of map size").
     float diskRadius = 2.5f / 1024.0f;
-    glm::vec4 bias{1.0f, 1.0f, 1.0f, 0.0f};  // depth, slope-scaled, normal, sin-scaled normal
+    glm::vec4 bias{1.0f, 1.0f, 0.0f, 0.0f};  // depth, slope-scaled, normal, sin-scaled normal
     PointShadowLayout pointLayout = PointShadowLayout::Slices;
+    // Compare each texel of the footprint filters (hw, tents) on the atlas with the receiver's plane
+    // under it (shadows.h, receiverPlaneDepthSlope) instead of with the sample point's depth: the
+    // bias then no longer widens with the filter's reach (biasPenumbraTexels).
+    bool receiverPlane = true;
     float strength = 1.0f;  // multiplies every light's own shadow strength
     // For the failure study only (bench), never needed to render correctly:
     bool pancaking = false;         // clamp caster vertices' depth onto the near plane (Unity's pancaking)
@@ -61,11 +65,20 @@ struct ShadowSettings {
     // bias (the design notes' penumbra) and the slices' guard band, and its lookups per shadow
     // test: the filter table's footprint, or the disk's settings.
     float penumbraTexels(uint32_t viewResolution) const;
+    // The penumbra that widens the receiver bias of a view (applyShadowBias): the filter's reach with
+    // the notes' per-tap compares; 0 where receiver-plane compares read every texel at the
+    // receiver's own depth (the atlas with a footprint filter), as shadow_sampling.glsl decides.
+    float biasPenumbraTexels(uint32_t viewResolution, bool onAtlas) const;
     uint32_t filterTaps() const;
     uint32_t texelBytes() const { return format == ShadowFormat::D16 ? 2u : 4u; }
 };
 
 const char* shadowFormatName(ShadowFormat format);
+// What receiver-plane compares subtract from the plane's depth (frame.shadowMap.w): the format's
+// rounding, in depth units. D16 stores round(depth x 65535), off by up to half a step, and the
+// rasterizer's interpolated depth may be off by about as much again: two steps. D32 floats hold
+// depth near 1 to 2^-24; 2^-20 covers the interpolation (measured: bench/RESULTS.md).
+float shadowDepthQuantum(ShadowFormat format);
 // "auto" or the fixed resolution, as --shadow-res takes it.
 std::string shadowResolutionName(const ShadowSettings& settings);
 

@@ -67,7 +67,8 @@ void finishViews(ShadowPlan& plan, const FrameLights& lights, const ShadowSettin
             view.gpu.atlasRect = glm::vec4(glm::vec2(float(view.rect.x), float(view.rect.y)) / atlasSize,
                                            glm::vec2(float(view.rect.size)) / atlasSize);
         }
-        view.gpu.texel = glm::vec4(resolution, 1.0f / resolution, settings.penumbraTexels(view.resolution), 0.0f);
+        view.gpu.texel = glm::vec4(resolution, 1.0f / resolution,
+                                   settings.biasPenumbraTexels(view.resolution, !usesCubeArray(view, settings)), 0.0f);
     }
 }
 

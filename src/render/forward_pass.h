@@ -24,6 +24,7 @@ struct ForwardVariant {
     uint32_t shadowSamples = 16;   // disk filter
     uint32_t pointShadowLayout = 0;  // PUNCTUAL_POINT_SHADOW_*
     bool writeShadowFactors = false;  // validation variant: per-pixel shadow factors
+    bool shadowReceiverPlane = true;  // per-texel receiver-plane compares (shadow_sampling.glsl)
 };
 
 class ForwardPass final : public Pass {

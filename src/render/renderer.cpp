@@ -86,6 +86,7 @@ struct Renderer::Resources {
         variant.shadowSamples = settings.shadows.diskSamples;
         variant.pointShadowLayout = uint32_t(settings.shadows.pointLayout);
         variant.writeShadowFactors = shadowFactors;
+        variant.shadowReceiverPlane = settings.shadows.receiverPlane;
         return variant;
     }
 
@@ -200,7 +201,8 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     frame.ndcToView = glm::vec4(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
     const ShadowSettings& shadows = settings.shadows;
     frame.shadowBias = shadows.bias;
-    frame.shadowMap = glm::vec4(float(shadowPlan.atlas.width), float(shadowPlan.atlas.height), shadows.diskRadius, 0.0f);
+    frame.shadowMap = glm::vec4(float(shadowPlan.atlas.width), float(shadowPlan.atlas.height), shadows.diskRadius,
+                                shadowDepthQuantum(shadows.format));
     frame.shadowCounts = glm::uvec4(shadowPlan.shadowedSpots, shadowPlan.shadowedPoints, 0u, 0u);
     return frame;
 }

@@ -109,6 +109,13 @@ ShadowMaps::ShadowMaps(const vk::Context& context, const ShadowPlan& plan, const
     VkSampler sampler = VK_NULL_HANDLE;
     vk::check(vkCreateSampler(context.device(), &info, nullptr, &sampler), "vkCreateSampler");
     sampler_ = vk::Handle<VkSampler>(context.device(), sampler, vkDestroySampler);
+
+    info.magFilter = VK_FILTER_NEAREST;
+    info.minFilter = VK_FILTER_NEAREST;
+    info.compareEnable = VK_FALSE;
+    VkSampler depthSampler = VK_NULL_HANDLE;
+    vk::check(vkCreateSampler(context.device(), &info, nullptr, &depthSampler), "vkCreateSampler");
+    depthSampler_ = vk::Handle<VkSampler>(context.device(), depthSampler, vkDestroySampler);
 }
 
 uint64_t ShadowMaps::allocatedBytes() const {

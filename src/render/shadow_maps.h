@@ -32,6 +32,8 @@ public:
     const vk::Image& atlas() const { return atlas_; }
     const vk::Image& pointCubes() const { return pointCubes_; }
     VkSampler sampler() const { return sampler_; }
+    // Non-compare sampler: textureGather of raw depths (receiver-plane compares, one per texel).
+    VkSampler depthSampler() const { return depthSampler_; }
     // Device memory of the two images, placeholders included.
     uint64_t allocatedBytes() const;
 
@@ -39,6 +41,7 @@ private:
     vk::Image atlas_;
     vk::Image pointCubes_;
     vk::Handle<VkSampler> sampler_;
+    vk::Handle<VkSampler> depthSampler_;
 };
 
 }  // namespace punctual::render

@@ -80,6 +80,8 @@ void ShadowPass::addBindings(BindingTable& table) const {
                     views_);
     table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(), maps_.atlas().view(),
                    readOnly);
+    table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.depthSampler(),
+                   maps_.atlas().view(), readOnly);
     table.addImage(PUNCTUAL_BINDING_POINT_SHADOWS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(),
                    maps_.pointCubes().view(), readOnly);
 }

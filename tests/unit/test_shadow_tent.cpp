@@ -14,8 +14,10 @@ namespace punctual {
 namespace {
 
 using gpu::tentAxisFetch;
+using gpu::tentAxisTexelPair;
 using gpu::tentFetch;
 using gpu::tentFetchCount;
+using gpu::tentFetchesPerAxis;
 using gpu::tentTexelWeight;
 
 constexpr uint32_t kSizes[] = {3u, 5u, 7u};
@@ -179,6 +181,73 @@ TEST(ShadowTent, FetchesWeighEveryTexelAsTheContinuousTent) {
         }
     }
     EXPECT_EQ(checked, 40u * (28u + 20u) * 3u);
+}
+
+// The receiver-plane path (shadow_sampling.glsl, filterAtlasReceiverPlane) reads the same texels
+// as 2 x 2 gathers of raw depths and weighs each texel itself: texel pair m along an axis starts at
+// the texel whose centre lies u.x from the sample point (index round(t + u.x - 0.5)), with
+// weights u.y and u.z. Emulated here with the compare results of a map, it must give the brute-force
+// tent too; N = 1 must give the hardware's bilinear fetch at the sample point.
+double filteredByTexelPairs(const CompareMap& map, glm::vec2 t, uint32_t n, double* weightSum) {
+    const glm::vec2 o = t - glm::floor(t + 0.5f);
+    double sum = 0.0;
+    *weightSum = 0.0;
+    for (uint32_t i = 0; i < tentFetchCount(n); ++i) {
+        const glm::vec3 u = tentAxisTexelPair(o.x, n, i % tentFetchesPerAxis(n));
+        const glm::vec3 v = tentAxisTexelPair(o.y, n, i / tentFetchesPerAxis(n));
+        const int x0 = int(std::lround(double(t.x) + double(u.x) - 0.5));
+        const int y0 = int(std::lround(double(t.y) + double(v.x) - 0.5));
+        const double wx[2] = {double(u.y), double(u.z)};
+        const double wy[2] = {double(v.y), double(v.z)};
+        for (int dy = 0; dy < 2; ++dy) {
+            for (int dx = 0; dx < 2; ++dx) {
+                sum += wx[dx] * wy[dy] * map.at(x0 + dx, y0 + dy);
+                *weightSum += wx[dx] * wy[dy];
+            }
+        }
+    }
+    return sum;
+}
+
+TEST(ShadowTent, TexelPairsWeighEveryTexelAsTheTentAndTheHardware) {
+    std::mt19937 random(12);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    CompareMap map;
+    map.size = 16;
+    size_t checked = 0;
+    for (int round = 0; round < 20; ++round) {
+        map.lit.assign(size_t(map.size * map.size), 0.0);
+        for (double& value : map.lit) value = random() & 1u ? 1.0 : 0.0;
+        std::vector<glm::vec2> points = {{8.0f, 7.0f}, {8.5f, 7.5f}, {8.4999f, 7.0001f}, {8.9999f, 7.25f}};
+        for (int k = 0; k < 20; ++k) points.emplace_back(7.5f + unit(random), 7.5f + unit(random));
+        for (const glm::vec2 t : points) {
+            for (const uint32_t n : kSizes) {
+                double weights = 0.0;
+                const double paired = filteredByTexelPairs(map, t, n, &weights);
+                ASSERT_NEAR(weights, 1.0, 1e-6) << "N " << n;
+                ASSERT_NEAR(paired, filteredByTexels(map, t, n), 1e-6) << "N " << n << " at " << t.x << ", " << t.y;
+                ++checked;
+            }
+            double weights = 0.0;
+            const double hardware = filteredByTexelPairs(map, t, 1u, &weights);
+            ASSERT_NEAR(weights, 1.0, 1e-6);
+            ASSERT_NEAR(hardware, bilinearFetch(map, double(t.x), double(t.y)), 1e-6) << t.x << ", " << t.y;
+            ++checked;
+        }
+    }
+    EXPECT_EQ(checked, 20u * 24u * 4u);
+}
+
+TEST(ShadowTent, HardwarePairIsTheBilinearFootprint) {
+    // N = 1, sample point a quarter texel past a corner (o = 0.25): texel centres at -0.75 and
+    // +0.25, bilinear weights 1 - 0.75 = 0.25 and 1 - 0.25 = 0.75; one fetch of weight 1 at 0.
+    const glm::vec3 pair = tentAxisTexelPair(0.25f, 1u, 0u);
+    EXPECT_NEAR(pair.x, -0.75f, 1e-7f);
+    EXPECT_NEAR(pair.y, 0.25f, 1e-7f);
+    EXPECT_NEAR(pair.z, 0.75f, 1e-7f);
+    const glm::vec2 fetch = tentAxisFetch(0.25f, 1u, 0u);
+    EXPECT_NEAR(fetch.x, 1.0f, 1e-7f);
+    EXPECT_NEAR(fetch.y, 0.0f, 1e-7f);
 }
 
 TEST(ShadowTent, TexelWeightsMatchTheExactIntegralAndSumToOne) {

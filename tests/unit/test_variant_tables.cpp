@@ -204,7 +204,7 @@ void expectEveryEntryHasItsCase(const std::array<Entry, N>& table, const std::st
 }
 
 TEST(VariantTables, EveryShadowFilterHasItsShaderCases) {
-    expectEveryEntryHasItsCase(kShadowFilters, "shared/shadow_sampling.glsl", "SHADOW_FILTER", 2);
+    expectEveryEntryHasItsCase(kShadowFilters, "shared/shadow_sampling.glsl", "SHADOW_FILTER", 3);
 }
 
 TEST(VariantTables, EveryPointShadowLayoutHasItsShaderCase) {
