@@ -17,6 +17,7 @@
 #include "culling.h"
 #include "shadows.h"
 #include "shadow_tent.h"
+#include "cascades.h"
 
 // Depth test before shading: only the visible fragment of each pixel runs (EQUAL against the
 // prepass). Without it, the statistics variant's buffer writes would make drivers test depth late
@@ -37,6 +38,7 @@ layout(constant_id = PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT) const uint POINT_SHADOW_
 // into shadowDebug, for comparison with ray-traced visibility. Never used for timing.
 layout(constant_id = PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS) const bool WRITE_SHADOW_FACTORS = false;
 layout(constant_id = PUNCTUAL_SPEC_SHADOW_RECEIVER_PLANE) const bool SHADOW_RECEIVER_PLANE = true;
+layout(constant_id = PUNCTUAL_SPEC_CASCADE_BLEND) const uint CASCADE_BLEND = PUNCTUAL_CASCADE_BLEND_HARD;
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHTS) readonly buffer LightBlock { GpuPunctualLight lights[]; };
@@ -84,6 +86,16 @@ uint pixelGridCell() {
 
 #include "shadow_sampling.glsl"
 
+// Validation variant: the cascade the sun's shadow read at this pixel, plus one (0: none).
+uint sunCascadeWord = 0u;
+
+// Writes `shadow` into this pixel's factor byte `slot` (validation variant).
+void recordShadowFactor(uint slot, float shadow) {
+    uint shift = (slot & 3u) * 8u;
+    uint quantised = uint(round(clamp(shadow, 0.0, 1.0) * 254.0));
+    shadowFactorWords[slot >> 2u] = (shadowFactorWords[slot >> 2u] & ~(0xFFu << shift)) | (quantised << shift);
+}
+
 // One light's contribution, with its shadow where it casts one and reaches this point. The lookup
 // is skipped where the light has no shadow and wherever the shadow cannot change the result:
 // where the attenuation is zero, and where the surface faces away from the light (facesLight, the
@@ -100,13 +112,25 @@ vec3 shadeLight(Surface surface, GpuPunctualLight light) {
             // The light's slot: its view index for spots; shadowed spots + cube index for points.
             uint first = uint(light.angleOffsetShadow.y);
             uint spots = frame.shadowCounts.x;
-            uint slot = first < spots ? first : spots + (first - spots) / 6u;
-            uint shift = (slot & 3u) * 8u;
-            uint quantised = uint(round(clamp(shadow, 0.0, 1.0) * 254.0));
-            shadowFactorWords[slot >> 2u] = (shadowFactorWords[slot >> 2u] & ~(0xFFu << shift)) | (quantised << shift);
+            recordShadowFactor(first < spots ? first : spots + (first - spots) / 6u, shadow);
         }
     }
     return shadeLightSample(surface, light, arrival, shadow);
+}
+
+// The sun, with its cascaded shadow where it has one; skipped, as for punctual lights, where the
+// surface faces away from it.
+vec3 shadeSun(Surface surface) {
+    float shadow = 1.0;
+    if (SHADOWS && frame.sunShadow.y > 0u && facesLight(surface, frame.sun.directionToLight.xyz)) {
+        uint cascade;
+        shadow = sunVisibility(surface.position, surface.normal, cascade);
+        if (WRITE_SHADOW_FACTORS) {
+            recordShadowFactor(PUNCTUAL_SUN_SHADOW_SLOT, shadow);
+            sunCascadeWord = cascade < frame.sunShadow.y ? cascade + 1u : 0u;
+        }
+    }
+    return shadeDirectionalLight(surface, frame.sun) * shadow;
 }
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
@@ -130,7 +154,7 @@ void main() {
     Surface surface = makeSurface(inWorldPosition, normal, viewDir, baseColor.rgb,
                                   material.metallicRoughness.x, material.metallicRoughness.y);
 
-    precise vec3 radiance = shadeDirectionalLight(surface, frame.sun);
+    precise vec3 radiance = shadeSun(surface);
     uint spotCount = frame.lightCounts.x;
     uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
     uint tested = 0u;
@@ -185,7 +209,7 @@ void main() {
         shadowDebug[base + 4u] = floatBitsToUint(normal.x);
         shadowDebug[base + 5u] = floatBitsToUint(normal.y);
         shadowDebug[base + 6u] = floatBitsToUint(normal.z);
-        shadowDebug[base + 7u] = 0u;
+        shadowDebug[base + 7u] = sunCascadeWord;
         uint factorBase = uint(frame.viewport.x * frame.viewport.y) * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS +
                           index * PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS;
         for (uint i = 0u; i < PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS; ++i) shadowDebug[factorBase + i] = shadowFactorWords[i];
@@ -193,7 +217,7 @@ void main() {
 
     if (WRITE_LIGHT_STATS) {
         uint affecting = 0u;
-        vec3 bruteRadiance = shadeDirectionalLight(surface, frame.sun);
+        vec3 bruteRadiance = shadeSun(surface);
         for (uint i = 0u; i < lightCount; ++i) {
             if (punctualAttenuation(lights[i], inWorldPosition) > 0.0) ++affecting;
             bruteRadiance += shadeLight(surface, lights[i]);

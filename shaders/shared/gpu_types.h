@@ -39,11 +39,13 @@
 // Shadow validation buffer (forward shader's WRITE_SHADOW_FACTORS variant), in 32-bit words:
 // per pixel PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS words (world position xyz, 1 if covered, shading
 // normal xyz, 0), then per pixel PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS words holding one byte per
-// shadowed light (slot order: spots, then points): the GPU shadow factor x 254, or 255 where the
-// light does not reach the pixel.
+// shadowed light (slot order: spots, then points; the sun in slot PUNCTUAL_SUN_SHADOW_SLOT): the GPU
+// shadow factor x 254, or 255 where the light does not reach the pixel. The surface's last word
+// is the sun's cascade there plus one (0: none).
 #define PUNCTUAL_MAX_SHADOWED_LIGHTS (PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS + PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS)
+#define PUNCTUAL_SUN_SHADOW_SLOT PUNCTUAL_MAX_SHADOWED_LIGHTS
 #define PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS 8
-#define PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS ((PUNCTUAL_MAX_SHADOWED_LIGHTS + 3) / 4)
+#define PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS ((PUNCTUAL_MAX_SHADOWED_LIGHTS + 1 + 3) / 4)
 #define PUNCTUAL_SHADOW_FACTOR_NOT_REACHED 255u
 
 // Variants chosen by specialization constant. Each kind has a C++ table with one entry per value
@@ -63,6 +65,12 @@
 #define PUNCTUAL_POINT_SHADOW_CUBE 0u    // a cube depth array, hardware face selection
 #define PUNCTUAL_POINT_SHADOW_SLICES 1u  // six 2D layers with a widened field of view (URP)
 #define PUNCTUAL_POINT_SHADOW_LAYOUT_COUNT 2u
+// How a receiver near a cascade's edge reads the sun's cascades (PUNCTUAL_SPEC_CASCADE_BLEND).
+#define PUNCTUAL_CASCADE_BLEND_HARD 0u    // one cascade: the first whose sphere holds it
+#define PUNCTUAL_CASCADE_BLEND_SOFT 1u    // the cascade's outer share mixes it with the next one
+#define PUNCTUAL_CASCADE_BLEND_DITHER 2u  // the outer share picks one of the two per pixel
+#define PUNCTUAL_CASCADE_BLEND_COUNT 3u
+#define PUNCTUAL_MAX_CASCADES 4
 
 // Words per light-grid cell: spot bits 0-31, spot bits 32-63, point bits 0-31.
 #define PUNCTUAL_GRID_WORDS 3
@@ -87,6 +95,7 @@
 #define PUNCTUAL_SPEC_SHADOWS 8
 #define PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS 9
 #define PUNCTUAL_SPEC_SHADOW_RECEIVER_PLANE 10
+#define PUNCTUAL_SPEC_CASCADE_BLEND 11
 
 PUNCTUAL_NAMESPACE_BEGIN
 
@@ -122,6 +131,11 @@ struct GpuFrame {
     vec4 shadowMap;       // xy: the atlas's size in texels, z: disk radius (a view's UV units), w: the depth
                           // format's rounding, subtracted by receiver-plane compares (shadowDepthQuantum)
     uvec4 shadowCounts;   // x: shadowed spots (their views come first), y: shadowed points
+    // The sun's cascades (shaders/shared/cascades.h, lights/cascade_setup.h):
+    uvec4 sunShadow;      // x: the first cascade's view (after the points'), y: cascades (0: unshadowed)
+    vec4 sunShadowFade;   // x: 1 / shadow distance, y: 1 / distance fade share, z: cascadeFadeScale,
+                          // w: the sun's shadow strength
+    vec4 cascadeSpheres[PUNCTUAL_MAX_CASCADES];  // xyz: centre; w: the selection radius squared
 };
 
 // One rendered shadow view: a spot light's frustum, or one face of a point light (+X -X +Y -Y +Z
@@ -129,7 +143,8 @@ struct GpuFrame {
 struct GpuShadowView {
     mat4 viewProjection;
     vec4 params;     // x: 1 when the view has a map, -1 when not (no caster, or no storage: always lit);
-                     // y: 2 tan(fov / 2), the view's span at unit depth (shadowTexelWorldSize);
+                     // y: 2 tan(fov / 2), the view's span at unit depth (shadowTexelWorldSize); a
+                     // cascade: its width (orthographic, the same at every depth);
                      // z: near, w: far (metres along the view axis)
     vec4 atlasRect;  // xy: the view's top-left corner in atlas UV, zw: its size in atlas UV;
                      // cube layout: x is the light's cube in the cube array

@@ -224,3 +224,55 @@ float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3
     }
     return mix(1.0, visibility, light.angleOffsetShadow.w);
 }
+
+// ---- the sun's cascades (cascades.h, lights/cascade_setup.h) ------------------------------------
+
+// Cascade `cascade`'s shadow at the receiver, through the same atlas lookups as a spot view. The
+// seed's normal bias per cascade: its texel widened by sqrt 2 (the texel's diagonal), through the
+// same bias formula as every light.
+float cascadeShadow(uint cascade, vec3 position, vec3 normal, vec3 toSun, float angle) {
+    GpuShadowView view = shadowViews[frame.sunShadow.x + cascade];
+    if (view.params.x < 0.0) return 1.0;  // no caster, or no storage
+    float texel = cascadeTexelWorldSize(0.5 * view.params.y, view.texel.x) * 1.41421356;
+    vec3 biased = applyShadowBias(position, normal, toSun, texel, view.texel.z, frame.shadowBias);
+    return filterAtlasView(view, biased, normal, angle);
+}
+
+// The sun's visibility at the receiver (1 = lit), and the cascade it read (frame.sunShadow.y when
+// none: beyond the shadow distance). As the seed's GetShadowData and GetDirectionalShadowAttenuation:
+//  - the shadow fades out over the last distanceFade of the shadow distance (view depth);
+//  - the first cascade whose selection sphere holds the receiver is read; within the outer
+//    cascadeFade of its radius the last cascade fades out, and any other blends with the next
+//    (CASCADE_BLEND: hard ignores it, soft mixes the two, dither picks the next where the fade is
+//    below the pixel's noise).
+float sunVisibility(vec3 position, vec3 normal, out uint cascade) {
+    uint count = frame.sunShadow.y;
+    float viewDepth = -(frame.view * vec4(position, 1.0)).z;
+    float strength = frame.sunShadowFade.w * fadedShadowStrength(viewDepth, frame.sunShadowFade.x, frame.sunShadowFade.y);
+    cascade = cascadeOf(position, frame.cascadeSpheres[0], frame.cascadeSpheres[1], frame.cascadeSpheres[2],
+                        frame.cascadeSpheres[3], count);
+    if (cascade >= count || strength <= 0.0) return 1.0;
+    vec4 sphere = frame.cascadeSpheres[cascade];
+    vec3 fromCentre = position - sphere.xyz;
+    float fade = fadedShadowStrength(dot(fromCentre, fromCentre), 1.0 / max(sphere.w, 1e-20), frame.sunShadowFade.z);
+    float blend = 1.0;
+    if (cascade == count - 1u) {
+        strength *= fade;
+    } else {
+        blend = fade;
+    }
+    switch (CASCADE_BLEND) {
+        case PUNCTUAL_CASCADE_BLEND_HARD: blend = 1.0; break;
+        case PUNCTUAL_CASCADE_BLEND_SOFT: break;
+        case PUNCTUAL_CASCADE_BLEND_DITHER:
+            if (blend < interleavedGradientNoise(gl_FragCoord.xy)) cascade += 1u;
+            blend = 1.0;
+            break;
+        default: unknownVariant = true; return 1.0;
+    }
+    vec3 toSun = frame.sun.directionToLight.xyz;
+    float angle = SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_DISK ? hashToUnit(position) * 6.28318531 : 0.0;
+    float shadow = cascadeShadow(cascade, position, normal, toSun, angle);
+    if (blend < 1.0) shadow = mix(cascadeShadow(cascade + 1u, position, normal, toSun, angle), shadow, blend);
+    return mix(1.0, shadow, strength);
+}

@@ -57,13 +57,47 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
     return json;
 }
 
+namespace {
+
+// The scene light a view shadows: the packed light's, or the sun's for a cascade.
+uint32_t viewSceneLight(const ShadowView& view, const ShadowPlan& plan, const FrameLights& lights) {
+    return view.isCascade ? plan.cascades.sceneLight : lights.sceneLightIndex[view.packedLight];
+}
+
+// The sun's cascades: how many, where they split (metres along the camera's axis), and each one's
+// sphere, resolution and texel size (metres).
+nlohmann::json cascadeStatsJson(const ShadowPlan& plan, const ShadowSettings& settings) {
+    const CascadePlan& cascades = plan.cascades;
+    nlohmann::json splits = nlohmann::json::array();
+    nlohmann::json list = nlohmann::json::array();
+    for (uint32_t i = 0; i < cascades.count; ++i) {
+        const ShadowView& view = plan.views[cascades.firstView + i];
+        splits.push_back(cascades.splits[i]);
+        list.push_back({{"far_m", cascades.splits[i]},
+                        {"radius_m", cascades.spheres[i].w},
+                        {"resolution", view.resolution},
+                        {"texel_m", cascadeTexelSize(plan, i)},
+                        {"casters", view.casters.size()},
+                        {"rendered", view.rendered()}});
+    }
+    return {{"cascades", cascades.count},
+            {"cascade_splits", splits},
+            {"shadow_distance_m", cascades.shadowDistance},
+            {"shadow_distance_fitted", cascades.distanceFitted},
+            {"cascade_blend", cascadeBlendName(settings.cascades.blend)},
+            {"cascade_list", list}};
+}
+
+}  // namespace
+
 nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
     const ShadowSettings& settings = renderer.settings().shadows;
     const ShadowPlan& plan = renderer.shadowPlan();
     const FrameLights& lights = renderer.lights();
     nlohmann::json views = nlohmann::json::array();
     for (const ShadowView& view : plan.views) {
-        nlohmann::json entry = {{"light", lights.sceneLightIndex[view.packedLight]},
+        nlohmann::json entry = {{"light", viewSceneLight(view, plan, lights)},
+                                {"type", view.isCascade ? "cascade" : view.isPoint ? "point face" : "spot"},
                                 {"face", view.face},
                                 {"resolution", view.resolution},
                                 {"rendered", view.rendered()},
@@ -77,7 +111,7 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
     nlohmann::json reduced = nlohmann::json::array();
     for (const ShadowReduction& reduction : plan.reductions) {
         const ShadowView& view = plan.views[reduction.view];
-        reduced.push_back({{"light", lights.sceneLightIndex[view.packedLight]},
+        reduced.push_back({{"light", viewSceneLight(view, plan, lights)},
                            {"face", view.face},
                            {"demanded", reduction.demanded},
                            {"granted", reduction.granted}});
@@ -114,6 +148,7 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
         {"reduced_by", plan.reducedBy},
         {"views", views},
     };
+    json.update(cascadeStatsJson(plan, settings));
     if (settings.autoResolution()) {
         json["receiver_samples"] = plan.receiverSamples;
         json["receiver_sample_step_px"] = plan.sampleStep;

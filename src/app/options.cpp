@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <vector>
 
 #include "core/error.h"
 
@@ -42,19 +43,20 @@ float parseFloat(const std::string& option, const std::string& text) {
     return value;
 }
 
-// "1,1,1,0" -> the four shadow biases.
-glm::vec4 parseBias(const std::string& text) {
-    glm::vec4 bias(0.0f);
+// "1,1,1,0" -> exactly `count` comma-separated numbers; `expected` says what they are.
+std::vector<float> parseNumberList(const std::string& option, const std::string& text, size_t count,
+                                   const std::string& expected) {
+    std::vector<float> numbers;
     size_t start = 0;
-    for (int i = 0; i < 4; ++i) {
+    for (size_t i = 0; i < count; ++i) {
         const size_t comma = text.find(',', start);
-        if ((i < 3) != (comma != std::string::npos)) {
-            throw Error("--shadow-bias", "expected four numbers DEPTH,SLOPE,NORMAL,SIN_NORMAL, got '" + text + "'");
+        if ((i + 1 < count) != (comma != std::string::npos)) {
+            throw Error(option, "expected " + expected + ", got '" + text + "'");
         }
-        bias[i] = parseFloat("--shadow-bias", text.substr(start, comma - start));
+        numbers.push_back(parseFloat(option, text.substr(start, comma - start)));
         start = comma + 1;
     }
-    return bias;
+    return numbers;
 }
 
 // "S,P" -> the most spot and point lights that cast a shadow (ranges: validateShadowSettings).
@@ -136,7 +138,27 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         } else if (arg == "--shadow-samples") {
             options.shadows.diskSamples = parseWhole(arg, value());
         } else if (arg == "--shadow-bias") {
-            options.shadows.bias = parseBias(value());
+            const std::vector<float> bias =
+                parseNumberList(arg, value(), 4, "four numbers DEPTH,SLOPE,NORMAL,SIN_NORMAL");
+            options.shadows.bias = glm::vec4(bias[0], bias[1], bias[2], bias[3]);
+        } else if (arg == "--cascades") {
+            options.shadows.cascades.count = parseWhole(arg, value());
+        } else if (arg == "--cascade-splits") {
+            const std::vector<float> splits =
+                parseNumberList(arg, value(), 3, "three fractions of the shadow distance, e.g. 0.1,0.25,0.5");
+            options.shadows.cascades.splits = {splits[0], splits[1], splits[2]};
+            options.shadows.cascades.lambda = -1.0f;
+        } else if (arg == "--cascade-lambda") {
+            options.shadows.cascades.lambda = parseFloat(arg, value());
+            if (options.shadows.cascades.lambda < 0.0f) throw Error(arg, "must be from 0 to 1");
+        } else if (arg == "--shadow-distance") {
+            const std::string& text = value();
+            options.shadows.cascades.shadowDistance = text == "auto" ? 0.0f : parseFloat(arg, text);
+            if (text != "auto" && !(options.shadows.cascades.shadowDistance > 0.0f)) {
+                throw Error(arg, "must be auto or a distance in metres above 0");
+            }
+        } else if (arg == "--cascade-blend") {
+            options.shadows.cascades.blend = parseCascadeBlend(value());
         } else if (arg == "--shadow-receiver-plane") {
             const std::string& text = value();
             if (text != "on" && text != "off") throw Error(arg, "expected on or off, got '" + text + "'");
@@ -219,7 +241,15 @@ options:
   --shadow-bias D,S,N,SN  depth, slope-scaled, normal and sin-scaled normal bias, in texels
                        at the receiver (default 1,1,0,0), widened by the filter's reach
                        where receiver-plane compares are off
-  --shadow-receiver-plane on|off  on (default): hw and tent filters compare each texel with
+  --cascades N         the sun's shadow cascades, 1 to 4 (default 4)
+  --cascade-splits A,B,C  where cascades 1-3 end, as fractions of the shadow distance
+                       (default 0.1,0.25,0.5, the design notes')
+  --cascade-lambda L   instead: the practical split scheme, 0 (linear) to 1 (logarithmic)
+  --shadow-distance D  how far the sun's shadow reaches, in metres; auto (default): the
+                       farthest surface the frame shows, at most 200
+  --cascade-blend B    between cascades:
+)" + variantHelp(kCascadeBlends, defaults.shadows.cascades.blend, kListIndent) +
+           R"(  --shadow-receiver-plane on|off  on (default): hw and tent filters compare each texel with
                        the receiver's plane under it, so the bias need not cover the filter's
                        reach; off: the design notes' compares (disk and cube maps always)
   --shadow-strength S  0 (no shadow) to 1 (default 1), times each light's own strength

@@ -96,6 +96,18 @@ int runRenderCommand(const std::vector<std::string>& args) {
                     shadowFormatName(settings.shadows.format), shadowFilterName(settings.shadows.filter));
         std::printf("shadow resolution: %s; views at %s texels\n",
                     settings.shadows.autoResolution() ? "auto" : "fixed", describeShadowTiers(shadows).c_str());
+        if (shadows.cascades.count > 0) {
+            std::string cascades;
+            for (uint32_t i = 0; i < shadows.cascades.count; ++i) {
+                const ShadowView& view = shadows.views[shadows.cascades.firstView + i];
+                char text[96];
+                std::snprintf(text, sizeof(text), "%s%.1f m at %u (%.3f m texels)", i ? ", " : "",
+                              double(shadows.cascades.splits[i]), view.resolution, double(cascadeTexelSize(shadows, i)));
+                cascades += text;
+            }
+            std::printf("sun: %u cascades to %s, %s blend\n", shadows.cascades.count, cascades.c_str(),
+                        cascadeBlendName(settings.shadows.cascades.blend));
+        }
     }
     std::fputs(timingTable(result.medianMs).c_str(), stdout);
 

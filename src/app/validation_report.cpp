@@ -1,5 +1,6 @@
 #include "app/validation_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -77,24 +78,45 @@ nlohmann::json validationJson(const reference::ShadowValidation& validation, con
 }
 
 ImageRgba8 mismatchMap(const reference::LightShadowValidation& light, uint32_t width, uint32_t height) {
+    return mismatchMap(light.verdicts, light.inBand, width, height);
+}
+
+ImageRgba8 mismatchMap(const std::vector<reference::PixelVerdict>& verdicts, const std::vector<uint8_t>& inBand,
+                       uint32_t width, uint32_t height) {
     ImageRgba8 image;
     image.width = width;
     image.height = height;
     image.pixels.assign(size_t(width) * height * 4, 0);
-    for (size_t i = 0; i < light.verdicts.size(); ++i) {
+    for (size_t i = 0; i < verdicts.size(); ++i) {
         glm::u8vec3 colour(0);
-        switch (light.verdicts[i]) {
+        switch (verdicts[i]) {
             case reference::PixelVerdict::NotCompared: colour = {0, 0, 0}; break;
             case reference::PixelVerdict::AgreeLit: colour = {70, 70, 70}; break;
             case reference::PixelVerdict::AgreeShadow: colour = {150, 150, 150}; break;
             case reference::PixelVerdict::FalseShadow: colour = {255, 40, 40}; break;
             case reference::PixelVerdict::FalseLit: colour = {40, 90, 255}; break;
         }
-        if (light.inBand[i]) colour /= uint8_t(2);
+        if (inBand[i]) colour /= uint8_t(2);
         image.pixels[i * 4 + 0] = colour.r;
         image.pixels[i * 4 + 1] = colour.g;
         image.pixels[i * 4 + 2] = colour.b;
         image.pixels[i * 4 + 3] = 255;
+    }
+    return image;
+}
+
+ImageRgba8 cascadeOverlay(const ImageRgba8& frame, const std::vector<uint8_t>& cascades) {
+    static const glm::vec3 kColours[PUNCTUAL_MAX_CASCADES] = {{1.0f, 0.2f, 0.2f}, {0.2f, 1.0f, 0.2f}, {0.3f, 0.4f, 1.0f},
+                                                              {1.0f, 1.0f, 0.2f}};
+    ImageRgba8 image = frame;
+    for (size_t i = 0; i < cascades.size() && i * 4 + 3 < image.pixels.size(); ++i) {
+        if (cascades[i] == 0 || cascades[i] > PUNCTUAL_MAX_CASCADES) continue;
+        const glm::vec3 tint = kColours[cascades[i] - 1];
+        for (int c = 0; c < 3; ++c) {
+            // Half the frame's own brightness (so the shadows stay readable), half the tint.
+            const float value = 0.5f * float(image.pixels[i * 4 + size_t(c)]) + 127.0f * tint[c];
+            image.pixels[i * 4 + size_t(c)] = uint8_t(std::min(value, 255.0f));
+        }
     }
     return image;
 }

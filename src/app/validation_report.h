@@ -24,6 +24,13 @@ nlohmann::json validationJson(const reference::ShadowValidation& validation, con
 // Red: false shadow, blue: false lit, greys: agreement (dark grey lit, light grey shadowed),
 // black: not compared; pixels of the edge band are drawn at half brightness.
 ImageRgba8 mismatchMap(const reference::LightShadowValidation& light, uint32_t width, uint32_t height);
+ImageRgba8 mismatchMap(const std::vector<reference::PixelVerdict>& verdicts, const std::vector<uint8_t>& inBand,
+                       uint32_t width, uint32_t height);
+
+// The frame with each pixel tinted by the sun's cascade it read (`cascades`: cascade + 1, 0 for
+// none), in the colours of Unity's cascade debug view: red, green, blue, yellow; untinted where no
+// cascade was read.
+ImageRgba8 cascadeOverlay(const ImageRgba8& frame, const std::vector<uint8_t>& cascades);
 
 std::string validationHtml(const nlohmann::json& report);
 

@@ -1,8 +1,10 @@
 #include "lights/shadow_resolution.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
+#include "cascades.h"
 #include "lights/shadow_setup.h"
 #include "scene/triangle_bvh.h"
 #include "shadows.h"
@@ -74,11 +76,38 @@ float resolutionNeededAt(const ShadowPlan& plan, uint32_t viewIndex, const gpu::
     return gpu::resolutionForOneTexelPerPixel(linearDepth, view.tanSpan, sample.pixelWorldSize);
 }
 
+namespace {
+
+// The sun's cascades: each sample that faces the sun falls in the first cascade whose sphere holds
+// it (cascadeOf over the culling spheres), which must give it a texel no wider than its pixel. An
+// orthographic cascade's texel is its width / resolution at every depth: the same formula as a
+// view of that span at unit depth.
+void cascadeDemand(const ShadowPlan& plan, const VisibleReceivers& receivers, std::vector<float>& demand) {
+    const CascadePlan& cascades = plan.cascades;
+    std::array<glm::vec4, PUNCTUAL_MAX_CASCADES> spheres{};
+    for (uint32_t i = 0; i < cascades.count; ++i) {
+        spheres[i] = glm::vec4(glm::vec3(cascades.spheres[i]), cascades.spheres[i].w * cascades.spheres[i].w);
+    }
+    for (const ReceiverSample& sample : receivers.samples) {
+        if (!(glm::dot(sample.normal, cascades.lightZ) > 0.0f)) continue;  // faces away: BRDF zero
+        const uint32_t cascade = gpu::cascadeOf(sample.position, spheres[0], spheres[1], spheres[2], spheres[3], cascades.count);
+        if (cascade >= cascades.count) continue;
+        const uint32_t v = cascades.firstView + cascade;
+        demand[v] = std::max(demand[v], gpu::resolutionForOneTexelPerPixel(1.0f, plan.views[v].tanSpan, sample.pixelWorldSize));
+    }
+}
+
+}  // namespace
+
 std::vector<float> shadowViewDemand(const ShadowPlan& plan, const FrameLights& lights,
                                     const VisibleReceivers& receivers) {
     std::vector<float> demand(plan.views.size(), 0.0f);
     for (uint32_t v = 0; v < plan.views.size(); ++v) {
         const ShadowView& view = plan.views[v];
+        if (view.isCascade) {
+            if (view.face == 0) cascadeDemand(plan, receivers, demand);
+            continue;
+        }
         const gpu::GpuPunctualLight& light = lights.packed[view.packedLight];
         if (!view.isPoint) {
             for (const ReceiverSample& sample : receivers.samples) {

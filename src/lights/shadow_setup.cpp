@@ -137,6 +137,7 @@ uint32_t ShadowSettings::filterTaps() const {
 }
 
 void validateShadowSettings(const ShadowSettings& settings) {
+    validateCascadeSettings(settings.cascades);
     if (!settings.autoResolution() &&
         (settings.resolution < 16 || settings.resolution > 8192 || (settings.resolution & (settings.resolution - 1)) != 0)) {
         throw Error("--shadow-res", "must be auto or a power of two from 16 to 8192, got " + std::to_string(settings.resolution));

@@ -19,6 +19,8 @@
 #include <glm/glm.hpp>
 
 #include "gpu_types.h"
+#include "lights/cascade_settings.h"
+#include "lights/cascade_setup.h"
 #include "lights/light_setup.h"
 #include "lights/shadow_atlas.h"
 #include "lights/shadow_budget.h"
@@ -56,6 +58,7 @@ struct ShadowSettings {
     // bias then no longer widens with the filter's reach (biasPenumbraTexels).
     bool receiverPlane = true;
     float strength = 1.0f;  // multiplies every light's own shadow strength
+    CascadeSettings cascades;  // the sun's (lights/cascade_setup.h)
     // For the failure study only (bench), never needed to render correctly:
     bool pancaking = false;         // clamp caster vertices' depth onto the near plane (Unity's pancaking)
     float spotNearFraction = 0.0f;  // > 0: spot near plane at this fraction of the range, not fitted
@@ -89,9 +92,10 @@ struct ShadowView {
     gpu::GpuShadowView gpu{};
     std::vector<uint32_t> casters;  // object indices whose bounds meet the view's frustum
     uint32_t packedLight = 0;       // index into FrameLights::packed
-    uint32_t face = 0;              // 0 for spots; the cube face for points
+    uint32_t face = 0;              // 0 for spots; the cube face for points; the cascade for the sun
     uint32_t cubeLayer = 0;         // cube layout: the face's layer in the cube array
     bool isPoint = false;
+    bool isCascade = false;         // one of the sun's cascades (packedLight unused)
     float nearPlane = 0.0f;         // metres along the view's axis
     float farPlane = 0.0f;
     float tanSpan = 0.0f;           // 2 tan(half field of view): the view's width at unit depth
@@ -103,7 +107,7 @@ struct ShadowView {
 };
 
 struct ShadowPlan {
-    std::vector<ShadowView> views;  // spots first (one each), then points (six each)
+    std::vector<ShadowView> views;  // spots first (one each), then points (six each), then cascades
     uint32_t shadowedSpots = 0;     // spot lights with a view
     uint32_t shadowedPoints = 0;    // point lights with six
     uint32_t droppedByCap = 0;      // shadow-casting lights over the caps (they stay unshadowed)
@@ -116,6 +120,7 @@ struct ShadowPlan {
     std::string reducedBy;          // what forced the reductions
     uint32_t receiverSamples = 0;   // auto: visible receiver samples the demand came from
     uint32_t sampleStep = 0;        // auto: pixels between them
+    CascadePlan cascades;           // the sun's (planCascades)
 };
 
 // Chooses the shadowed lights (by lightImportance, see light_setup.h), builds their views (casters,

@@ -10,11 +10,13 @@ namespace punctual {
 
 namespace {
 
-// Each view's light's rank (0 = the most important), for the budget.
+// Each view's light's rank (0 = the most important), for the budget. The sun's cascades come
+// first: the sun reaches every pixel the frame shows.
 std::vector<uint32_t> lightRanks(const ShadowPlan& plan, const Scene& scene, const FrameLights& lights,
                                  const glm::vec3& cameraPosition) {
     std::vector<uint32_t> packed;
     for (const ShadowView& view : plan.views) {
+        if (view.isCascade) continue;
         if (packed.empty() || packed.back() != view.packedLight) packed.push_back(view.packedLight);
     }
     std::vector<uint32_t> byImportance = packed;
@@ -24,7 +26,9 @@ std::vector<uint32_t> lightRanks(const ShadowPlan& plan, const Scene& scene, con
     });
     std::vector<uint32_t> ranks;
     for (const ShadowView& view : plan.views) {
-        ranks.push_back(uint32_t(std::find(byImportance.begin(), byImportance.end(), view.packedLight) - byImportance.begin()));
+        ranks.push_back(view.isCascade ? 0u
+                                       : 1u + uint32_t(std::find(byImportance.begin(), byImportance.end(), view.packedLight) -
+                                                       byImportance.begin()));
     }
     return ranks;
 }
@@ -58,6 +62,7 @@ void finishViews(ShadowPlan& plan, const FrameLights& lights, const ShadowSettin
             view.tanSpan = 2.0f * scale;
             view.gpu.viewProjection = cubeFaceViewProjection(position, view.face, view.nearPlane, view.farPlane, scale);
         }
+        if (view.isCascade) finishCascadeView(view, plan.cascades, settings);
         (view.rendered() ? plan.viewsRendered : plan.viewsSkipped)++;
         view.gpu.params = glm::vec4(view.rendered() ? 1.0f : -1.0f, view.tanSpan, view.nearPlane, view.farPlane);
         if (usesCubeArray(view, settings)) {
@@ -70,6 +75,7 @@ void finishViews(ShadowPlan& plan, const FrameLights& lights, const ShadowSettin
         view.gpu.texel = glm::vec4(resolution, 1.0f / resolution,
                                    settings.biasPenumbraTexels(view.resolution, !usesCubeArray(view, settings)), 0.0f);
     }
+    if (plan.cascades.count > 0) selectCascadesBy(plan, settings);
 }
 
 }  // namespace

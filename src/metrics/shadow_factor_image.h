@@ -18,6 +18,10 @@ struct ShadowFactorImage {
     std::vector<glm::vec3> normals;    // unit shading normal, facing the viewer
     std::vector<uint8_t> covered;      // 1 where geometry is
     std::vector<uint8_t> factors;      // [pixel * slots + slot]: factor x 254, 255 = light does not reach
+    // The sun (when its shadow is cascaded): its factor as above, and the cascade read plus one
+    // (0: none). Empty without cascades.
+    std::vector<uint8_t> sunFactors;
+    std::vector<uint8_t> sunCascades;
 };
 
 }  // namespace punctual

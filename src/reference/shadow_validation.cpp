@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include <tbb/parallel_for.h>
 
+#include "lights/cascade_setup.h"
 #include "reference/reference_renderer.h"
 #include "shadows.h"
 
@@ -61,24 +63,117 @@ EdgeBand EdgeBand::ofScreenPixels(float pixels, const Camera& camera, uint32_t h
     return band;
 }
 
+namespace {
+
+// What comparing one light needs: its factor at each pixel, the direction towards it from a point,
+// Embree's visibility of it from a point, and the shadow map's texel size at a point (the default
+// edge band's width).
+struct ComparedLight {
+    std::function<uint8_t(size_t pixel)> factor;
+    std::function<glm::vec3(const glm::vec3& point)> toLight;  // unnormalised is fine
+    std::function<bool(const glm::vec3& point, const glm::vec3& normal)> rayLit;
+    std::function<float(const glm::vec3& point)> texelSize;
+};
+
+// Compares one light at every pixel (in parallel, deterministic): verdicts, the edge band, counts.
+void compareLight(const ShadowFactorImage& factors, const ComparedLight& compared, const EdgeBand& band,
+                  std::vector<PixelVerdict>& verdicts, std::vector<uint8_t>& inBandPixels, ShadowCounts& counts) {
+    const size_t pixels = size_t(factors.width) * factors.height;
+    verdicts.assign(pixels, PixelVerdict::NotCompared);
+    inBandPixels.assign(pixels, 0);
+    tbb::parallel_for(size_t(0), size_t(factors.height), [&](size_t y) {
+        for (size_t x = 0; x < factors.width; ++x) {
+            const size_t i = y * factors.width + x;
+            const uint8_t factor = compared.factor(i);
+            if (factor == PUNCTUAL_SHADOW_FACTOR_NOT_REACHED) continue;
+            const glm::vec3 p = factors.positions[i];
+            const glm::vec3 n = factors.normals[i];
+            // A surface facing away from the light receives none of it (N.L <= 0 shades to
+            // zero), whatever the shadow says: the light does not reach it.
+            const glm::vec3 towards = compared.toLight(p);
+            if (glm::dot(n, towards) <= 0.0f) continue;
+            const bool rayLit = compared.rayLit(p, n);
+            const bool gpuLit = factor >= 127;  // factor x 254 >= 0.5
+
+            // Edge band: four probes in the surface's plane, each its own shadow ray. One texel
+            // away, across and along the light's direction (stretched by 1 / cos theta along
+            // it, as a texel's footprint is); or band.screenPixels pixels away, across and along
+            // the view's slant (stretched by 1 / cos of the view angle along it).
+            glm::vec3 axisA;
+            glm::vec3 axisB;
+            float reachA = 0.0f;
+            float reachB = 0.0f;
+            if (band.screenPixels > 0.0f) {
+                const glm::vec3 viewPoint(band.cameraView * glm::vec4(p, 1.0f));
+                const glm::vec3 eye(glm::inverse(band.cameraView)[3]);
+                const float width = band.screenPixels * gpu::screenPixelWorldSize(-viewPoint.z, band.pixelSpanAtUnitDepth);
+                const glm::vec3 toEye = glm::normalize(eye - p);
+                axisA = toEye - n * glm::dot(n, toEye);
+                if (glm::dot(axisA, axisA) < 1e-8f) axisA = glm::cross(n, std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
+                axisA = glm::normalize(axisA);
+                axisB = glm::normalize(glm::cross(n, axisA));
+                reachA = width / std::max(std::abs(glm::dot(n, toEye)), 0.2f);
+                reachB = width;
+            } else {
+                const glm::vec3 toLight = glm::normalize(towards);
+                axisA = glm::cross(n, toLight);
+                if (glm::dot(axisA, axisA) < 1e-8f) axisA = glm::cross(n, std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
+                axisA = glm::normalize(axisA);
+                axisB = glm::normalize(glm::cross(n, axisA));
+                const float texel = compared.texelSize(p);
+                reachA = texel;
+                reachB = texel / std::max(glm::dot(n, toLight), 0.2f);
+            }
+            bool inBand = false;
+            for (const glm::vec3 offset : {axisA * reachA, -axisA * reachA, axisB * reachB, -axisB * reachB}) {
+                if (glm::dot(offset, offset) == 0.0f) continue;
+                if (compared.rayLit(p + offset, n) != rayLit) {
+                    inBand = true;
+                    break;
+                }
+            }
+            inBandPixels[i] = inBand ? 1 : 0;
+            verdicts[i] = gpuLit == rayLit ? (rayLit ? PixelVerdict::AgreeLit : PixelVerdict::AgreeShadow)
+                                           : (gpuLit ? PixelVerdict::FalseLit : PixelVerdict::FalseShadow);
+        }
+    });
+    counts = ShadowCounts{};
+    for (size_t i = 0; i < pixels; ++i) counts.count(verdicts[i], inBandPixels[i] != 0);
+}
+
+}  // namespace
+
+void ShadowCounts::count(PixelVerdict verdict, bool inBand) {
+    if (verdict == PixelVerdict::NotCompared) return;
+    ++compared;
+    const bool isFalseShadow = verdict == PixelVerdict::FalseShadow;
+    const bool isFalseLit = verdict == PixelVerdict::FalseLit;
+    falseShadow += isFalseShadow;
+    falseLit += isFalseLit;
+    if (inBand) {
+        ++edgeBand;
+    } else {
+        ++comparedOutsideBand;
+        falseShadowOutsideBand += isFalseShadow;
+        falseLitOutsideBand += isFalseLit;
+    }
+}
+
 ShadowValidation validateShadows(const EmbreeScene& embree, const ShadowFactorImage& factors,
                                  const FrameLights& lights, const ShadowPlan& plan, const EdgeBand& band) {
     ShadowValidation result;
     result.width = factors.width;
     result.height = factors.height;
-    const size_t pixels = size_t(factors.width) * factors.height;
 
     // The slot of each shadowed light, in the order the GPU numbers them.
     for (uint32_t viewIndex = 0; viewIndex < plan.views.size(); ++viewIndex) {
         const ShadowView& view = plan.views[viewIndex];
-        if (view.isPoint && view.face != 0) continue;
+        if (view.isCascade || (view.isPoint && view.face != 0)) continue;
         LightShadowValidation light;
         light.slot = uint32_t(result.lights.size());
         light.packedLight = view.packedLight;
         light.sceneLight = lights.sceneLightIndex[view.packedLight];
         light.isPoint = view.isPoint;
-        light.verdicts.assign(pixels, PixelVerdict::NotCompared);
-        light.inBand.assign(pixels, 0);
         result.lights.push_back(std::move(light));
     }
 
@@ -86,80 +181,40 @@ ShadowValidation validateShadows(const EmbreeScene& embree, const ShadowFactorIm
         const gpu::GpuPunctualLight& light = lights.packed[validation.packedLight];
         const uint32_t firstView = uint32_t(light.angleOffsetShadow.y);
         const glm::vec3 lightPosition(light.positionInvRangeSq);
-        tbb::parallel_for(size_t(0), size_t(factors.height), [&](size_t y) {
-            for (size_t x = 0; x < factors.width; ++x) {
-                const size_t i = y * factors.width + x;
-                const uint8_t factor = factors.factors[i * factors.slots + validation.slot];
-                if (factor == PUNCTUAL_SHADOW_FACTOR_NOT_REACHED) continue;
-                const glm::vec3 p = factors.positions[i];
-                const glm::vec3 n = factors.normals[i];
-                // A surface facing away from the light receives none of it (N.L <= 0 shades to
-                // zero), whatever the shadow says: the light does not reach it.
-                if (glm::dot(n, lightPosition - p) <= 0.0f) continue;
-                const bool rayLit = visibility(embree, p, n, light) > 0.5f;
-                const bool gpuLit = factor >= 127;  // factor x 254 >= 0.5
+        ComparedLight compared;
+        compared.factor = [&](size_t i) { return factors.factors[i * factors.slots + validation.slot]; };
+        compared.toLight = [&](const glm::vec3& p) { return lightPosition - p; };
+        compared.rayLit = [&](const glm::vec3& p, const glm::vec3& n) { return visibility(embree, p, n, light) > 0.5f; };
+        compared.texelSize = [&](const glm::vec3& p) { return texelWorldSize(light, plan, firstView, p); };
+        compareLight(factors, compared, band, validation.verdicts, validation.inBand, validation.counts);
+        (validation.isPoint ? result.points : result.spots).add(validation.counts);
+        result.overall.add(validation.counts);
+    }
 
-                // Edge band: four probes in the surface's plane, each its own shadow ray. One texel
-                // away, across and along the light's direction (stretched by 1 / cos theta along
-                // it, as a texel's footprint is); or band.screenPixels pixels away, across and along
-                // the view's slant (stretched by 1 / cos of the view angle along it).
-                glm::vec3 axisA;
-                glm::vec3 axisB;
-                float reachA = 0.0f;
-                float reachB = 0.0f;
-                if (band.screenPixels > 0.0f) {
-                    const glm::vec3 viewPoint(band.cameraView * glm::vec4(p, 1.0f));
-                    const glm::vec3 eye(glm::inverse(band.cameraView)[3]);
-                    const float width = band.screenPixels * gpu::screenPixelWorldSize(-viewPoint.z, band.pixelSpanAtUnitDepth);
-                    const glm::vec3 toEye = glm::normalize(eye - p);
-                    axisA = toEye - n * glm::dot(n, toEye);
-                    if (glm::dot(axisA, axisA) < 1e-8f) axisA = glm::cross(n, std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
-                    axisA = glm::normalize(axisA);
-                    axisB = glm::normalize(glm::cross(n, axisA));
-                    reachA = width / std::max(std::abs(glm::dot(n, toEye)), 0.2f);
-                    reachB = width;
-                } else {
-                    const glm::vec3 toLight = glm::normalize(lightPosition - p);
-                    axisA = glm::cross(n, toLight);
-                    if (glm::dot(axisA, axisA) < 1e-8f) axisA = glm::cross(n, std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
-                    axisA = glm::normalize(axisA);
-                    axisB = glm::normalize(glm::cross(n, axisA));
-                    const float texel = texelWorldSize(light, plan, firstView, p);
-                    reachA = texel;
-                    reachB = texel / std::max(glm::dot(n, toLight), 0.2f);
-                }
-                bool inBand = false;
-                for (const glm::vec3 offset : {axisA * reachA, -axisA * reachA, axisB * reachB, -axisB * reachB}) {
-                    if (glm::dot(offset, offset) == 0.0f) continue;
-                    if ((visibility(embree, p + offset, n, light) > 0.5f) != rayLit) {
-                        inBand = true;
-                        break;
-                    }
-                }
-                validation.inBand[i] = inBand ? 1 : 0;
-                validation.verdicts[i] = gpuLit == rayLit ? (rayLit ? PixelVerdict::AgreeLit : PixelVerdict::AgreeShadow)
-                                                          : (gpuLit ? PixelVerdict::FalseLit : PixelVerdict::FalseShadow);
-            }
-        });
-        ShadowCounts& counts = validation.counts;
-        for (size_t i = 0; i < pixels; ++i) {
-            const PixelVerdict verdict = validation.verdicts[i];
-            if (verdict == PixelVerdict::NotCompared) continue;
-            ++counts.compared;
-            const bool falseShadow = verdict == PixelVerdict::FalseShadow;
-            const bool falseLit = verdict == PixelVerdict::FalseLit;
-            counts.falseShadow += falseShadow;
-            counts.falseLit += falseLit;
-            if (validation.inBand[i]) {
-                ++counts.edgeBand;
-            } else {
-                ++counts.comparedOutsideBand;
-                counts.falseShadowOutsideBand += falseShadow;
-                counts.falseLitOutsideBand += falseLit;
-            }
+    if (plan.cascades.count > 0 && !factors.sunFactors.empty()) {
+        SunShadowValidation& sun = result.sun.emplace();
+        sun.sceneLight = plan.cascades.sceneLight;
+        const gpu::GpuDirectionalLight& light = lights.sun;
+        ComparedLight compared;
+        compared.factor = [&](size_t i) { return factors.sunFactors[i]; };
+        compared.toLight = [&](const glm::vec3&) { return glm::vec3(light.directionToLight); };
+        compared.rayLit = [&](const glm::vec3& p, const glm::vec3& n) { return visibility(embree, p, n, light) > 0.5f; };
+        compared.texelSize = [&](const glm::vec3& p) {
+            const uint32_t cascade = cascadeAt(plan.cascades, p);
+            return cascade < plan.cascades.count ? cascadeTexelSize(plan, cascade) : 0.0f;
+        };
+        compareLight(factors, compared, band, sun.verdicts, sun.inBand, sun.counts);
+        // Per cascade, by the cascade the GPU read (dither may pick the next one), and the split
+        // bands: pixels within one texel of the cascade's sphere (where the selection switches).
+        sun.cascades.resize(plan.cascades.count);
+        for (size_t i = 0; i < sun.verdicts.size(); ++i) {
+            const uint8_t cascade = factors.sunCascades[i];
+            if (cascade == 0 || cascade > plan.cascades.count) continue;
+            const bool inBand = sun.inBand[i] != 0;
+            sun.cascades[cascade - 1].count(sun.verdicts[i], inBand);
+            if (nearCascadeSplit(plan, factors.positions[i])) sun.splitBand.count(sun.verdicts[i], inBand);
         }
-        (validation.isPoint ? result.points : result.spots).add(counts);
-        result.overall.add(counts);
+        result.overall.add(sun.counts);
     }
     return result;
 }

@@ -15,6 +15,7 @@
 // screenPixels gives a band of fixed width on screen instead (--edge-band-px N), which compares
 // resolutions fairly. misclassified() counts every compared pixel, no band excluded.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@
 #include "reference/embree_scene.h"
 
 namespace punctual::reference {
+
+// Per pixel, what the comparison found for one light.
+enum class PixelVerdict : uint8_t { NotCompared, AgreeLit, AgreeShadow, FalseShadow, FalseLit };
 
 struct ShadowCounts {
     uint64_t compared = 0;
@@ -34,14 +38,13 @@ struct ShadowCounts {
     uint64_t falseLitOutsideBand = 0;
 
     void add(const ShadowCounts& other);
+    // Counts one pixel's verdict (NotCompared counts nothing), inside or outside the edge band.
+    void count(PixelVerdict verdict, bool inBand);
     // Misclassified share of the compared pixels outside the edge band.
     double misclassifiedOutsideBand() const;
     // Misclassified share of every compared pixel.
     double misclassified() const;
 };
-
-// Per pixel, what the comparison found for one light.
-enum class PixelVerdict : uint8_t { NotCompared, AgreeLit, AgreeShadow, FalseShadow, FalseLit };
 
 struct LightShadowValidation {
     uint32_t slot = 0;         // shadowed-light order: spots, then points
@@ -53,13 +56,26 @@ struct LightShadowValidation {
     std::vector<uint8_t> inBand;         // per pixel: 1 in the edge band
 };
 
+// The sun's cascaded shadow against rays towards the sun, at every pixel it reaches (N.L > 0,
+// inside the shadow distance), per cascade (by the cascade the GPU read) and in the split band:
+// pixels within one texel of where the selection changes cascade.
+struct SunShadowValidation {
+    uint32_t sceneLight = 0;
+    ShadowCounts counts;
+    std::vector<ShadowCounts> cascades;
+    ShadowCounts splitBand;
+    std::vector<PixelVerdict> verdicts;  // per pixel
+    std::vector<uint8_t> inBand;         // per pixel: 1 in the edge band
+};
+
 struct ShadowValidation {
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<LightShadowValidation> lights;
     ShadowCounts spots;
     ShadowCounts points;
-    ShadowCounts overall;
+    std::optional<SunShadowValidation> sun;  // when the frame's sun has cascades
+    ShadowCounts overall;                    // spots, points and the sun
 };
 
 // The edge band's width: one shadow texel (screenPixels = 0), or screenPixels screen pixels of the

@@ -47,13 +47,14 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
         uint32_t pointShadowLayout;
         VkBool32 writeShadowFactors;
         VkBool32 shadowReceiverPlane;
+        uint32_t cascadeBlend;
     };
     const Constants constants{variant.lightList, variant.tileSize, variant.slices,
                               variant.writeLightStats ? VK_TRUE : VK_FALSE, variant.shadows ? VK_TRUE : VK_FALSE,
                               variant.shadowFilter, variant.shadowSamples, variant.pointShadowLayout,
                               variant.writeShadowFactors ? VK_TRUE : VK_FALSE,
-                              variant.shadowReceiverPlane ? VK_TRUE : VK_FALSE};
-    const std::array<VkSpecializationMapEntry, 10> entries = {{
+                              variant.shadowReceiverPlane ? VK_TRUE : VK_FALSE, variant.cascadeBlend};
+    const std::array<VkSpecializationMapEntry, 11> entries = {{
         {PUNCTUAL_SPEC_LIGHT_LIST, offsetof(Constants, lightList), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_TILE_SIZE, offsetof(Constants, tileSize), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, offsetof(Constants, slices), sizeof(uint32_t)},
@@ -64,6 +65,7 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
         {PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT, offsetof(Constants, pointShadowLayout), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS, offsetof(Constants, writeShadowFactors), sizeof(VkBool32)},
         {PUNCTUAL_SPEC_SHADOW_RECEIVER_PLANE, offsetof(Constants, shadowReceiverPlane), sizeof(VkBool32)},
+        {PUNCTUAL_SPEC_CASCADE_BLEND, offsetof(Constants, cascadeBlend), sizeof(uint32_t)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(constants), &constants};
 

@@ -25,6 +25,7 @@ struct ForwardVariant {
     uint32_t pointShadowLayout = 0;  // PUNCTUAL_POINT_SHADOW_*
     bool writeShadowFactors = false;  // validation variant: per-pixel shadow factors
     bool shadowReceiverPlane = true;  // per-texel receiver-plane compares (shadow_sampling.glsl)
+    uint32_t cascadeBlend = 0;        // PUNCTUAL_CASCADE_BLEND_*
 };
 
 class ForwardPass final : public Pass {

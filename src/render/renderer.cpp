@@ -6,9 +6,11 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "cascades.h"
 #include "core/log.h"
 #include "culling.h"
 #include "gpu_types.h"
+#include "lights/cascade_setup.h"
 #include "lights/shadow_sizing.h"
 #include "render/depth_prepass.h"
 #include "render/forward_pass.h"
@@ -87,6 +89,7 @@ struct Renderer::Resources {
         variant.pointShadowLayout = uint32_t(settings.shadows.pointLayout);
         variant.writeShadowFactors = shadowFactors;
         variant.shadowReceiverPlane = settings.shadows.receiverPlane;
+        variant.cascadeBlend = uint32_t(settings.shadows.cascades.blend);
         return variant;
     }
 
@@ -204,6 +207,13 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     frame.shadowMap = glm::vec4(float(shadowPlan.atlas.width), float(shadowPlan.atlas.height), shadows.diskRadius,
                                 shadowDepthQuantum(shadows.format));
     frame.shadowCounts = glm::uvec4(shadowPlan.shadowedSpots, shadowPlan.shadowedPoints, 0u, 0u);
+    const CascadePlan& cascades = shadowPlan.cascades;
+    if (cascades.count > 0) {
+        frame.sunShadow = glm::uvec4(cascades.firstView, cascades.count, 0u, 0u);
+        frame.sunShadowFade = glm::vec4(1.0f / cascades.shadowDistance, 1.0f / shadows.cascades.distanceFade,
+                                        gpu::cascadeFadeScale(shadows.cascades.cascadeFade), cascades.strength);
+        for (uint32_t i = 0; i < PUNCTUAL_MAX_CASCADES; ++i) frame.cascadeSpheres[i] = cascades.selection[i];
+    }
     return frame;
 }
 
@@ -223,6 +233,7 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     projection_ = scene.camera.projection(float(settings.width) / float(settings.height));
     lights_ = setupFrameLights(scene, view_, projection_);
     shadowPlan_ = planShadows(scene, lights_, scene.camera.position(), settings.shadows);
+    planCascades(shadowPlan_, scene, lights_, settings.width, settings.height, settings.shadows);
     // Sized before anything is allocated: a request the device cannot hold fails here, in one line.
     sizeShadowViews(shadowPlan_, scene, lights_, scene.camera.position(), settings.width, settings.height,
                     settings.shadows, ShadowMaps::memoryLimits(context, settings.shadows));
@@ -417,6 +428,10 @@ ShadowFactorImage Renderer::readShadowFactors() {
     image.normals.resize(pixels);
     image.covered.resize(pixels);
     image.factors.resize(pixels * image.slots);
+    if (shadowPlan_.cascades.count > 0) {
+        image.sunFactors.resize(pixels);
+        image.sunCascades.resize(pixels);
+    }
     const auto* words = reinterpret_cast<const uint32_t*>(bytes.data());
     for (size_t i = 0; i < pixels; ++i) {
         const uint32_t* surface = words + i * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS;
@@ -428,6 +443,10 @@ ShadowFactorImage Renderer::readShadowFactors() {
         // Uncovered pixels were cleared to 0: report them as not reached.
         for (uint32_t slot = 0; slot < image.slots; ++slot) {
             image.factors[i * image.slots + slot] = image.covered[i] ? factors[slot] : uint8_t{255};
+        }
+        if (shadowPlan_.cascades.count > 0) {
+            image.sunFactors[i] = image.covered[i] ? factors[PUNCTUAL_SUN_SHADOW_SLOT] : uint8_t{255};
+            image.sunCascades[i] = image.covered[i] ? uint8_t(surface[7]) : uint8_t{0};
         }
     }
     return image;

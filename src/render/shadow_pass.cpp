@@ -103,11 +103,24 @@ void ShadowPass::createPipelines(const vk::Context& context, const FrameBindings
     const VkSpecializationInfo vertexSpecialization{1, &pancakingEntry, sizeof(VkBool32), &pancaking};
     pipelineDesc.vertexSpecialization = &vertexSpecialization;
     pipeline_ = vk::createGraphicsPipeline(device, pipelineDesc);
+
+    // Cascades pancake (the seed's "pancaking"), with the depth clamp where the device has it: the
+    // vertex clamp bends the depth of triangles that cross the near plane, the depth clamp does
+    // not. The failure study turns it off to show what clipping loses.
+    if (plan_.cascades.count > 0) {
+        const bool pancake = settings_.cascades.depthClamp;
+        const bool clamp = pancake && context.enabledFeatures().depthClamp == VK_TRUE;
+        const VkBool32 vertexPancaking = pancake && !clamp ? VK_TRUE : VK_FALSE;
+        const VkSpecializationInfo cascadeSpecialization{1, &pancakingEntry, sizeof(VkBool32), &vertexPancaking};
+        pipelineDesc.vertexSpecialization = &cascadeSpecialization;
+        pipelineDesc.depthClamp = clamp;
+        cascadePipeline_ = vk::createGraphicsPipeline(device, pipelineDesc);
+    }
 }
 
 void ShadowPass::drawView(const FrameContext& frame, const ShadowView& view) const {
     const VkCommandBuffer cmd = frame.cmd;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, view.isCascade ? cascadePipeline_ : pipeline_);
     frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_);
     vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::mat4), &view.gpu.viewProjection);
     frame.scene.drawObjects(cmd, pipelineLayout_, view.casters, kObjectIndexOffset, VK_SHADER_STAGE_VERTEX_BIT);

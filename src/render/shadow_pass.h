@@ -52,6 +52,9 @@ private:
     vk::Handle<VkRenderPass> renderPass_;
     vk::Handle<VkPipelineLayout> pipelineLayout_;
     vk::Handle<VkPipeline> pipeline_;
+    // The sun's cascades: casters between the sun and a cascade's near plane are pancaked onto it
+    // (depth clamp, or the vertex clamp where the device lacks it), never clipped.
+    vk::Handle<VkPipeline> cascadePipeline_;
     std::vector<Target> targets_;  // the atlas first (when it has storage), then the cube faces
 };
 

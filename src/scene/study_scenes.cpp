@@ -160,4 +160,55 @@ Scene longRangeScene(float range) {
     return scene;
 }
 
+Light sunLight(const glm::vec3& direction, float lux) {
+    Light light;
+    light.name = "sun";
+    light.type = LightType::Directional;
+    light.direction = glm::normalize(direction);
+    light.intensity = lux;
+    light.castsShadow = true;
+    return light;
+}
+
+Scene cascadeFieldScene() {
+    Scene scene;
+    scene.source = "cascade field";
+    Material material;
+    material.name = "grey";
+    material.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
+    material.roughness = 0.7f;
+    scene.materials.push_back(material);
+    addBox(scene, {0.0f, -0.1f, -140.0f}, {400.0f, 0.2f, 320.0f});
+    // Posts along the view, ever further apart (the cascades grow): 1 m to 160 m, alternately left
+    // and right, tall and short.
+    float z = -1.0f;
+    for (int i = 0; z > -160.0f; ++i) {
+        const float side = (i % 2 == 0) ? -1.0f : 1.0f;
+        const float height = (i % 3 == 0) ? 3.0f : 1.2f;
+        const float width = 0.15f + 0.01f * -z;
+        addBox(scene, {side * (0.8f + 0.05f * -z), 0.5f * height, z}, {width, height, width});
+        z -= 0.8f + 0.12f * -z;
+    }
+    addBox(scene, {6.0f, 1.5f, -30.0f}, {8.0f, 3.0f, 0.4f});      // a wall across the view
+    addBox(scene, {-5.0f, 1.0f, -12.0f}, {2.0f, 2.0f, 2.0f});     // a box
+    // Buildings whose shadows fall sideways across the far cascades' ground.
+    addBox(scene, {-12.0f, 5.0f, -65.0f}, {6.0f, 10.0f, 6.0f});
+    addBox(scene, {-25.0f, 7.0f, -120.0f}, {10.0f, 14.0f, 8.0f});
+    addBox(scene, {-20.0f, 10.0f, -140.0f}, {12.0f, 20.0f, 12.0f});
+    addBox(scene, {15.0f, 6.0f, -150.0f}, {10.0f, 12.0f, 10.0f});
+    addBox(scene, {-40.0f, 9.0f, -175.0f}, {14.0f, 18.0f, 10.0f});
+    addBox(scene, {10.0f, 10.0f, -186.0f}, {20.0f, 20.0f, 6.0f});  // its shadow lies in the last cascade
+    addBox(scene, {2.0f, 0.25f, -4.0f}, {0.6f, 0.5f, 0.6f});      // a low crate close by
+    scene.lights.push_back(sunLight({0.7f, -0.574f, 0.42f}, 3.0f));
+    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 8.0f, 0.0f), glm::vec3(0.0f, 0.0f, -40.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    // A narrower field of view than the hall's: a cascade's sphere grows with the frustum's width,
+    // and at 1 radian the third sphere already reached most of the way to the shadow distance.
+    scene.camera.yfov = 0.6f;
+    scene.camera.znear = 0.1f;
+    scene.camera.zfar = 400.0f;
+    scene.cameraFromFile = true;
+    scene.computeBounds();
+    return scene;
+}
+
 }  // namespace punctual::study

@@ -42,4 +42,13 @@ Scene manyLightsScene(int spotCount, int pointCount);
 // (shadow near and far planes fitted to the range rather than to the casters fail at long ones).
 Scene longRangeScene(float range);
 
+// The sun's cascades: a 400 m x 320 m field seen from 8 m up along it (looking 11 degrees down, so
+// every cascade's range fills rows of the frame), posts of several heights from 1 m to 160 m away
+// (each of four cascades over 160 m holds casters, and some straddle their splits), a wall and
+// boxes, under a sun 35 degrees high shining across the view and towards the camera (shadows fall
+// towards it, where the far cascades can see them). No other light.
+Scene cascadeFieldScene();
+// The sun's light: travelling along `direction` (need not be unit), `lux` bright.
+Light sunLight(const glm::vec3& direction, float lux);
+
 }  // namespace punctual::study

@@ -29,7 +29,10 @@ static_assert(offsetof(GpuFrame, ndcToView) == 384);
 static_assert(offsetof(GpuFrame, shadowBias) == 400);
 static_assert(offsetof(GpuFrame, shadowMap) == 416);
 static_assert(offsetof(GpuFrame, shadowCounts) == 432);
-static_assert(sizeof(GpuFrame) == 448);
+static_assert(offsetof(GpuFrame, sunShadow) == 448);
+static_assert(offsetof(GpuFrame, sunShadowFade) == 464);
+static_assert(offsetof(GpuFrame, cascadeSpheres) == 480);
+static_assert(sizeof(GpuFrame) == 480 + 16 * PUNCTUAL_MAX_CASCADES);
 
 static_assert(sizeof(GpuShadowView) == 112);
 static_assert(offsetof(GpuShadowView, params) == 64);

@@ -50,6 +50,7 @@ Handle<VkPipeline> createGraphicsPipeline(VkDevice device, const GraphicsPipelin
     raster.cullMode = desc.cullMode;
     raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     raster.depthBiasEnable = desc.depthBias ? VK_TRUE : VK_FALSE;
+    raster.depthClampEnable = desc.depthClamp ? VK_TRUE : VK_FALSE;
     raster.lineWidth = 1.0f;
 
     VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};

@@ -28,6 +28,7 @@ struct GraphicsPipelineDesc {
     VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
     bool depthBias = false;  // dynamic depth bias (vkCmdSetDepthBias)
+    bool depthClamp = false;  // clamp depth to the viewport instead of clipping at near and far (feature depthClamp)
 };
 
 Handle<VkPipeline> createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc);
