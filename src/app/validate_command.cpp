@@ -114,6 +114,11 @@ int runValidateCommand(const std::vector<std::string>& args) {
         outputs.add(dir + "/mismatch-" + std::to_string(light.slot) + ".png",
                     encodePng(mismatchMap(light, validation.width, validation.height)));
     }
+    if (validation.sun) {
+        outputs.add(dir + "/mismatch-sun.png",
+                    encodePng(mismatchMap(validation.sun->verdicts, validation.sun->inBand, validation.width, validation.height)));
+        outputs.add(dir + "/cascades.png", encodePng(cascadeOverlay(gpuImage, factors.sunCascades)));
+    }
     if (exportExr) addExrImages(outputs, dir, factors);
     // report.json lists every file of this run, so the next run into DIR removes the ones it
     // does not write again (a light that is gone leaves no mismatch map of its own behind).
@@ -138,6 +143,13 @@ int runValidateCommand(const std::vector<std::string>& args) {
                 pointShadowLayoutName(settings.shadows.pointLayout));
     line("spots", validation.spots);
     line("points", validation.points);
+    if (validation.sun) {
+        line("sun", validation.sun->counts);
+        for (size_t i = 0; i < validation.sun->cascades.size(); ++i) {
+            line(("  c" + std::to_string(i)).c_str(), validation.sun->cascades[i]);
+        }
+        line("  split", validation.sun->splitBand);
+    }
     line("all", validation.overall);
     std::printf("wrote %s/report.json and report.html\n", dir.c_str());
     return 0;

@@ -30,7 +30,7 @@ nlohmann::json countsJson(const reference::ShadowCounts& c) {
 const OutputFolderLayout& validationFolderLayout() {
     static const OutputFolderLayout layout = {"report.json",
                                               {"report.json", "report.html", "gpu.png", "reference.png",
-                                               "mismatch-*.png", "positions.exr", "shadow-factor-*.exr"},
+                                               "mismatch-*.png", "cascades.png", "positions.exr", "shadow-factor-*.exr"},
                                               {}};
     return layout;
 }
@@ -74,6 +74,31 @@ nlohmann::json validationJson(const reference::ShadowValidation& validation, con
         lights.push_back(entry);
     }
     report["lights"] = lights;
+    if (validation.sun) {
+        // The sun: overall, per cascade (by the cascade the GPU read), and the split band (pixels
+        // within one texel of where the cascade read changes).
+        const reference::SunShadowValidation& sun = *validation.sun;
+        const ShadowPlan& plan = renderer.shadowPlan();
+        nlohmann::json directional = countsJson(sun.counts);
+        directional["scene_light"] = sun.sceneLight;
+        directional["name"] = scene.lights.at(sun.sceneLight).name;
+        directional["mismatch_map"] = "mismatch-sun.png";
+        directional["cascade_map"] = "cascades.png";
+        directional["cascade_blend"] = cascadeBlendName(s.cascades.blend);
+        directional["shadow_distance_m"] = plan.cascades.shadowDistance;
+        nlohmann::json cascades = nlohmann::json::array();
+        for (uint32_t i = 0; i < sun.cascades.size(); ++i) {
+            nlohmann::json entry = countsJson(sun.cascades[i]);
+            entry["cascade"] = i;
+            entry["far_m"] = plan.cascades.splits[i];
+            entry["resolution"] = plan.views[plan.cascades.firstView + i].resolution;
+            entry["texel_m"] = cascadeTexelSize(plan, i);
+            cascades.push_back(std::move(entry));
+        }
+        directional["cascades"] = cascades;
+        directional["split_band"] = countsJson(sun.splitBand);
+        report["directional"] = directional;
+    }
     return report;
 }
 
@@ -152,6 +177,17 @@ std::string validationHtml(const nlohmann::json& report) {
         row(std::to_string(light["slot"].get<int>()) + " " + light["name"].get<std::string>(),
             light["type"].get<std::string>(), light);
     }
+    if (report.contains("directional")) {
+        const nlohmann::json& sun = report["directional"];
+        row("sun " + sun["name"].get<std::string>(), "directional", sun);
+        for (const auto& cascade : sun["cascades"]) {
+            std::ostringstream name;
+            name << "  cascade " << cascade["cascade"] << " (to " << cascade["far_m"].get<double>() << " m, "
+                 << cascade["resolution"] << " texels)";
+            row(name.str(), "directional", cascade);
+        }
+        row("  split band", "directional", sun["split_band"]);
+    }
     html << "</table>\n<h2>Mismatch maps</h2>\n<p>Red: false shadow (GPU dark, ray lit). Blue: false lit (GPU lit, "
          << "ray blocked). Grey: agreement (dark: lit, light: shadowed). Half brightness: edge band. Black: the light "
          << "does not reach the pixel.</p>\n<div class=\"maps\">\n";
@@ -159,6 +195,12 @@ std::string validationHtml(const nlohmann::json& report) {
         html << "<figure style=\"display:inline-block;width:31%\"><img style=\"max-width:100%\" src=\""
              << light["mismatch_map"].get<std::string>() << "\"><figcaption>" << light["slot"] << " ("
              << light["type"].get<std::string>() << ")</figcaption></figure>\n";
+    }
+    if (report.contains("directional")) {
+        html << "<figure style=\"display:inline-block;width:31%\"><img style=\"max-width:100%\" src=\"mismatch-sun.png\">"
+             << "<figcaption>sun</figcaption></figure>\n"
+             << "<figure style=\"display:inline-block;width:31%\"><img style=\"max-width:100%\" src=\"cascades.png\">"
+             << "<figcaption>the sun's cascades: red 0, green 1, blue 2, yellow 3</figcaption></figure>\n";
     }
     html << "</div></body></html>\n";
     return html.str();

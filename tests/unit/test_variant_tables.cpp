@@ -101,6 +101,7 @@ TEST(VariantTables, HelpListsEveryEntryAndTheDefault) {
     const ShadowSettings defaults;
     expectHelpListsEveryEntry(kShadowFilters, defaults.filter);
     expectHelpListsEveryEntry(kPointShadowLayouts, defaults.pointLayout);
+    expectHelpListsEveryEntry(kCascadeBlends, defaults.cascades.blend);
     // The descriptions line up in one column after the longest name.
     EXPECT_EQ(variantHelp(kPointShadowLayouts, PointShadowLayout::Cube, 2).substr(0, 10), "  cube    ");
 }
@@ -211,6 +212,10 @@ TEST(VariantTables, EveryPointShadowLayoutHasItsShaderCase) {
     expectEveryEntryHasItsCase(kPointShadowLayouts, "shared/shadow_sampling.glsl", "POINT_SHADOW_LAYOUT", 1);
 }
 
+TEST(VariantTables, EveryCascadeBlendHasItsShaderCase) {
+    expectEveryEntryHasItsCase(kCascadeBlends, "shared/shadow_sampling.glsl", "CASCADE_BLEND", 1);
+}
+
 TEST(VariantTables, EveryLightListMethodHasItsShaderCase) {
     expectEveryEntryHasItsCase(render::kLightListMethods, "raster/forward.frag", "LIGHT_LIST", 1);
 }
@@ -235,6 +240,7 @@ TEST(VariantTables, EveryGpuValueHasAnEntry) {
     expectEveryDefineHasAnEntry(render::kLightListMethods, "PUNCTUAL_LIGHT_LIST_");
     expectEveryDefineHasAnEntry(kShadowFilters, "PUNCTUAL_SHADOW_FILTER_");
     expectEveryDefineHasAnEntry(kPointShadowLayouts, "PUNCTUAL_POINT_SHADOW_");
+    expectEveryDefineHasAnEntry(kCascadeBlends, "PUNCTUAL_CASCADE_BLEND_");
 }
 
 }  // namespace
