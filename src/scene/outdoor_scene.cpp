@@ -69,8 +69,10 @@ std::vector<BoxSpec> outdoorLayout() {
         {"fence top rail", {0.55f, 0.92f, -30.0f}, {0.61f, 1.0f, 1.5f}, kWood},
         {"fence middle rail", {0.55f, 0.45f, -30.0f}, {0.61f, 0.52f, 1.5f}, kWood},
     };
-    for (int i = 0; i < 13; ++i)
-        boxes.push_back(standing("fence post", 0.58f, 1.2f - 2.5f * static_cast<float>(i), {0.08f, 1.05f, 0.08f}, kWood));
+    for (int i = 0; i < 13; ++i) {
+        const float z = 1.2f - 2.5f * static_cast<float>(i);
+        boxes.push_back(standing("fence post", 0.58f, z, {0.08f, 1.05f, 0.08f}, kWood));
+    }
 
     const std::vector<BoxSpec> near = {
         standing("crate", -1.3f, -2.4f, {0.7f, 0.7f, 0.7f}, kWood),
@@ -134,7 +136,9 @@ std::vector<BoxSpec> outdoorLayout() {
 void addCamera(Scene& scene) {
     Camera& camera = scene.camera;
     camera.name = "outdoor";
-    camera.view = glm::lookAtRH(glm::vec3(0.0f, 1.7f, 0.0f), glm::vec3(-0.8f, 0.0f, -10.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    const glm::vec3 eye(0.0f, 1.7f, 0.0f);
+    const glm::vec3 target(-0.8f, 0.0f, -10.0f);
+    camera.view = glm::lookAtRH(eye, target, glm::vec3(0.0f, 1.0f, 0.0f));
     camera.yfov = 1.04719755f;  // 60 degrees
     camera.znear = 0.1f;        // the fence's top rail is 0.9 m from the eye
     camera.zfar = farthestViewDepth(scene.bounds, camera.view) + 1.0f;

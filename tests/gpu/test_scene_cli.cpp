@@ -21,7 +21,8 @@ using testing::runPunctual;
 
 // A failing run of `args`: status 1 (a user error, README "Exit status"), one line naming
 // `mention`, and nothing written.
-void expectUserErrorAndNoOutput(const testing::TempFolder& folder, const std::string& args, const std::string& mention) {
+void expectUserErrorAndNoOutput(const testing::TempFolder& folder, const std::string& args,
+                                const std::string& mention) {
     const RunResult run = runPunctual(folder, args);
     testing::expectOneClearError(run, args, mention);
     EXPECT_EQ(run.exitCode, 1) << args;
@@ -88,7 +89,8 @@ TEST(SceneCli, EveryCommandTakesAScene) {
     EXPECT_EQ(compare.out.rfind(outdoor_scene::kSource, 0), 0u) << compare.out;
 
     const std::string dir = folder.file("validate");
-    const RunResult validate = runPunctual(folder, "validate --scene outdoor --validate --size 64x36 --out-dir " + quoted(dir));
+    const RunResult validate =
+        runPunctual(folder, "validate --scene outdoor --validate --size 64x36 --out-dir " + quoted(dir));
     ASSERT_EQ(validate.exitCode, 0) << validate.err;
     const nlohmann::json report = nlohmann::json::parse(readText(dir + "/report.json"));
     EXPECT_NE(report.dump().find(outdoor_scene::kSource), std::string::npos);
