@@ -25,6 +25,7 @@
 #include "reference/embree_scene.h"
 #include "reference/shadow_validation.h"
 #include "render/renderer.h"
+#include "scene/builtin_scenes.h"
 #include "scene/light_generator.h"
 #include "vk/context.h"
 
@@ -43,9 +44,10 @@ std::string usage() {
     for (const ShadowFilterInfo& filter : kShadowFilters) {
         if (filter.quickBench) quickFilters.emplace_back(filter.name);
     }
-    return R"(usage: punctual bench [SCENE] [--quick] --out-dir DIR [--size WxH] [--frames N]
+    return R"(usage: punctual bench [SCENE|--scene NAME] [--quick] --out-dir DIR [--size WxH] [--frames N]
 
-Sweeps, on SCENE (default: the built-in scene) with generated lights:
+Sweeps, on SCENE or the built-in scene NAME (default: )" + std::string(kDefaultBuiltinScene.name) +
+           R"() with generated lights:
   light counts 0 .. 64 spot + 32 point (2:1 mix, spot-only and point-only series)
   x the methods )" + joinNames(render::methodNames(), ", ") + R"( (shadows off);
   shadows off and on at the largest count, per method;
@@ -211,8 +213,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
         } else if (args[i] == "--out-dir") {
             if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--out-dir", "needs a value");
             outDir = args[++i];
-        } else if (args[i] == "--size" || args[i] == "--frames" || args[i] == "--device" || args[i] == "--validate" ||
-                   args[i] == "--exposure" || args[i].rfind("--", 0) != 0) {
+        } else if (args[i] == "--scene" || args[i] == "--size" || args[i] == "--frames" || args[i] == "--device" ||
+                   args[i] == "--validate" || args[i] == "--exposure" || args[i].rfind("--", 0) != 0) {
             renderArgs.push_back(args[i]);
             if (args[i] != "--validate" && args[i].rfind("--", 0) == 0 && i + 1 < args.size()) renderArgs.push_back(args[++i]);
         } else {

@@ -36,6 +36,9 @@ commands:
                              sweep light counts, methods and shadow settings into results.csv
   devices                    list the Vulkan devices (index, name, type)
   help                       this text; `punctual render --help` for the render options
+
+SCENE is a glTF file (.gltf, .glb). Without one a command uses a built-in scene: --scene NAME
+picks one (`punctual render --help` lists them; the first is the default).
 )";
 
 int listDevices() {

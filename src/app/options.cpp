@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "scene/builtin_scenes.h"
 
 namespace punctual::app {
 namespace {
@@ -89,7 +90,9 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error(arg, "needs a value");
             return args[++i];
         };
-        if (arg == "--lights") {
+        if (arg == "--scene") {
+            options.sceneName = parseBuiltinScene(value()).name;
+        } else if (arg == "--lights") {
             options.lights = parseLightCounts(value());
         } else if (arg == "--size") {
             parseSize(value(), options.width, options.height);
@@ -179,6 +182,10 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             throw Error(arg, "unexpected argument: only one scene file can be given");
         }
     }
+    if (options.scenePath && options.sceneName) {
+        throw Error("--scene", "a built-in scene and a scene file ('" + *options.scenePath +
+                                   "') cannot both be given: choose one");
+    }
     render::validateRenderSettings(renderSettingsFrom(options));
     return options;
 }
@@ -207,12 +214,14 @@ std::string renderUsage() {
     // indented under their option; the defaults are those of RenderOptions.
     const RenderOptions defaults;
     constexpr size_t kListIndent = 25;
-    return R"(usage: punctual render [SCENE.gltf|SCENE.glb] [options]
+    return R"(usage: punctual render [SCENE.gltf|SCENE.glb|--scene NAME] [options]
 
-Renders SCENE (or the built-in default scene) on the GPU and prints per-pass GPU times.
+Renders SCENE (or a built-in scene) on the GPU and prints per-pass GPU times.
 
 options:
-  --lights S,P[,SEED]  replace the scene's lights with S spot (<= 64) and P point (<= 32)
+  --scene NAME         a built-in scene instead of a file:
+)" + variantHelp(kBuiltinScenes, kDefaultBuiltinScene.value, kListIndent) +
+           R"(  --lights S,P[,SEED]  replace the scene's lights with S spot (<= 64) and P point (<= 32)
                        lights generated inside its bounds (same seed, same lights; seed 1)
   --size WxH           output size in pixels (default 1280x720)
   --out FILE.png       write the tone-mapped image

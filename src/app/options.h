@@ -15,7 +15,8 @@
 namespace punctual::app {
 
 struct RenderOptions {
-    std::optional<std::string> scenePath;  // none: the built-in default scene
+    std::optional<std::string> scenePath;  // a glTF file; none: a built-in scene
+    std::optional<std::string> sceneName;  // --scene NAME, a name of kBuiltinScenes; none: the default one
     std::optional<LightCounts> lights;     // --lights S,P[,SEED]
     uint32_t width = 1280;
     uint32_t height = 720;

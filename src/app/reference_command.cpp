@@ -31,9 +31,9 @@ constexpr std::array<const char*, 15> kRenderOnlyOptions = {
 }  // namespace
 
 std::string referenceUsage() {
-    return R"(usage: punctual reference [SCENE.gltf|SCENE.glb] [options] --out FILE.png
+    return R"(usage: punctual reference [SCENE.gltf|SCENE.glb|--scene NAME] [options] --out FILE.png
 
-Ray traces SCENE (or the built-in default scene) on the CPU with Embree: one ray per pixel
+Ray traces SCENE (or a built-in scene) on the CPU with Embree: one ray per pixel
 centre from the GPU's camera, the GPU's lights and shading code, and one shadow ray per light
 reaching each point. The ground truth the GPU image is compared with.
 
@@ -41,6 +41,7 @@ options:
   --out FILE.png       the tone-mapped reference image (required)
   --shadows on|off     shadow rays to every light reaching a point (default on)
   --no-shadows         the same as --shadows off: every light unoccluded
+  --scene NAME         the built-in scene NAME instead of a file (see punctual render --help)
   --lights S,P[,SEED]  replace the scene's lights with S spot (<= 64) and P point (<= 32)
                        lights generated inside its bounds (same seed, same lights; seed 1)
   --size WxH           output size in pixels (default 1280x720)

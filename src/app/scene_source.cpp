@@ -1,6 +1,6 @@
 #include "app/scene_source.h"
 
-#include "scene/default_scene.h"
+#include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "scene/light_generator.h"
 #include "scene/texture_limit.h"
@@ -12,7 +12,9 @@ Scene loadSceneForOptions(const RenderOptions& options) {
     // alike) samples the same texels.
     GltfLoadOptions load;
     load.textureLimit = textureLimitForFrame(options.width, options.height);
-    Scene scene = options.scenePath ? loadGltf(*options.scenePath, load) : makeDefaultScene();
+    Scene scene = options.scenePath ? loadGltf(*options.scenePath, load)
+                                    : options.sceneName ? makeBuiltinScene(*options.sceneName)
+                                                        : kDefaultBuiltinScene.value();
     if (options.lights) {
         replaceLights(scene, options.lights->spot, options.lights->point, options.lights->seed);
     }

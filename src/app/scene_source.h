@@ -1,6 +1,7 @@
 #pragma once
-// Where a command's scene comes from: a glTF file or the built-in default scene, with the
-// lights optionally replaced by generated ones (--lights).
+// Where a command's scene comes from: a glTF file or a built-in scene (--scene NAME; by default
+// the first of scene/builtin_scenes.h), with the lights optionally replaced by generated ones
+// (--lights).
 #include "app/options.h"
 #include "scene/scene.h"
 

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gpu_types.h"
+#include "scene/box_layout.h"
 #include "scene/light_generator.h"
 
 namespace punctual {
@@ -20,42 +21,16 @@ namespace {
 enum MaterialId : uint32_t { kFloor, kConcrete, kRedPaint, kSteel, kBrass, kBluePlastic, kGreenRubber };
 
 void addMaterials(Scene& scene) {
-    auto material = [](const char* name, glm::vec3 color, float metallic, float roughness) {
-        Material m;
-        m.name = name;
-        m.baseColorFactor = glm::vec4(color, 1.0f);
-        m.metallic = metallic;
-        m.roughness = roughness;
-        return m;
-    };
     // Order matches MaterialId. Albedos stay below ~0.8 as real materials do.
     scene.materials = {
-        material("floor", {0.50f, 0.50f, 0.48f}, 0.0f, 0.85f),
-        material("concrete", {0.72f, 0.70f, 0.66f}, 0.0f, 0.70f),
-        material("red paint", {0.70f, 0.18f, 0.14f}, 0.0f, 0.50f),
-        material("brushed steel", {0.82f, 0.83f, 0.85f}, 1.0f, 0.35f),
-        material("brass", {0.95f, 0.75f, 0.40f}, 1.0f, 0.25f),
-        material("blue plastic", {0.10f, 0.25f, 0.65f}, 0.0f, 0.30f),
-        material("green rubber", {0.20f, 0.45f, 0.22f}, 0.0f, 0.95f),
+        plainMaterial("floor", {0.50f, 0.50f, 0.48f}, 0.0f, 0.85f),
+        plainMaterial("concrete", {0.72f, 0.70f, 0.66f}, 0.0f, 0.70f),
+        plainMaterial("red paint", {0.70f, 0.18f, 0.14f}, 0.0f, 0.50f),
+        plainMaterial("brushed steel", {0.82f, 0.83f, 0.85f}, 1.0f, 0.35f),
+        plainMaterial("brass", {0.95f, 0.75f, 0.40f}, 1.0f, 0.25f),
+        plainMaterial("blue plastic", {0.10f, 0.25f, 0.65f}, 0.0f, 0.30f),
+        plainMaterial("green rubber", {0.20f, 0.45f, 0.22f}, 0.0f, 0.95f),
     };
-}
-
-// One box of the layout: world-space extents before an optional turn about its vertical centre
-// axis. The turn is given as the world (x, z) direction of the box's own +X axis, not as an angle,
-// so it needs no sin/cos (whose last bit may differ between maths libraries).
-struct BoxSpec {
-    const char* name;
-    glm::vec3 min;
-    glm::vec3 max;
-    MaterialId material;
-    glm::vec2 facing{1.0f, 0.0f};
-};
-
-// A box standing on the floor, centred at (x, z), of the given full size.
-BoxSpec standing(const char* name, float x, float z, glm::vec3 size, MaterialId material,
-                 glm::vec2 facing = {1.0f, 0.0f}, float baseY = 0.0f) {
-    const glm::vec3 half(size.x * 0.5f, 0.0f, size.z * 0.5f);
-    return {name, glm::vec3(x, baseY, z) - half, glm::vec3(x, baseY + size.y, z) + half, material, facing};
 }
 
 // The hall: floor 40 m x 30 m (top at y = 0), a 5 m back wall, partial side walls, three interior
@@ -98,19 +73,7 @@ std::vector<BoxSpec> hallLayout() {
     return boxes;
 }
 
-void addGeometry(Scene& scene) {
-    for (const BoxSpec& box : hallLayout()) {
-        const glm::vec3 center = (box.min + box.max) * 0.5f;
-        Object object;
-        object.name = box.name;
-        object.mesh = appendBoxMesh(scene, box.name, box.max - box.min, box.material);
-        // Columns: local +X -> (c, 0, s), +Y -> +Y, +Z -> cross(+X, +Y) = (-s, 0, c); then the centre.
-        const glm::vec2 xAxis = glm::normalize(box.facing);
-        object.model = glm::mat4(glm::vec4(xAxis.x, 0.0f, xAxis.y, 0.0f), glm::vec4(0.0f, 1.0f, 0.0f, 0.0f),
-                                 glm::vec4(-xAxis.y, 0.0f, xAxis.x, 0.0f), glm::vec4(center, 1.0f));
-        scene.objects.push_back(object);
-    }
-}
+void addGeometry(Scene& scene) { addBoxes(scene, hallLayout()); }
 
 // ---- camera ----------------------------------------------------------------------------------
 
@@ -129,13 +92,7 @@ void addCamera(Scene& scene) {
     camera.yfov = 1.04719755f;  // 60 degrees
     camera.znear = 0.1f;
     // Far plane just beyond the farthest corner of the bounds along the view axis.
-    float farthest = 0.0f;
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 p((corner & 1) ? scene.bounds.max.x : scene.bounds.min.x,
-                          (corner & 2) ? scene.bounds.max.y : scene.bounds.min.y,
-                          (corner & 4) ? scene.bounds.max.z : scene.bounds.min.z);
-        farthest = std::max(farthest, -(camera.view * glm::vec4(p, 1.0f)).z);
-    }
+    const float farthest = farthestViewDepth(scene.bounds, camera.view);
     camera.zfar = farthest + 1.0f;
     scene.cameraFromFile = true;
 }

@@ -1,7 +1,7 @@
-// The variant tables as users meet them in --help: `render --help` lists every light-list method,
-// shadow filter and point-shadow layout with its description and marks the defaults; `bench
-// --help` names every method and filter it sweeps, and the quick subset. (No GPU work: --help
-// exits before any device is made.)
+// The variant tables as users meet them in --help: `render --help` lists every built-in scene,
+// light-list method, shadow filter and point-shadow layout with its description and marks the
+// defaults; `bench --help` names every method and filter it sweeps, and the quick subset. (No GPU
+// work: --help exits before any device is made.)
 #include <gtest/gtest.h>
 
 #include <string>
@@ -10,6 +10,7 @@
 #include "gpu_test_support.h"
 #include "lights/shadow_filters.h"
 #include "render/light_list_method.h"
+#include "scene/builtin_scenes.h"
 
 namespace punctual {
 namespace {
@@ -40,7 +41,11 @@ TEST(VariantHelp, RenderHelpListsEveryVariant) {
     for (const PointShadowLayoutInfo& layout : kPointShadowLayouts) {
         EXPECT_TRUE(listsEntry(run.out, layout.name, layout.description)) << layout.name << "\n" << run.out;
     }
-    // The defaults of RenderOptions: tiled culling, tent5 filter, slices layout.
+    for (const BuiltinScene& scene : kBuiltinScenes) {
+        EXPECT_TRUE(listsEntry(run.out, scene.name, scene.description)) << scene.name << "\n" << run.out;
+    }
+    // The defaults of RenderOptions: the hall, tiled culling, tent5 filter, slices layout.
+    EXPECT_TRUE(listsEntry(run.out, "hall", std::string(kBuiltinScenes[0].description) + " (default)"));
     EXPECT_TRUE(listsEntry(run.out, "tiled", std::string(render::kLightListMethods[2].description) + " (default)"));
     EXPECT_TRUE(listsEntry(run.out, "tent5", std::string(kShadowFilters[2].description) + " (default)"));
     EXPECT_TRUE(listsEntry(run.out, "slices", std::string(kPointShadowLayouts[1].description) + " (default)"));

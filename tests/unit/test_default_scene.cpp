@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <iostream>
 
 #include "lights/light_setup.h"
 #include "scene/default_scene.h"
+#include "scene_test_support.h"
 #include "shading.h"
 
 namespace punctual {
@@ -29,11 +29,6 @@ bool insideFrustum(const glm::mat4& viewProjectionMatrix, const glm::vec3& p) {
     const glm::vec4 clip = viewProjectionMatrix * glm::vec4(p, 1.0f);
     return clip.w > 0.0f && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w && clip.z >= 0.0f &&
            clip.z <= clip.w;
-}
-
-template <typename T>
-bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 // ---- content -----------------------------------------------------------------------------------
@@ -94,23 +89,7 @@ TEST(DefaultScene, TrianglesFaceOutwardWithFlatNormals) {
 }
 
 TEST(DefaultScene, Deterministic) {
-    const Scene a = makeDefaultScene();
-    const Scene b = makeDefaultScene();
-    EXPECT_TRUE(sameBytes(a.vertices, b.vertices));
-    EXPECT_TRUE(sameBytes(a.indices, b.indices));
-    EXPECT_EQ(std::memcmp(&a.camera.view, &b.camera.view, sizeof(glm::mat4)), 0);
-    ASSERT_EQ(a.lights.size(), b.lights.size());
-    for (size_t i = 0; i < a.lights.size(); ++i) {
-        const Light& x = a.lights[i];
-        const Light& y = b.lights[i];
-        EXPECT_EQ(std::memcmp(&x.position, &y.position, sizeof(glm::vec3)), 0);
-        EXPECT_EQ(std::memcmp(&x.direction, &y.direction, sizeof(glm::vec3)), 0);
-        EXPECT_EQ(std::memcmp(&x.color, &y.color, sizeof(glm::vec3)), 0);
-        EXPECT_EQ(x.intensity, y.intensity);
-        EXPECT_EQ(x.range, y.range);
-        EXPECT_EQ(x.innerConeAngle, y.innerConeAngle);
-        EXPECT_EQ(x.outerConeAngle, y.outerConeAngle);
-    }
+    EXPECT_EQ(testing::firstSceneDifference(makeDefaultScene(), makeDefaultScene()), "");
 }
 
 // ---- camera ------------------------------------------------------------------------------------
