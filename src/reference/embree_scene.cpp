@@ -41,13 +41,12 @@ const char* errorName(RTCError code) {
     return "unrecognised error code";
 }
 
-// Rounding of a float hit point is about 6e-8 x its largest coordinate, so the ray epsilon must
-// scale with where the scene sits as well as with its size.
-float sceneEpsilon(const Bounds& bounds) {
-    if (bounds.empty()) return 1e-4f;
-    const glm::vec3 extent = glm::max(glm::abs(bounds.min), glm::abs(bounds.max));
-    const float scale = std::max({bounds.radius(), extent.x, extent.y, extent.z});
-    return scale > 0.0f && std::isfinite(scale) ? 1e-4f * scale : 1e-4f;
+// The smallest coordinate scale rayEpsilonAt uses: 1% of the scene's radius (points near the
+// origin still get an offset that suits the scene's size).
+float epsilonFloor(const Bounds& bounds) {
+    if (bounds.empty()) return 1.0f;
+    const float scale = 0.01f * bounds.radius();
+    return scale > 0.0f && std::isfinite(scale) ? scale : 1.0f;
 }
 
 }  // namespace
@@ -72,7 +71,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : errors_(std::make_unique<ErrorLog
     for (const Object& object : scene.objects) {
         bounds.extend(scene.meshes.at(object.mesh).localBounds.transformed(object.model));
     }
-    rayEpsilon_ = sceneEpsilon(bounds);
+    rayEpsilonFloor_ = epsilonFloor(bounds);
 
     for (uint32_t i = 0; i < scene.objects.size(); ++i) addObject(scene, i);
     rtcCommitScene(scene_.get());

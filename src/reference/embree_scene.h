@@ -6,6 +6,7 @@
 // Mapping: object i of the Scene is Embree geometry i (attached by ID), one
 // RTC_GEOMETRY_TYPE_TRIANGLE each with its vertices transformed by Object::model, so a hit's
 // geomID is the object index and its primID the triangle within the object's mesh.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -29,11 +30,17 @@ public:
     RTCScene handle() const { return scene_.get(); }
     RTCDevice device() const { return device_.get(); }
 
-    // The offset that lifts a shadow ray's origin off its surface: 1e-4 x the scene's bounding
-    // radius (a relative epsilon; an absolute one would be too small for a city and too large for
-    // a teapot). Float rounding of a hit point is ~1e-7 x its distance from the origin, so three
-    // orders of magnitude of margin remain, while the offset stays far below anything visible.
-    float rayEpsilon() const { return rayEpsilon_; }
+    // The offset that lifts a shadow ray's origin at `point` off its surface: 1e-4 x the point's
+    // largest coordinate, and at least 1e-4 x 1% of the scene's bounding radius (a relative
+    // epsilon; an absolute one would be too small for a city and too large for a teapot). Float
+    // rounding of a point is ~1e-7 x its largest coordinate, so three orders of magnitude of
+    // margin remain. It is taken at the point rather than from the scene's radius, because the
+    // lift moves shadow edges: by epsilon / tan(elevation) on a floor, and a radius-wide epsilon
+    // (3 cm in a 300 m street) moved the sun's edges by a shadow texel.
+    float rayEpsilonAt(const glm::vec3& point) const {
+        const glm::vec3 a = glm::abs(point);
+        return 1e-4f * std::max(std::max(a.x, std::max(a.y, a.z)), rayEpsilonFloor_);
+    }
     uint32_t geometryCount() const { return geometryCount_; }  // objects with triangles
 
     // Embree's geometric normal Ng is (v1 - v0) x (v2 - v0) of the world-space triangle: it points
@@ -57,7 +64,7 @@ private:
     // then the log the device's callback may still write to while releasing.
     std::unique_ptr<RTCDeviceTy, DeviceRelease> device_;
     std::unique_ptr<RTCSceneTy, SceneRelease> scene_;
-    float rayEpsilon_ = 1e-4f;
+    float rayEpsilonFloor_ = 1.0f;  // 1% of the scene's bounding radius
     uint32_t geometryCount_ = 0;
 };
 

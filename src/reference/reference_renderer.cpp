@@ -57,7 +57,7 @@ RTCRay makeRay(glm::vec3 origin, glm::vec3 direction, float tfar) {
 // The tnear/tfar rule. A ray leaving exactly from a hit point re-hits its own triangle at t ~ 0
 // about half the time (the point is rounded to either side of the plane): "shadow acne". So:
 //  - the origin is lifted off the surface along the geometric normal on the side the point is
-//    seen from, by EmbreeScene::rayEpsilon() = 1e-4 x the scene's size (far above float
+//    seen from, by EmbreeScene::rayEpsilonAt() = 1e-4 x the point's largest coordinate (far above float
 //    rounding, far below anything visible), and tnear = 0 from there. Lifting along the
 //    geometric normal, not the interpolated one, keeps the origin on the right side of the
 //    triangle's plane even where smooth normals tilt;
@@ -67,7 +67,7 @@ RTCRay makeRay(glm::vec3 origin, glm::vec3 direction, float tfar) {
 float traceShadowRay(const EmbreeScene& scene, glm::vec3 point, glm::vec3 normal, glm::vec3 direction, float tfar) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRay ray = makeRay(point + normal * scene.rayEpsilon(), direction, tfar);
+    RTCRay ray = makeRay(point + normal * scene.rayEpsilonAt(point), direction, tfar);
     rtcOccluded1(scene.handle(), &context, &ray);
     // rtcOccluded1 sets tfar to -inf when anything lies on the ray.
     return ray.tfar < 0.0f ? 0.0f : 1.0f;
@@ -76,7 +76,7 @@ float traceShadowRay(const EmbreeScene& scene, glm::vec3 point, glm::vec3 normal
 }  // namespace
 
 float visibility(const EmbreeScene& scene, glm::vec3 point, glm::vec3 normal, const gpu::GpuPunctualLight& light) {
-    const glm::vec3 origin = point + normal * scene.rayEpsilon();
+    const glm::vec3 origin = point + normal * scene.rayEpsilonAt(point);
     const glm::vec3 toLight = glm::vec3(light.positionInvRangeSq) - origin;
     const float distance = glm::length(toLight);
     if (!(distance > 0.0f)) return 1.0f;  // the light sits on the lifted point: nothing between
