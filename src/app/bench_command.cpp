@@ -59,8 +59,10 @@ Every configuration renders one warm-up frame and N timed frames (default 5, qui
 the median and spread of each pass. Writes DIR/results.csv, DIR/results.json and DIR/images/.
 Then the failure study (DIR/failures.csv): acne against bias, peter-panning against bias, cube
 seams against resolution and layout, the pancaking leak, spots widening towards 90 degrees, tile
-depth discontinuities (tiled against clustered), per-object lists on large objects, and light
-counts beyond the caps.
+depth discontinuities (tiled against clustered), per-object lists on large objects, light counts
+beyond the caps, and the sun's cascades: shimmering along a camera path (texel snapping on and
+off), seams per blend, perspective aliasing against view depth (split schemes, 1-4 cascades) and
+pancaking (depth clamp on and off).
 --quick: 320x180, fewer counts, resolutions auto, 256 and 1024, filters )" +
            joinNames(quickFilters, " and ") + R"( (under 3 minutes
 on 2 CPU cores). Default size: 1280x720 (quick: 320x180).

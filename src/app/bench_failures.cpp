@@ -4,9 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "reference/embree_scene.h"
-#include "reference/shadow_validation.h"
-#include "render/renderer.h"
+#include "app/bench_cascade_failures.h"
+#include "app/failure_study.h"
 #include "scene/study_scenes.h"
 #include "shading.h"
 #include "shadows.h"
@@ -16,40 +15,9 @@ namespace {
 
 constexpr float kDegree = 0.0174532925f;
 
-struct Study {
-    std::string name;
-    std::string parameter;
-    std::string metric;
-    std::vector<double> values;
-    std::vector<std::string> variants;
-    // Renders and measures one (value, variant); returns (error, total ms).
-    std::function<std::pair<double, double>(double value, const std::string& variant)> measure;
-};
-
-struct Frame {
-    render::FrameResult result;
-    ShadowFactorImage factors;
-    reference::ShadowValidation validation;
-};
-
-// Renders `scene` with shadow factors and validates them against Embree.
-Frame renderAndValidate(vk::Context& context, const Scene& scene, render::RenderSettings settings) {
-    settings.collectShadowFactors = true;
-    render::Renderer renderer(context, scene, settings);
-    Frame frame;
-    frame.result = renderer.render(1, 1);
-    frame.factors = renderer.readShadowFactors();
-    const reference::EmbreeScene embree(scene);
-    frame.validation =
-        reference::validateShadows(embree, frame.factors, renderer.lights(), renderer.shadowPlan());
-    return frame;
-}
-
-double fraction(uint64_t part, uint64_t whole) { return whole > 0 ? double(part) / double(whole) : 0.0; }
-
 // Misclassification among the point light's compared pixels whose direction from the light lies
 // within two texels of a cube-face edge (`seams`) or not (interior).
-double seamError(const Frame& frame, const Scene& scene, uint32_t resolution, bool seams) {
+double seamError(const ValidatedFrame& frame, const Scene& scene, uint32_t resolution, bool seams) {
     uint64_t compared = 0, wrong = 0;
     const glm::vec3 light = scene.lights.front().position;
     for (const reference::LightShadowValidation& v : frame.validation.lights) {
@@ -68,7 +36,7 @@ double seamError(const Frame& frame, const Scene& scene, uint32_t resolution, bo
 
 // Light lost to the caps: at the GPU's surface points, the unshadowed light (attenuation x N.L x
 // peak intensity) of the kept lights against that of every light of the scene.
-double lightBeyondCaps(const Frame& frame, const Scene& scene, const FrameLights& kept) {
+double lightBeyondCaps(const ValidatedFrame& frame, const Scene& scene, const FrameLights& kept) {
     double keptSum = 0.0, allSum = 0.0;
     std::vector<gpu::GpuPunctualLight> all;
     for (const Light& light : scene.lights) all.push_back(packPunctualLight(light));
@@ -85,7 +53,7 @@ double lightBeyondCaps(const Frame& frame, const Scene& scene, const FrameLights
     return allSum > 0.0 ? 1.0 - keptSum / allSum : 0.0;
 }
 
-std::vector<Study> studies(vk::Context& context, bool quick, uint32_t width, uint32_t height) {
+std::vector<FailureStudy> studies(vk::Context& context, bool quick, uint32_t width, uint32_t height) {
     auto base = [=](render::LightListMethod method = render::LightListMethod::Brute) {
         render::RenderSettings settings;
         settings.width = width;
@@ -101,13 +69,13 @@ std::vector<Study> studies(vk::Context& context, bool quick, uint32_t width, uin
             render::RenderSettings s = base();
             s.shadows.filter = parseShadowFilter(variant);
             s.shadows.bias = float(value) * ShadowSettings{}.bias;
-            const Frame f = renderAndValidate(context, makeScene(), s);
+            const ValidatedFrame f = renderAndValidate(context, makeScene(), s);
             const reference::ShadowCounts& c = f.validation.overall;
             const uint64_t wrong = countFalseShadow ? c.falseShadowOutsideBand : c.falseLitOutsideBand;
             return std::pair{fraction(wrong, c.comparedOutsideBand), f.result.medianMs.total};
         };
     };
-    std::vector<Study> list;
+    std::vector<FailureStudy> list;
     list.push_back({"acne-vs-bias", "bias scale (x the default 1,1,0,0)", "false_shadow fraction outside the edge band",
                     quick ? std::vector<double>{0.0, 0.5, 1.0} : std::vector<double>{0.0, 0.25, 0.5, 1.0, 2.0},
                     quick ? std::vector<std::string>{"hw"} : std::vector<std::string>{"hw", "tent5"},
@@ -124,7 +92,7 @@ std::vector<Study> studies(vk::Context& context, bool quick, uint32_t width, uin
                         s.shadows.resolution = uint32_t(value);
                         s.shadows.pointLayout = variant.rfind("cube", 0) == 0 ? PointShadowLayout::Cube : PointShadowLayout::Slices;
                         const Scene scene = study::seamScene();
-                        const Frame f = renderAndValidate(context, scene, s);
+                        const ValidatedFrame f = renderAndValidate(context, scene, s);
                         return std::pair{seamError(f, scene, s.shadows.resolution, variant.find("seams") != std::string::npos),
                                          f.result.medianMs.total};
                     }});
@@ -136,7 +104,7 @@ std::vector<Study> studies(vk::Context& context, bool quick, uint32_t width, uin
                         render::RenderSettings s = base();
                         s.shadows.spotNearFraction = float(value);
                         s.shadows.pancaking = variant == "pancaking";
-                        const Frame f = renderAndValidate(context, study::pancakingScene(), s);
+                        const ValidatedFrame f = renderAndValidate(context, study::pancakingScene(), s);
                         return std::pair{fraction(f.validation.overall.falseLitOutsideBand, f.validation.overall.comparedOutsideBand),
                                          f.result.medianMs.total};
                     }});
@@ -144,7 +112,7 @@ std::vector<Study> studies(vk::Context& context, bool quick, uint32_t width, uin
                     quick ? std::vector<double>{45.0, 85.0} : std::vector<double>{30.0, 60.0, 75.0, 80.0, 85.0, 89.0},
                     {"spot"},
                     [&context, base](double value, const std::string&) {
-                        const Frame f = renderAndValidate(context, study::wideSpotScene(float(value) * kDegree), base());
+                        const ValidatedFrame f = renderAndValidate(context, study::wideSpotScene(float(value) * kDegree), base());
                         return std::pair{f.validation.overall.misclassifiedOutsideBand(), f.result.medianMs.total};
                     }});
     list.push_back({"tile-depth-discontinuities", "tile size (pixels)", "lights tested / lights reaching (efficiency)",
@@ -179,11 +147,13 @@ std::vector<Study> studies(vk::Context& context, bool quick, uint32_t width, uin
                         render::RenderSettings s = base(render::LightListMethod::Tiled);
                         s.collectShadowFactors = true;
                         render::Renderer renderer(context, scene, s);
-                        Frame frame;
+                        ValidatedFrame frame;
                         frame.result = renderer.render(1, 1);
                         frame.factors = renderer.readShadowFactors();
                         return std::pair{lightBeyondCaps(frame, scene, renderer.lights()), frame.result.medianMs.total};
                     }});
+    // The sun's cascades: shimmering, seams, perspective aliasing and pancaking.
+    for (FailureStudy& study : cascadeFailureStudies(context, quick, width, height)) list.push_back(std::move(study));
     return list;
 }
 
@@ -191,14 +161,14 @@ std::vector<Study> studies(vk::Context& context, bool quick, uint32_t width, uin
 
 size_t failureStudySize(vk::Context& context, bool quick) {
     size_t count = 0;
-    for (const Study& s : studies(context, quick, 1, 1)) count += s.values.size() * s.variants.size();
+    for (const FailureStudy& s : studies(context, quick, 1, 1)) count += s.values.size() * s.variants.size();
     return count;
 }
 
 std::vector<FailureRow> runFailureStudy(vk::Context& context, bool quick, uint32_t width, uint32_t height,
                                         const std::function<void(const std::string&)>& onStep) {
     std::vector<FailureRow> rows;
-    for (const Study& s : studies(context, quick, width, height)) {
+    for (const FailureStudy& s : studies(context, quick, width, height)) {
         for (const std::string& variant : s.variants) {
             for (double value : s.values) {
                 const auto [error, ms] = s.measure(value, variant);

@@ -3,9 +3,11 @@
 // values, then hands them to validateRenderSettings, which the renderer calls again for callers
 // that build settings in code.
 #include <cstdint>
+#include <optional>
 
 #include "lights/shadow_setup.h"
 #include "render/light_list_method.h"
+#include "scene/scene.h"
 
 namespace punctual::render {
 
@@ -24,6 +26,10 @@ struct RenderSettings {
     bool collectLightStats = false;  // allocate what readLightStats() needs
     bool collectShadowFactors = false;  // allocate what readShadowFactors() needs
     ShadowSettings shadows;
+    // For the failure study only (bench), never needed to render correctly: the camera the sun's
+    // cascades are fitted to, when not the scene's. The shimmering study renders one camera's
+    // pixels under the cascades of a moving one, so that every frame shows the same receivers.
+    std::optional<Camera> cascadeCamera;
 };
 
 

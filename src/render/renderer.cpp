@@ -233,7 +233,15 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     projection_ = scene.camera.projection(float(settings.width) / float(settings.height));
     lights_ = setupFrameLights(scene, view_, projection_);
     shadowPlan_ = planShadows(scene, lights_, scene.camera.position(), settings.shadows);
-    planCascades(shadowPlan_, scene, lights_, settings.width, settings.height, settings.shadows);
+    if (settings.cascadeCamera) {
+        // The study's other camera: a copy of the scene seen from it (the cascades read its
+        // camera, its objects as casters and, for a fitted distance, its visible receivers).
+        Scene moved = scene;
+        moved.camera = *settings.cascadeCamera;
+        planCascades(shadowPlan_, moved, lights_, settings.width, settings.height, settings.shadows);
+    } else {
+        planCascades(shadowPlan_, scene, lights_, settings.width, settings.height, settings.shadows);
+    }
     // Sized before anything is allocated: a request the device cannot hold fails here, in one line.
     sizeShadowViews(shadowPlan_, scene, lights_, scene.camera.position(), settings.width, settings.height,
                     settings.shadows, ShadowMaps::memoryLimits(context, settings.shadows));

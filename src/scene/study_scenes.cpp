@@ -211,4 +211,61 @@ Scene cascadeFieldScene() {
     return scene;
 }
 
+Scene cascadePancakingScene(float deckHeight) {
+    Scene scene;
+    scene.source = "cascade pancaking";
+    Material material;
+    material.name = "grey";
+    material.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
+    material.roughness = 0.7f;
+    scene.materials.push_back(material);
+    addBox(scene, {0.0f, -0.1f, -60.0f}, {300.0f, 0.2f, 200.0f});
+    // The sun travels along +x only (no z), so the deck's shadow stays on the band z = -8 .. -5 m
+    // whatever its height and only slides sideways, by 1.44 x the height; the deck reaches 70 m
+    // to the sun's side so that the slid shadow still crosses the whole view.
+    addBox(scene, {-27.5f, deckHeight + 0.25f, -6.5f}, {85.0f, 0.5f, 3.0f});
+    scene.lights.push_back(sunLight({0.82f, -0.57f, 0.0f}, 3.0f));
+    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 1.7f, 0.0f), glm::vec3(0.0f, 0.0f, -12.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    scene.camera.yfov = 0.6f;
+    scene.camera.znear = 0.1f;
+    scene.camera.zfar = 300.0f;
+    scene.cameraFromFile = true;
+    scene.computeBounds();
+    return scene;
+}
+
+Scene cascadeSeamScene() {
+    Scene scene;
+    scene.source = "cascade seams";
+    Material material;
+    material.name = "grey";
+    material.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
+    material.roughness = 0.7f;
+    scene.materials.push_back(material);
+    addBox(scene, {0.0f, -0.1f, -100.0f}, {400.0f, 0.2f, 240.0f});
+    // Rows of posts ever further apart, five across the view's width at their depth and shifted
+    // along it from row to row (so that near posts do not hide the rows behind), growing with depth
+    // so that each spans a few pixels, each casting a shadow about 0.4 x its depth long away from the
+    // camera: shadows cross every split of the view.
+    int row = 0;
+    for (float depth = 3.0f; depth < 180.0f; depth *= 1.25f, ++row) {
+        const float halfWidth = 0.55f * depth;  // the view's half width at that depth (yfov 0.6, 16:9)
+        const float width = 0.05f + 0.01f * depth;
+        const float height = 0.5f + 0.2f * depth;
+        const float shift = 0.38f * float(row % 5) - 0.76f;  // -0.76 .. 0.76 of the fifth of the width
+        for (const float across : {-0.8f, -0.4f, 0.0f, 0.4f, 0.8f}) {
+            addBox(scene, {(across + 0.2f * shift) * halfWidth, 0.5f * height, -depth}, {width, height, width});
+        }
+    }
+    // Behind the camera and a little to its left, 27 degrees high.
+    scene.lights.push_back(sunLight({0.25f, -0.45f, -0.86f}, 3.0f));
+    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 1.7f, 0.0f), glm::vec3(0.0f, 0.0f, -15.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    scene.camera.yfov = 0.6f;
+    scene.camera.znear = 0.1f;
+    scene.camera.zfar = 300.0f;
+    scene.cameraFromFile = true;
+    scene.computeBounds();
+    return scene;
+}
+
 }  // namespace punctual::study

@@ -48,6 +48,15 @@ Scene longRangeScene(float range);
 // boxes, under a sun 35 degrees high shining across the view and towards the camera (shadows fall
 // towards it, where the far cascades can see them). No other light.
 Scene cascadeFieldScene();
+// The sun's pancaking: a deck (85 m x 3 m, 0.5 m thick) `deckHeight` metres above the ground,
+// across the view 5-8 m ahead of a camera at eye height, whose shadow falls on the ground under
+// it, inside the first cascade. From about 4 m up the deck lies between the sun and the first
+// cascade's sphere, in front of its near plane: pancaking keeps its shadow, clipping loses it.
+Scene cascadePancakingScene(float deckHeight);
+// The sun's cascade seams: rows of posts from 3 m to 180 m under a sun behind the camera, whose
+// shadows fall away from it, across every split of the view. The seed's culling bias leaves the
+// posts deep inside a cascade out of the next one, though their shadows reach into it.
+Scene cascadeSeamScene();
 // The sun's light: travelling along `direction` (need not be unit), `lux` bright.
 Light sunLight(const glm::vec3& direction, float lux);
 
