@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -19,6 +20,7 @@
 #include "core/error.h"
 #include "core/output_files.h"
 #include "core/output_folder.h"
+#include "lights/cascade_setup.h"
 #include "lights/shadow_sizing.h"
 #include "metrics/heatmap.h"
 #include "metrics/image_diff.h"
@@ -54,6 +56,8 @@ Sweeps, on SCENE or the built-in scene NAME (default: )" + std::string(kDefaultB
   shadow resolution auto and fixed 256..2048 (2048: the 32 spots and 8 points that matter
   most), each at 16 and 32 bits, and 1024 at 32 bits for 32 + 8 lights (the former default);
   the filters )" + joinNames(shadowFilterNames(), ", ") + R"( at auto resolution;
+  the sun's cascades on the built-in outdoor scene (its own lights, the sun alone shadowed):
+  1-4 cascades x resolution 512, 1024, 2048 x the filters hw, tent3, tent5, tent7;
   each shadow configuration validated against Embree (edge band one texel, and one pixel).
 Every configuration renders one warm-up frame and N timed frames (default 5, quick 3) and keeps
 the median and spread of each pass. Writes DIR/results.csv, DIR/results.json and DIR/images/.
@@ -64,11 +68,14 @@ beyond the caps, and the sun's cascades: shimmering along a camera path (texel s
 off), seams per blend, perspective aliasing against view depth (split schemes, 1-4 cascades) and
 pancaking (depth clamp on and off).
 --quick: 320x180, fewer counts, resolutions auto, 256 and 1024, filters )" +
-           joinNames(quickFilters, " and ") + R"( (under 3 minutes
+           joinNames(quickFilters, " and ") + R"(, 1 and 4 cascades at 512
+with hw and tent5, and fewer values in the failure study (under 3 minutes
 on 2 CPU cores). Default size: 1280x720 (quick: 320x180).
 Charts: /usr/bin/python3 bench/plot_results.py DIR && /usr/bin/python3 bench/plot_failures.py DIR
 )";
 }
+
+std::string sunCascadeColumn(uint32_t cascade) { return "sun_cascade" + std::to_string(cascade) + "_misclassified_1px"; }
 
 // The columns of results.csv (and the keys of each results.json row): the configuration, then
 // <pass>_ms and <pass>_spread_ms for every pass of the frame in frame order (so a new pass gets
@@ -86,14 +93,19 @@ std::vector<std::string> resultColumns(const std::vector<std::string>& passes) {
                                "pixels_off", "shadow_views", "shadow_memory_bytes", "shadow_texels_rendered",
                                "shadow_filter_taps", "shadow_reduced_views", "shadow_misclassified",
                                "shadow_misclassified_all", "shadow_misclassified_1px", "shadow_false_shadow",
-                               "shadow_false_lit"}) {
+                               "shadow_false_lit", "cascades", "sun_misclassified", "sun_misclassified_1px"}) {
         columns.emplace_back(column);
     }
+    // The sun's error per cascade, outside a one-pixel edge band (empty beyond the row's count).
+    for (uint32_t i = 0; i < PUNCTUAL_MAX_CASCADES; ++i) columns.push_back(sunCascadeColumn(i));
     return columns;
 }
 
 struct Config {
     std::string series;
+    // A built-in scene of the series' own, lit by its own lights (spot and point are then 0);
+    // nullptr: the bench's scene with `spot` + `point` generated lights.
+    const BuiltinScene* scene = nullptr;
     render::LightListMethod method = render::LightListMethod::Tiled;
     uint32_t spot = 0;
     uint32_t point = 0;
@@ -129,9 +141,19 @@ private:
     bool terminal_;
 };
 
+// The scene's lights of `type` (a generated row's counts; a built-in scene's own lamps).
+size_t lightsOfType(const Scene& scene, LightType type) {
+    return size_t(std::count_if(scene.lights.begin(), scene.lights.end(), [&](const Light& l) { return l.type == type; }));
+}
+
 std::string configName(const Config& c) {
     std::ostringstream s;
-    s << c.series << "-" << render::methodName(c.method) << "-" << c.spot << "s" << c.point << "p";
+    s << c.series << "-" << render::methodName(c.method) << "-";
+    if (c.scene) {
+        s << c.scene->name;
+    } else {
+        s << c.spot << "s" << c.point << "p";
+    }
     if (c.shadows.enabled) {
         s << "-shadows-" << shadowResolutionName(c.shadows) << "-" << shadowFormatName(c.shadows.format) << "-"
           << shadowFilterName(c.shadows.filter) << "-" << pointShadowLayoutName(c.shadows.pointLayout);
@@ -140,6 +162,7 @@ std::string configName(const Config& c) {
             c.shadows.maxShadowedPoints != defaults.maxShadowedPoints) {
             s << "-shadowed-" << c.shadows.maxShadowedSpots << "s" << c.shadows.maxShadowedPoints << "p";
         }
+        if (c.scene) s << "-" << c.shadows.cascades.count << "c";
     }
     return s.str();
 }
@@ -158,12 +181,12 @@ std::vector<Config> plan(bool quick) {
         for (const auto& [series, s, p] : {std::tuple<const char*, uint32_t, uint32_t>{"mix", spots, spots / 2},
                                            {"spot-only", spots, 0u}, {"point-only", 0u, spots / 2}}) {
             if (std::string(series) != "mix" && spots == 0) continue;  // the same empty frame as mix
-            for (render::LightListMethod method : methods) configs.push_back({series, method, s, p, off, false});
+            for (render::LightListMethod method : methods) configs.push_back({series, nullptr, method, s, p, off, false});
         }
     }
     for (render::LightListMethod method : methods) {
-        configs.push_back({"shadows", method, 64, 32, off, false});
-        configs.push_back({"shadows", method, 64, 32, ShadowSettings{}, false});
+        configs.push_back({"shadows", nullptr, method, 64, 32, off, false});
+        configs.push_back({"shadows", nullptr, method, 64, 32, ShadowSettings{}, false});
     }
     // Shadow quality against memory: auto (every light, each view at its tier) and fixed
     // resolutions, at 16 and 32 bits, validated against Embree; and today's former default, 1024 at
@@ -181,7 +204,7 @@ std::vector<Config> plan(bool quick) {
                 shadows.maxShadowedSpots = 32;
                 shadows.maxShadowedPoints = 8;
             }
-            configs.push_back({"shadow-quality", render::LightListMethod::Tiled, 64, 32, shadows, true});
+            configs.push_back({"shadow-quality", nullptr, render::LightListMethod::Tiled, 64, 32, shadows, true});
         }
     }
     ShadowSettings former;
@@ -189,13 +212,36 @@ std::vector<Config> plan(bool quick) {
     former.format = ShadowFormat::D32;
     former.maxShadowedSpots = 32;
     former.maxShadowedPoints = 8;
-    configs.push_back({"shadow-quality", render::LightListMethod::Tiled, 64, 32, former, true});
+    configs.push_back({"shadow-quality", nullptr, render::LightListMethod::Tiled, 64, 32, former, true});
     // The filters at the default (auto) resolution.
     for (const ShadowFilterInfo& filter : kShadowFilters) {
         if (quick && !filter.quickBench) continue;
         ShadowSettings shadows;
         shadows.filter = filter.value;
-        configs.push_back({"shadow-filters", render::LightListMethod::Tiled, 64, 32, shadows, true});
+        configs.push_back({"shadow-filters", nullptr, render::LightListMethod::Tiled, 64, 32, shadows, true});
+    }
+    // The sun's cascades on the outdoor scene: count x fixed resolution x filter. Its lamps keep
+    // lighting the street but cast no shadow, so that the shadow stage and its memory are the
+    // cascades' alone. The filters are the footprint ones (the disk's radius is a share of the map,
+    // not of a texel).
+    const BuiltinScene& outdoor = parseBuiltinScene("outdoor");
+    const std::vector<uint32_t> cascadeCounts = quick ? std::vector<uint32_t>{1, 4} : std::vector<uint32_t>{1, 2, 3, 4};
+    const std::vector<uint32_t> cascadeResolutions = quick ? std::vector<uint32_t>{512} : std::vector<uint32_t>{512, 1024, 2048};
+    const std::vector<ShadowFilter> cascadeFilters =
+        quick ? std::vector<ShadowFilter>{ShadowFilter::Hardware, ShadowFilter::Tent5}
+              : std::vector<ShadowFilter>{ShadowFilter::Hardware, ShadowFilter::Tent3, ShadowFilter::Tent5, ShadowFilter::Tent7};
+    for (uint32_t count : cascadeCounts) {
+        for (uint32_t resolution : cascadeResolutions) {
+            for (ShadowFilter filter : cascadeFilters) {
+                ShadowSettings shadows;
+                shadows.resolution = resolution;
+                shadows.filter = filter;
+                shadows.maxShadowedSpots = 0;
+                shadows.maxShadowedPoints = 0;
+                shadows.cascades.count = count;
+                configs.push_back({"cascades", &outdoor, render::LightListMethod::Tiled, 0, 0, shadows, true});
+            }
+        }
     }
     return configs;
 }
@@ -238,6 +284,9 @@ int runBenchCommand(const std::vector<std::string>& args) {
     const Scene baseScene = loadSceneForOptions(options);
     vk::Context context(contextOptionsFrom(options));
     const reference::EmbreeScene embree(baseScene);  // geometry only: shared by every configuration
+    // The series with built-in scenes of their own (the cascades' outdoor scene): each scene and its
+    // Embree scene built once, on first use.
+    std::map<const BuiltinScene*, std::pair<Scene, std::unique_ptr<reference::EmbreeScene>>> ownScenes;
 
     const std::vector<Config> configs = plan(quick);
     ProgressBar progress(configs.size() + failureStudySize(context, quick));
@@ -246,9 +295,22 @@ int runBenchCommand(const std::vector<std::string>& args) {
     std::vector<std::string> passes;  // the frame's pass names, from the first renderer
     std::map<std::string, ImageRgba8> bruteImages;  // by series + counts
     std::map<std::string, nlohmann::json> shadowLights;  // validated configurations: per-light counts
+    std::map<std::string, nlohmann::json> sunCascades;   // validated configurations with a sun: per cascade
     for (const Config& config : configs) {
         Scene scene = baseScene;
-        replaceLights(scene, config.spot, config.point, 1);
+        const reference::EmbreeScene* geometry = &embree;
+        if (config.scene) {
+            auto own = ownScenes.find(config.scene);
+            if (own == ownScenes.end()) {
+                Scene made = config.scene->value();
+                auto madeEmbree = std::make_unique<reference::EmbreeScene>(made);
+                own = ownScenes.emplace(config.scene, std::pair{std::move(made), std::move(madeEmbree)}).first;
+            }
+            scene = own->second.first;
+            geometry = own->second.second.get();
+        } else {
+            replaceLights(scene, config.spot, config.point, 1);
+        }
         render::RenderSettings settings = renderSettingsFrom(options);
         settings.method = config.method;
         settings.shadows = config.shadows;
@@ -269,8 +331,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
         Row row = {{"config", name},
                    {"series", config.series},
                    {"method", render::methodName(config.method)},
-                   {"spot", std::to_string(config.spot)},
-                   {"point", std::to_string(config.point)},
+                   {"spot", std::to_string(lightsOfType(scene, LightType::Spot))},
+                   {"point", std::to_string(lightsOfType(scene, LightType::Point))},
                    {"shadows", config.shadows.enabled ? "1" : "0"},
                    {"shadow_res", shadowResolutionName(config.shadows)},
                    {"shadow_format", shadowFormatName(config.shadows.format)},
@@ -324,11 +386,11 @@ int runBenchCommand(const std::vector<std::string>& args) {
         if (config.validateShadows) {
             const ShadowFactorImage factors = renderer.readShadowFactors();
             const reference::ShadowValidation validation =
-                reference::validateShadows(embree, factors, renderer.lights(), renderer.shadowPlan());
+                reference::validateShadows(*geometry, factors, renderer.lights(), renderer.shadowPlan());
             // The same comparison with an edge band one screen pixel wide: the fair one across
             // resolutions (a texel band widens with the texels).
             const reference::ShadowValidation onePixel = reference::validateShadows(
-                embree, factors, renderer.lights(), renderer.shadowPlan(),
+                *geometry, factors, renderer.lights(), renderer.shadowPlan(),
                 reference::EdgeBand::ofScreenPixels(1.0f, scene.camera, settings.height));
             row["shadow_misclassified"] = number(validation.overall.misclassifiedOutsideBand());
             row["shadow_misclassified_all"] = number(validation.overall.misclassified());
@@ -343,6 +405,26 @@ int runBenchCommand(const std::vector<std::string>& args) {
                                     {"misclassified_outside_1px", c.falseShadowOutsideBand + c.falseLitOutsideBand}});
             }
             shadowLights[name] = perLight;
+            if (validation.sun && onePixel.sun) {
+                const CascadePlan& cascades = renderer.shadowPlan().cascades;
+                row["cascades"] = std::to_string(cascades.count);
+                row["sun_misclassified"] = number(validation.sun->counts.misclassifiedOutsideBand());
+                row["sun_misclassified_1px"] = number(onePixel.sun->counts.misclassifiedOutsideBand());
+                nlohmann::json perCascade = nlohmann::json::array();
+                for (uint32_t i = 0; i < cascades.count; ++i) {
+                    const reference::ShadowCounts& texelBand = validation.sun->cascades[i];
+                    const reference::ShadowCounts& pixelBand = onePixel.sun->cascades[i];
+                    row[sunCascadeColumn(i)] = number(pixelBand.misclassifiedOutsideBand());
+                    perCascade.push_back({{"cascade", i},
+                                          {"far_m", cascades.splits[i]},
+                                          {"resolution", renderer.shadowPlan().views[cascades.firstView + i].resolution},
+                                          {"texel_m", cascadeTexelSize(renderer.shadowPlan(), i)},
+                                          {"compared", texelBand.compared},
+                                          {"misclassified_outside_band", texelBand.misclassifiedOutsideBand()},
+                                          {"misclassified_outside_1px", pixelBand.misclassifiedOutsideBand()}});
+                }
+                sunCascades[name] = perCascade;
+            }
             row["shadow_false_shadow"] = std::to_string(validation.overall.falseShadow);
             row["shadow_false_lit"] = std::to_string(validation.overall.falseLit);
             if (!validation.lights.empty()) {
@@ -375,6 +457,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
         }
         const auto lightsIt = shadowLights.find(row.at("config"));
         if (lightsIt != shadowLights.end()) entry["shadow_lights"] = lightsIt->second;
+        const auto cascadesIt = sunCascades.find(row.at("config"));
+        if (cascadesIt != sunCascades.end()) entry["sun_cascades"] = cascadesIt->second;
         csv << "\n";
         json.push_back(entry);
     }

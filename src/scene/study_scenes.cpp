@@ -245,7 +245,7 @@ Scene cascadeSeamScene() {
     addBox(scene, {0.0f, -0.1f, -100.0f}, {400.0f, 0.2f, 240.0f});
     // Rows of posts ever further apart, five across the view's width at their depth and shifted
     // along it from row to row (so that near posts do not hide the rows behind), growing with depth
-    // so that each spans a few pixels, each casting a shadow about 0.4 x its depth long away from the
+    // so that each spans a few pixels, each casting a shadow about 0.6 x its depth long away from the
     // camera: shadows cross every split of the view.
     int row = 0;
     for (float depth = 3.0f; depth < 180.0f; depth *= 1.25f, ++row) {
@@ -257,8 +257,8 @@ Scene cascadeSeamScene() {
             addBox(scene, {(across + 0.2f * shift) * halfWidth, 0.5f * height, -depth}, {width, height, width});
         }
     }
-    // Behind the camera and a little to its left, 27 degrees high.
-    scene.lights.push_back(sunLight({0.25f, -0.45f, -0.86f}, 3.0f));
+    // Behind the camera and a little to its left, 17 degrees high: long shadows.
+    scene.lights.push_back(sunLight({0.2f, -0.3f, -0.93f}, 3.0f));
     scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 1.7f, 0.0f), glm::vec3(0.0f, 0.0f, -15.0f), glm::vec3(0.0f, 1.0f, 0.0f));
     scene.camera.yfov = 0.6f;
     scene.camera.znear = 0.1f;

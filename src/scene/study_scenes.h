@@ -53,8 +53,8 @@ Scene cascadeFieldScene();
 // it, inside the first cascade. From about 4 m up the deck lies between the sun and the first
 // cascade's sphere, in front of its near plane: pancaking keeps its shadow, clipping loses it.
 Scene cascadePancakingScene(float deckHeight);
-// The sun's cascade seams: rows of posts from 3 m to 180 m under a sun behind the camera, whose
-// shadows fall away from it, across every split of the view. The seed's culling bias leaves the
+// The sun's cascade seams: rows of posts from 3 m to 180 m under a low sun behind the camera, whose
+// long shadows fall away from it, across every split of the view. The seed's culling bias leaves the
 // posts deep inside a cascade out of the next one, though their shadows reach into it.
 Scene cascadeSeamScene();
 // The sun's light: travelling along `direction` (need not be unit), `lux` bright.
