@@ -17,6 +17,9 @@ import matplotlib
 matplotlib.use("Agg")
 matplotlib.rcParams["svg.hashsalt"] = "punctual"  # identical SVGs run after run
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FixedLocator, NullLocator  # noqa: E402
+
+WIDE_RATIO = 10.0  # a log x axis once the largest value is this many times the smallest, as plot_results
 
 
 def read_studies(path):
@@ -33,11 +36,20 @@ def read_studies(path):
 def study_figure(name, study):
     """Error (y) against the provoking parameter (x), a line per variant of the CSV, in file
     order: the variants (filters, layouts, methods) are whatever failures.csv holds, so a new
-    one is drawn with no edit here."""
+    one is drawn with no edit here. x is logarithmic when its positive values span more than
+    WIDE_RATIO."""
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     for variant, points in study["variants"].items():
         points.sort()
         ax.plot([p[0] for p in points], [p[1] for p in points], marker="o", label=variant)
+    values = sorted({p[0] for points in study["variants"].values() for p in points})
+    if values and values[0] > 0 and values[-1] / values[0] > WIDE_RATIO:
+        # Parameters that double or grow geometrically (view depths, heights): a log axis with a
+        # tick at every measured value, so the near end is not squeezed into one corner.
+        ax.set_xscale("log")
+        ax.xaxis.set_major_locator(FixedLocator(values))
+        ax.xaxis.set_minor_locator(NullLocator())
+        ax.set_xticklabels(["%g" % v for v in values])
     ax.set_title(name)
     ax.set_xlabel(study["parameter"])
     ax.set_ylabel(study["metric"])

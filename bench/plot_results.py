@@ -30,6 +30,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after selecting the backend)
+from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.ticker import FixedLocator, MaxNLocator, NullLocator, PercentFormatter  # noqa: E402
 
 # The columns every row has besides the per-pass times (see pass_columns).
@@ -38,7 +39,9 @@ LEADING_COLUMNS = """config series method spot point shadows shadow_res shadow_f
 TRAILING_COLUMNS = """total_ms total_spread_ms tested_per_pixel affecting_per_pixel efficiency
     missed_energy image_error pixels_off shadow_views shadow_memory_bytes shadow_texels_rendered
     shadow_filter_taps shadow_reduced_views shadow_misclassified shadow_misclassified_all
-    shadow_misclassified_1px shadow_false_shadow shadow_false_lit""".split()
+    shadow_misclassified_1px shadow_false_shadow shadow_false_lit cascades sun_misclassified
+    sun_misclassified_1px sun_cascade0_misclassified_1px sun_cascade1_misclassified_1px
+    sun_cascade2_misclassified_1px sun_cascade3_misclassified_1px""".split()
 # Method styles by position in results.json's "methods": the first four keep the colours the
 # charts have always had (brute, per-object, tiled, clustered). Grey and "x" are left out: they
 # mark a method that results.json does not list.
@@ -369,6 +372,56 @@ def chart_shadow_memory(rows, names):
                                 "format")
 
 
+CASCADE_MARKERS = ["o", "s", "^", "D", "v", "P"]  # by filter, in results.json's filter order
+
+
+def chart_cascade_pareto(rows, names):
+    """The sun's cascades on the outdoor scene (the cascades series): the shadow stage's median GPU
+    time (left) and the shadow memory (right) against the share of the sun's shadow tests
+    misclassified outside an edge band one screen pixel wide (against Embree), one point per
+    cascade count (colour), filter (marker) and resolution per cascade (label). The Pareto front
+    of each panel marks the settings that no other beats in both cost and accuracy."""
+    rs = [r for r in series_rows(rows, "cascades")
+          if all(number(r, c) is not None for c in ("sun_misclassified_1px", "shadows_ms",
+                                                   "shadow_memory_bytes", "cascades"))]
+    if not rs:
+        raise SkipChart("no cascades rows with sun_misclassified_1px, shadows_ms, shadow_memory_bytes and "
+                        "cascades")
+    counts = sorted({int(number(r, "cascades")) for r in rs})
+    filters = ordered((r.get("shadow_filter", "") for r in rs), names["shadow_filters"])
+    cmap = plt.get_cmap("viridis")
+    colour = {c: cmap(k / max(len(counts) - 1, 1) * 0.85) for k, c in enumerate(counts)}
+    marker = {f: CASCADE_MARKERS[k % len(CASCADE_MARKERS)] for k, f in enumerate(filters)}
+    panels = [("shadows_ms", 1.0, "shadow stage: median GPU ms"),
+              ("shadow_memory_bytes", 2.0 ** -20, "shadow memory, MiB")]
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.2))
+    for ax, (column, scale, cost) in zip(axes, panels):
+        points = [(number(r, "sun_misclassified_1px"), number(r, column) * scale) for r in rs]
+        for (x, y), r in zip(points, rs):
+            ax.scatter([x], [y], color=colour[int(number(r, "cascades"))],
+                       marker=marker[r.get("shadow_filter", "")], s=40, zorder=2)
+            ax.annotate(r.get("shadow_res", ""), (x, y), xytext=(5, 4), textcoords="offset points",
+                        fontsize=7)
+        draw_front(ax, points, pareto_front(points))
+        if is_wide([p[1] for p in points]):
+            ax.set_yscale("log")
+        ax.xaxis.set_major_formatter(PercentFormatter(xmax=1.0))
+        ax.set_xlabel("sun's shadow tests misclassified outside a 1-pixel edge band (lower is better)")
+        ax.set_ylabel(f"{cost} (lower is better)")
+    axes[0].set_title("shadow stage time against accuracy")
+    axes[1].set_title("shadow memory against accuracy")
+    handles = [Line2D([], [], linestyle="", marker="o", color=colour[c],
+                      label=f"{c} cascade{'s' if c > 1 else ''}") for c in counts]
+    handles += [Line2D([], [], linestyle="", marker=marker[f], color="black", label=f or "(no filter)")
+                for f in filters]
+    handles += [Line2D([], [], color="black", linewidth=1.2, label="Pareto front")]
+    fig.legend(handles=handles, loc="center right", title="count, filter")
+    fig.suptitle("the sun's cascades: cost against accuracy (count x resolution x filter; labels: "
+                 "texels a side per cascade)")
+    fig.tight_layout(rect=(0, 0, 1 - 1.6 / fig.get_figwidth(), 1))
+    return fig
+
+
 def assignment_error_column(rows):
     """image_error when the non-brute rows have any, else pixels_off, else None."""
     for column in ("image_error", "pixels_off"):
@@ -507,6 +560,7 @@ CHARTS = [
     ("pareto_shadow_memory", "Shadows: memory against accuracy", chart_shadow_memory, ()),
     ("pareto_light_assignment", "Light assignment: speed against accuracy",
      chart_assignment_pareto, ()),
+    ("pareto_cascades", "The sun's cascades: cost against accuracy", chart_cascade_pareto, ()),
 ]
 
 

@@ -62,6 +62,28 @@ class PlotFailuresTest(unittest.TestCase):
         finally:
             plot_failures.plt.close(fig)
 
+    def test_a_wide_parameter_gets_a_log_axis_with_its_values_as_ticks(self):
+        # The perspective-aliasing studies' view depths span 2.5 to 180 m; resolutions 512-2048 do not.
+        wide = "".join('perspective,"view depth (m)",%g,"1 cascade","misclassified",%g,90\n' % (v, 0.01 / v)
+                       for v in (2.5, 5, 10, 20, 40, 80, 180))
+        narrow = "".join('seams,"resolution",%d,"hard: inside","misclassified",0.001,90\n' % v
+                         for v in (512, 1024, 2048))
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "failures.csv")
+            with open(path, "w") as f:
+                f.write(CSV.splitlines()[0] + "\n" + wide + narrow)
+            studies = plot_failures.read_studies(path)
+        for name, scale, ticks in (("perspective", "log", ["2.5", "5", "10", "20", "40", "80", "180"]),
+                                   ("seams", "linear", None)):
+            fig = plot_failures.study_figure(name, studies[name])
+            try:
+                ax = fig.axes[0]
+                self.assertEqual(ax.get_xscale(), scale, name)
+                if ticks:
+                    self.assertEqual([t.get_text() for t in ax.get_xticklabels()], ticks)
+            finally:
+                plot_failures.plt.close(fig)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -85,7 +85,23 @@ def full_rows(methods=METHODS):
                             shadow_memory_bytes=256 * res * res * (2 + 2 * (j % 2 == 0)),
                             shadow_misclassified_1px=0.03 / (i + 1) + 0.001 * j,
                             shadow_misclassified_all=0.05 / (i + 1) + 0.001 * j))
+    rows += cascade_rows()
     rows[0]["config"] = "mix <b>&amp;\"quoted\""  # must be escaped in the table
+    return rows
+
+
+def cascade_rows(counts=(1, 2, 3, 4), resolutions=(512, 1024, 2048), filters=("hw", "tent5")):
+    """The cascades series: the sun's error falls with count and resolution, and costs rise."""
+    rows = []
+    for count in counts:
+        for res in resolutions:
+            for j, flt in enumerate(filters):
+                error = 0.05 / count / (res / 512) + 0.002 * j
+                rows.append(row(f"cascades-{count}-{res}-{flt}", "cascades", "tiled", 16, 16, shadows=1,
+                                shadow_res=res, shadow_filter=flt, shadows_ms=2 * count * res / 512 + j,
+                                shadow_memory_bytes=count * res * res * 2, cascades=count,
+                                sun_misclassified=error / 2, sun_misclassified_1px=error,
+                                **{f"sun_cascade{i}_misclassified_1px": error for i in range(count)}))
     return rows
 
 
@@ -220,10 +236,10 @@ class PlotResultsTest(unittest.TestCase):
         self.assert_charts(["forward_time", "total_time"])
         index = self.index()
         for name in ("culling_efficiency", "pareto_shadows", "pareto_shadow_memory",
-                     "pareto_light_assignment"):
+                     "pareto_light_assignment", "pareto_cascades"):
             self.assertFalse(os.path.exists(os.path.join(self.dir, "charts", name + ".png")))
             self.assertNotIn(f"charts/{name}.png", index)
-        self.assertEqual(index.count("not drawn"), 4)
+        self.assertEqual(index.count("not drawn"), 5)
         self.assertIn("No images in images/.", index)
 
     def test_skipped_chart_removes_stale_files(self):
@@ -358,6 +374,35 @@ class NamesFromResultsJsonTest(unittest.TestCase):
         # 1024 at 32 bits is beaten by 1024 at 16 bits in both memory and accuracy.
         self.assertEqual(set(plot_results.pareto_front([(0.01, 40), (0.08, 32), (0.012, 1024), (0.009, 512)])),
                          {0, 1, 3})
+
+    def test_cascade_chart_marks_both_pareto_fronts(self):
+        rows = cascade_rows(counts=(1, 4), resolutions=(512, 2048))
+        # One row that every other beats: dearer than 4 cascades at 512 with hw, and less accurate.
+        rows.append(row("cascades-worse", "cascades", "tiled", 16, 16, shadows=1, shadow_res=1024,
+                        shadow_filter="tent7", shadows_ms=50, shadow_memory_bytes=2**30, cascades=2,
+                        sun_misclassified_1px=0.5))
+        fig = chart("pareto_cascades", rows, names())
+        # Colours by count and markers by filter, in results.json's filter order, then the front.
+        self.assertEqual(legend_texts(fig), ["1 cascade", "2 cascades", "4 cascades", "hw", "tent5",
+                                             "tent7", "Pareto front"])
+        time_panel, memory_panel = fig.axes[0], fig.axes[1]
+        for ax, column, scale in ((time_panel, "shadows_ms", 1.0), (memory_panel, "shadow_memory_bytes", 2**-20)):
+            points = [(r["sun_misclassified_1px"], r[column] * scale) for r in rows]
+            front = plot_results.pareto_front(points)
+            self.assertNotIn(len(rows) - 1, front)  # the dominated row is off the front
+            line = next(line for line in ax.lines if line.get_label() == "Pareto front")
+            self.assertEqual(list(line.get_xdata()), [points[i][0] for i in front])
+            self.assertEqual(list(line.get_ydata()), [points[i][1] for i in front])
+        # Every point is annotated with its resolution per cascade.
+        self.assertEqual(sorted(t.get_text() for t in memory_panel.texts),
+                         sorted(str(r["shadow_res"]) for r in rows))
+
+    def test_cascade_chart_needs_the_sun_columns(self):
+        rows = cascade_rows()
+        for r in rows:
+            r["sun_misclassified_1px"] = ""
+        with self.assertRaises(plot_results.SkipChart):
+            chart("pareto_cascades", rows, names())
 
     def test_shadow_filters_follow_results_json(self):
         filters = ["disk", "tent7", "tent5", "tent3", "hw", "pcss"]
