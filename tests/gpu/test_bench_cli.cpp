@@ -43,7 +43,8 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
               "total_spread_ms,tested_per_pixel,affecting_per_pixel,efficiency,missed_energy,image_error,pixels_off,"
               "shadow_views,shadow_memory_bytes,shadow_texels_rendered,shadow_filter_taps,shadow_reduced_views,"
               "shadow_misclassified,shadow_misclassified_all,shadow_misclassified_1px,shadow_false_shadow,"
-              "shadow_false_lit");
+              "shadow_false_lit,cascades,sun_misclassified,sun_misclassified_1px,sun_cascade0_misclassified_1px,"
+              "sun_cascade1_misclassified_1px,sun_cascade2_misclassified_1px,sun_cascade3_misclassified_1px");
     const size_t columns = size_t(std::count(header.begin(), header.end(), ',')) + 1;
     size_t rows = 0;
     std::set<std::string> series, methods;
@@ -59,8 +60,8 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
         methods.insert(method);
     }
     EXPECT_GE(rows, 30u);
-    EXPECT_EQ(series,
-              (std::set<std::string>{"mix", "spot-only", "point-only", "shadows", "shadow-quality", "shadow-filters"}));
+    EXPECT_EQ(series, (std::set<std::string>{"mix", "spot-only", "point-only", "shadows", "shadow-quality", "shadow-filters",
+                                             "cascades"}));
     EXPECT_EQ(methods, (std::set<std::string>{"brute", "per-object", "tiled", "clustered"}));
 
     const nlohmann::json json = nlohmann::json::parse(readText(dir + "/results.json"));
@@ -84,6 +85,28 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     }
     EXPECT_EQ(shadowSettings, (std::set<std::string>{"auto-d16-64+32", "auto-d32-64+32", "256-d16-64+32", "256-d32-64+32",
                                                      "1024-d16-64+32", "1024-d32-64+32", "1024-d32-32+8"}));
+    // The sun's cascades on the outdoor scene: 1 and 4 cascades at 512 with hw and tent5, each with
+    // the sun's error overall and per cascade (empty beyond its count), its lamps unshadowed.
+    std::set<std::string> cascadeSettings;
+    for (const auto& row : json["configurations"]) {
+        if (row["series"] != "cascades") continue;
+        const std::string count = row["cascades"].get<std::string>();
+        cascadeSettings.insert(count + "-" + row["shadow_res"].get<std::string>() + "-" + row["shadow_filter"].get<std::string>());
+        EXPECT_EQ(row["spot"], "16") << row["config"];
+        EXPECT_EQ(row["shadowed_spots"], "0") << row["config"];
+        for (const char* column : {"shadows_ms", "forward_ms", "shadow_memory_bytes", "shadow_texels_rendered",
+                                   "sun_misclassified", "sun_misclassified_1px"}) {
+            EXPECT_NE(row[column].get<std::string>(), "") << row["config"] << ": " << column;
+        }
+        for (uint32_t i = 0; i < 4; ++i) {
+            const std::string column = "sun_cascade" + std::to_string(i) + "_misclassified_1px";
+            EXPECT_EQ(row[column].get<std::string>().empty(), i >= std::stoul(count)) << row["config"] << ": " << column;
+        }
+        ASSERT_TRUE(row.contains("sun_cascades")) << row["config"];
+        EXPECT_EQ(row["sun_cascades"].size(), std::stoul(count));
+        EXPECT_EQ(row["sun_cascades"].back()["resolution"], 512);
+    }
+    EXPECT_EQ(cascadeSettings, (std::set<std::string>{"1-512-hw", "1-512-tent5", "4-512-hw", "4-512-tent5"}));
     // The names the chart scripts read instead of lists of their own: every pass has its columns.
     EXPECT_EQ(json["passes"], nlohmann::json({"depth", "culling", "shadows", "forward", "tonemap"}));
     EXPECT_EQ(json["methods"], nlohmann::json({"brute", "per-object", "tiled", "clustered"}));
@@ -113,7 +136,9 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     for (std::string line; std::getline(failures, line);) studies.insert(line.substr(0, line.find(',')));
     EXPECT_EQ(studies, (std::set<std::string>{"acne-vs-bias", "peter-panning-vs-bias", "cube-seams", "pancaking-leak",
                                               "wide-spot", "tile-depth-discontinuities", "per-object-large-objects",
-                                              "beyond-the-caps"}));
+                                              "beyond-the-caps", "cascade-shimmering", "cascade-shimmering-moving-view",
+                                              "cascade-seams", "perspective-aliasing-splits", "perspective-aliasing-counts",
+                                              "cascade-pancaking"}));
 }
 
 TEST(BenchCli, BadOptionsFailCleanly) {
