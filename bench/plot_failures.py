@@ -10,6 +10,7 @@ import csv
 import html
 import os
 import sys
+import textwrap
 from collections import OrderedDict
 
 import matplotlib
@@ -33,15 +34,36 @@ def read_studies(path):
     return studies
 
 
+LINE_STYLES = ["-", "--", ":", "-."]
+MARKERS = ["o", "s", "^", "D"]
+
+
+def variant_styles(variants):
+    """{variant: plot keyword arguments}. Variants named "GROUP: PART" (a blend and a region of the
+    frame, say) take a colour per group and a line style and marker per part, so that lines
+    lying on one another stay told apart; other variants take the colour cycle's next colour."""
+    parts = [v.split(": ", 1) for v in variants]
+    if not all(len(p) == 2 for p in parts):
+        return {v: {"marker": "o"} for v in variants}
+    groups = list(dict.fromkeys(p[0] for p in parts))
+    kinds = list(dict.fromkeys(p[1] for p in parts))
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    return {v: {"color": colours[groups.index(g) % len(colours)],
+                "linestyle": LINE_STYLES[kinds.index(k) % len(LINE_STYLES)],
+                "marker": MARKERS[kinds.index(k) % len(MARKERS)]}
+            for v, (g, k) in zip(variants, parts)}
+
+
 def study_figure(name, study):
     """Error (y) against the provoking parameter (x), a line per variant of the CSV, in file
     order: the variants (filters, layouts, methods) are whatever failures.csv holds, so a new
-    one is drawn with no edit here. x is logarithmic when its positive values span more than
-    WIDE_RATIO."""
+    one is drawn with no edit here (styled by variant_styles). x is logarithmic when its positive
+    values span more than WIDE_RATIO."""
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
+    styles = variant_styles(list(study["variants"]))
     for variant, points in study["variants"].items():
         points.sort()
-        ax.plot([p[0] for p in points], [p[1] for p in points], marker="o", label=variant)
+        ax.plot([p[0] for p in points], [p[1] for p in points], label=variant, **styles[variant])
     values = sorted({p[0] for points in study["variants"].values() for p in points})
     if values and values[0] > 0 and values[-1] / values[0] > WIDE_RATIO:
         # Parameters that double or grow geometrically (view depths, heights): a log axis with a
@@ -50,9 +72,11 @@ def study_figure(name, study):
         ax.xaxis.set_major_locator(FixedLocator(values))
         ax.xaxis.set_minor_locator(NullLocator())
         ax.set_xticklabels(["%g" % v for v in values])
+    if all(p[1] >= 0 for points in study["variants"].values() for p in points):
+        ax.set_ylim(bottom=0)  # errors from zero, so that a small difference does not look large
     ax.set_title(name)
     ax.set_xlabel(study["parameter"])
-    ax.set_ylabel(study["metric"])
+    ax.set_ylabel("\n".join(textwrap.wrap(study["metric"], 48)))  # long metrics on two or three lines
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()

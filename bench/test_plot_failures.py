@@ -84,6 +84,17 @@ class PlotFailuresTest(unittest.TestCase):
             finally:
                 plot_failures.plt.close(fig)
 
+    def test_group_and_part_variants_share_colours_and_line_styles(self):
+        variants = ["hard: split band", "hard: inside", "soft: split band", "soft: inside"]
+        styles = plot_failures.variant_styles(variants)
+        self.assertEqual(styles["hard: split band"]["color"], styles["hard: inside"]["color"])
+        self.assertNotEqual(styles["hard: split band"]["color"], styles["soft: split band"]["color"])
+        self.assertEqual(styles["hard: inside"]["linestyle"], styles["soft: inside"]["linestyle"])
+        self.assertNotEqual(styles["soft: split band"]["linestyle"], styles["soft: inside"]["linestyle"])
+        # Plain names keep the colour cycle.
+        self.assertEqual(plot_failures.variant_styles(["hw", "tent5: wide"]), {"hw": {"marker": "o"},
+                                                                              "tent5: wide": {"marker": "o"}})
+
 
 if __name__ == "__main__":
     unittest.main()
