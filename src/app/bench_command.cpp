@@ -43,8 +43,10 @@ const OutputFolderLayout kFolderLayout = {
 // The method and filter lists come from their tables, as plan() sweeps them.
 std::string usage() {
     std::vector<std::string> quickFilters;
+    std::vector<std::string> texelFilters;  // the cascades series' (plan())
     for (const ShadowFilterInfo& filter : kShadowFilters) {
         if (filter.quickBench) quickFilters.emplace_back(filter.name);
+        if (!filter.footprint.fromDiskSettings) texelFilters.emplace_back(filter.name);
     }
     return R"(usage: punctual bench [SCENE|--scene NAME] [--quick] --out-dir DIR [--size WxH] [--frames N]
 
@@ -57,7 +59,7 @@ Sweeps, on SCENE or the built-in scene NAME (default: )" + std::string(kDefaultB
   most), each at 16 and 32 bits, and 1024 at 32 bits for 32 + 8 lights (the former default);
   the filters )" + joinNames(shadowFilterNames(), ", ") + R"( at auto resolution;
   the sun's cascades on the built-in outdoor scene (its own lights, the sun alone shadowed):
-  1-4 cascades x resolution 512, 1024, 2048 x the filters hw, tent3, tent5, tent7;
+  1-4 cascades x resolution 512, 1024, 2048 x the filters )" + joinNames(texelFilters, ", ") + R"(;
   each shadow configuration validated against Embree (edge band one texel, and one pixel).
 Every configuration renders one warm-up frame and N timed frames (default 5, quick 3) and keeps
 the median and spread of each pass. Writes DIR/results.csv, DIR/results.json and DIR/images/.
@@ -67,9 +69,9 @@ depth discontinuities (tiled against clustered), per-object lists on large objec
 beyond the caps, and the sun's cascades: shimmering along a camera path (texel snapping on and
 off), seams per blend, perspective aliasing against view depth (split schemes, 1-4 cascades) and
 pancaking (depth clamp on and off).
---quick: 320x180, fewer counts, resolutions auto, 256 and 1024, filters )" +
-           joinNames(quickFilters, " and ") + R"(, 1 and 4 cascades at 512
-with hw and tent5, and fewer values in the failure study (under 3 minutes
+--quick: 320x180, fewer counts, resolutions auto, 256 and 1024, 1 and 4 cascades at 512, fewer
+values in the failure study, filters )" +
+           joinNames(quickFilters, " and ") + R"( (under 3 minutes
 on 2 CPU cores). Default size: 1280x720 (quick: 320x180).
 Charts: /usr/bin/python3 bench/plot_results.py DIR && /usr/bin/python3 bench/plot_failures.py DIR
 )";
@@ -224,14 +226,15 @@ std::vector<Config> plan(bool quick) {
     }
     // The sun's cascades on the outdoor scene: count x fixed resolution x filter. Its lamps keep
     // lighting the street but cast no shadow, so that the shadow stage and its memory are the
-    // cascades' alone. The filters are the footprint ones (the disk's radius is a share of the map,
-    // not of a texel).
+    // cascades' alone. The filters are those whose reach is counted in texels (the disk's radius is a
+    // share of the map, the same for every cascade); --quick keeps the ones marked for it.
     const BuiltinScene& outdoor = parseBuiltinScene("outdoor");
     const std::vector<uint32_t> cascadeCounts = quick ? std::vector<uint32_t>{1, 4} : std::vector<uint32_t>{1, 2, 3, 4};
     const std::vector<uint32_t> cascadeResolutions = quick ? std::vector<uint32_t>{512} : std::vector<uint32_t>{512, 1024, 2048};
-    const std::vector<ShadowFilter> cascadeFilters =
-        quick ? std::vector<ShadowFilter>{ShadowFilter::Hardware, ShadowFilter::Tent5}
-              : std::vector<ShadowFilter>{ShadowFilter::Hardware, ShadowFilter::Tent3, ShadowFilter::Tent5, ShadowFilter::Tent7};
+    std::vector<ShadowFilter> cascadeFilters;
+    for (const ShadowFilterInfo& filter : kShadowFilters) {
+        if (!filter.footprint.fromDiskSettings && (!quick || filter.quickBench)) cascadeFilters.push_back(filter.value);
+    }
     for (uint32_t count : cascadeCounts) {
         for (uint32_t resolution : cascadeResolutions) {
             for (ShadowFilter filter : cascadeFilters) {
