@@ -57,9 +57,10 @@ int runCompareCommand(const std::vector<std::string>& args) {
             names += cell;
             units += "        ms";
         }
-        std::printf("%s %9s | %13s %11s | %13s\n", names.c_str(), "frame", "error vs brute", "pixels off",
-                    "shadows wrong");
-        std::printf("%s %9s | %13s %11s | %13s\n", units.c_str(), "ms", "(mean /255)", "(>2/255)", "(vs Embree)");
+        std::printf("%s %9s | %13s %11s | %13s %10s\n", names.c_str(), "frame", "error vs brute", "pixels off",
+                    "shadows wrong", "sun wrong");
+        std::printf("%s %9s | %13s %11s | %13s %10s\n", units.c_str(), "ms", "(mean /255)", "(>2/255)", "(vs Embree)",
+                    "(cascades)");
         headerPrinted = true;
     };
     ImageRgba8 brute;
@@ -72,18 +73,24 @@ int runCompareCommand(const std::vector<std::string>& args) {
         const render::FrameResult result = renderer.render(options.frames, 1);
         if (method == render::referenceMethod()) brute = result.image;
         const ImageDifference error = compareImages(result.image, brute);
+        // Every shadowed light, then the sun's cascades alone (outside the edge band).
         std::string shadowColumn = "-";
+        std::string sunColumn = "-";
         if (embree) {
             const reference::ShadowValidation validation = reference::validateShadows(
                 *embree, renderer.readShadowFactors(), renderer.lights(), renderer.shadowPlan());
             char text[32];
             std::snprintf(text, sizeof(text), "%.3f%%", 100.0 * validation.overall.misclassifiedOutsideBand());
             shadowColumn = text;
+            if (validation.sun) {
+                std::snprintf(text, sizeof(text), "%.3f%%", 100.0 * validation.sun->counts.misclassifiedOutsideBand());
+                sunColumn = text;
+            }
         }
         std::printf("%-11s", render::methodName(method));
         for (const auto& pass : result.medianMs.passes) std::printf(" %9.1f", pass.second);
-        std::printf(" %9.1f | %13.3f %10.3f%% | %13s\n", result.medianMs.total, 255.0 * error.meanAbsolute,
-                    100.0 * error.pixelsOff, shadowColumn.c_str());
+        std::printf(" %9.1f | %13.3f %10.3f%% | %13s %10s\n", result.medianMs.total, 255.0 * error.meanAbsolute,
+                    100.0 * error.pixelsOff, shadowColumn.c_str(), sunColumn.c_str());
         std::fflush(stdout);
     }
     if (context.validationMessageCount() > 0) {

@@ -4,6 +4,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/box_layout.h"
 #include "scene/default_scene.h"
 
 namespace punctual::study {
@@ -173,11 +174,7 @@ Light sunLight(const glm::vec3& direction, float lux) {
 Scene cascadeFieldScene() {
     Scene scene;
     scene.source = "cascade field";
-    Material material;
-    material.name = "grey";
-    material.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
-    material.roughness = 0.7f;
-    scene.materials.push_back(material);
+    scene.materials.push_back(plainMaterial("grey", {0.6f, 0.6f, 0.6f}, 0.0f, 0.7f));
     addBox(scene, {0.0f, -0.1f, -140.0f}, {400.0f, 0.2f, 320.0f});
     // Posts along the view, ever further apart (the cascades grow): 1 m to 160 m, alternately left
     // and right, tall and short.

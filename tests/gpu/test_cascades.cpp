@@ -8,6 +8,7 @@
 #include "app/validation_report.h"
 #include "gpu_test_support.h"
 #include "lights/cascade_setup.h"
+#include "scene/outdoor_scene.h"
 #include "scene/study_scenes.h"
 #include "shadow_test_runs.h"
 
@@ -72,6 +73,32 @@ TEST(Cascades, OneCoarseCascadeFailsTheBound) {
     ASSERT_TRUE(run.validation.sun.has_value());
     EXPECT_GT(run.validation.sun->counts.misclassifiedOutsideBand(), 0.005);
     std::printf("[ cascades ] one cascade of 16 texels: %s\n", describe(run.validation.sun->counts).c_str());
+    testing::expectNoValidationMessages(*context);
+}
+
+}  // namespace
+}  // namespace punctual
+
+namespace punctual {
+namespace {
+
+// The built-in outdoor street (the issue's target scene) at a test's size: every cascade within
+// the 0.5% the issue asks at 1280x720 (bench/RESULTS.md has that measurement).
+TEST(Cascades, OutdoorAgreesWithEmbreeInEveryCascade) {
+    auto context = testing::makeValidatedContext();
+    const Scene scene = makeOutdoorScene();
+    const testing::ShadowRun run =
+        testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(320, 180, ShadowSettings{}));
+    testing::saveShadowRun("cascades-outdoor", run);
+    ASSERT_TRUE(run.validation.sun.has_value());
+    const reference::SunShadowValidation& sun = *run.validation.sun;
+    ASSERT_EQ(sun.cascades.size(), 4u);
+    std::printf("[ cascades ] outdoor sun: %s\n", describe(sun.counts).c_str());
+    for (uint32_t i = 0; i < 4; ++i) {
+        std::printf("[ cascades ] outdoor cascade %u: %s\n", i, describe(sun.cascades[i]).c_str());
+        EXPECT_GT(sun.cascades[i].comparedOutsideBand, 100u) << "cascade " << i;
+        EXPECT_LE(sun.cascades[i].misclassifiedOutsideBand(), 0.005) << "cascade " << i;
+    }
     testing::expectNoValidationMessages(*context);
 }
 

@@ -2,6 +2,7 @@
 // OpenEXR images are all written, and say what they should.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -111,6 +112,66 @@ TEST(ValidateCli, ABadEdgeBandFailsWithOneLine) {
         const RunResult run = runPunctual(folder, args);
         testing::expectOneClearError(run, args, "--edge-band-px: expected a number of screen pixels from 0 to 64");
         EXPECT_FALSE(std::filesystem::exists(folder.file("v"))) << args;
+    }
+}
+
+}  // namespace
+}  // namespace punctual
+
+namespace punctual {
+namespace {
+
+// The sun: report.json's "directional" section, per cascade and in the split band, its maps, and
+// the stats' cascade figures, on the built-in outdoor scene.
+TEST(ValidateCli, ReportsTheSunPerCascade) {
+    testing::TempFolder folder;
+    const std::string dir = folder.file("validation");
+    const RunResult run = testing::runPunctual(
+        folder, "validate --validate --scene outdoor --size 160x90 --cascades 3 --cascade-blend dither --out-dir '" + dir + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json report = nlohmann::json::parse(testing::readText(dir + "/report.json"));
+    ASSERT_TRUE(report.contains("directional"));
+    const nlohmann::json& sun = report["directional"];
+    EXPECT_GT(sun["compared"].get<int>(), 1000);
+    EXPECT_EQ(sun["cascade_blend"], "dither");
+    ASSERT_EQ(sun["cascades"].size(), 3u);
+    int perCascade = 0;
+    for (const auto& cascade : sun["cascades"]) {
+        for (const char* key : {"compared", "false_shadow", "false_lit", "misclassified_fraction"}) {
+            EXPECT_TRUE(cascade.contains(key)) << key;
+        }
+        EXPECT_GT(cascade["texel_m"].get<double>(), 0.0);
+        perCascade += cascade["compared"].get<int>();
+    }
+    // Each compared pixel the sun shades inside the shadow distance belongs to one cascade.
+    EXPECT_GT(perCascade, 0);
+    EXPECT_LE(perCascade, sun["compared"].get<int>());
+    EXPECT_TRUE(sun["split_band"].contains("compared"));
+    EXPECT_EQ(readPng(dir + "/cascades.png").width, 160u);
+    EXPECT_EQ(readPng(dir + "/mismatch-sun.png").height, 90u);
+    EXPECT_NE(testing::readText(dir + "/report.html").find("cascades.png"), std::string::npos);
+    EXPECT_NE(run.out.find("sun"), std::string::npos);
+
+    const std::string statsPath = folder.file("stats.json");
+    const RunResult render = testing::runPunctual(
+        folder, "render --validate --scene outdoor --size 160x90 --cascades 2 --shadow-distance 80 --stats '" + statsPath + "'");
+    ASSERT_EQ(render.exitCode, 0) << render.err;
+    const nlohmann::json shadows = nlohmann::json::parse(testing::readText(statsPath))["shadows"];
+    EXPECT_EQ(shadows["cascades"], 2);
+    ASSERT_EQ(shadows["cascade_splits"].size(), 2u);
+    EXPECT_FLOAT_EQ(shadows["cascade_splits"][0].get<float>(), 8.0f);  // the notes' 0.1 of 80 m
+    EXPECT_FLOAT_EQ(shadows["cascade_splits"][1].get<float>(), 80.0f);
+    EXPECT_EQ(shadows["shadow_distance_fitted"], false);
+    for (const auto& cascade : shadows["cascade_list"]) EXPECT_GT(cascade["texel_m"].get<double>(), 0.0);
+}
+
+TEST(ValidateCli, BadCascadeOptionsFailWithOneLine) {
+    testing::TempFolder folder;
+    for (const char* options : {"--cascades 5", "--cascades 0", "--cascade-splits 0.5,0.25,0.7", "--cascade-splits 0.1,0.2",
+                                "--cascade-lambda 2", "--shadow-distance -3", "--cascade-blend smooth"}) {
+        const RunResult run = testing::runPunctual(folder, std::string("render --scene outdoor --size 32x18 ") + options);
+        EXPECT_EQ(run.exitCode, 1) << options << ": " << run.err;
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << options << ": " << run.err;
     }
 }
 
