@@ -211,11 +211,7 @@ Scene cascadeFieldScene() {
 Scene cascadePancakingScene(float deckHeight) {
     Scene scene;
     scene.source = "cascade pancaking";
-    Material material;
-    material.name = "grey";
-    material.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
-    material.roughness = 0.7f;
-    scene.materials.push_back(material);
+    scene.materials.push_back(plainMaterial("grey", {0.6f, 0.6f, 0.6f}, 0.0f, 0.7f));
     addBox(scene, {0.0f, -0.1f, -60.0f}, {300.0f, 0.2f, 200.0f});
     // The sun travels along +x only (no z), so the deck's shadow stays on the band z = -8 .. -5 m
     // whatever its height and only slides sideways, by 1.44 x the height; the deck reaches 70 m
@@ -234,11 +230,7 @@ Scene cascadePancakingScene(float deckHeight) {
 Scene cascadeSeamScene() {
     Scene scene;
     scene.source = "cascade seams";
-    Material material;
-    material.name = "grey";
-    material.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
-    material.roughness = 0.7f;
-    scene.materials.push_back(material);
+    scene.materials.push_back(plainMaterial("grey", {0.6f, 0.6f, 0.6f}, 0.0f, 0.7f));
     addBox(scene, {0.0f, -0.1f, -100.0f}, {400.0f, 0.2f, 240.0f});
     // Rows of posts ever further apart, five across the view's width at their depth and shifted
     // along it from row to row (so that near posts do not hide the rows behind), growing with depth
