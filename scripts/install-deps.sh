@@ -10,6 +10,7 @@ packages=(
   glslang-tools                                              # GLSL -> SPIR-V at build time
   libglm-dev libembree-dev libtbb-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libgtest-dev
   libtinyexr-dev                                             # OpenEXR output of `punctual validate --export-exr`
+  libwebp-dev                                                # EXT_texture_webp textures
   python3-matplotlib                                         # charts in bench/
 )
 # The sanitizer build (scripts/test-sanitized.sh) needs nothing more: GCC's ASan and UBSan

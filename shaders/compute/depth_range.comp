@@ -14,6 +14,11 @@ layout(local_size_x = 8, local_size_y = 8) in;  // one group covers 32x32 pixels
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) buffer DepthRangeBlock { GpuDepthRange depthRange; };
+// The transparent surfaces' depth span per pixel, when the frame has any (frame.lightCounts.w):
+// the range covers them too, so that their depths fall inside the slices.
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
+    uint transparentDepth[];
+};
 
 shared uint groupMin;
 shared uint groupMax;
@@ -33,6 +38,14 @@ void main() {
         if (!isBackgroundDepth(depth)) {
             threadMin = min(threadMin, floatBitsToUint(depth));
             threadMax = max(threadMax, floatBitsToUint(depth));
+        }
+        if (frame.lightCounts.w != 0u) {
+            uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
+            uint nearestBits = transparentDepth[index];
+            if (nearestBits != 0u) {
+                threadMax = max(threadMax, nearestBits);
+                threadMin = min(threadMin, transparentDepth[uint(frame.viewport.x * frame.viewport.y) + index]);
+            }
         }
     }
     if (threadMin <= threadMax) {

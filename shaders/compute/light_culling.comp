@@ -2,7 +2,8 @@
 // Tiled and clustered light culling. One workgroup per screen tile:
 //  1. every pixel of the tile reads the prepass depth; pixels with geometry record their view
 //     distance into the min/max of their depth slice (shared atomics). Tiled culling is the case
-//     SLICE_COUNT = 1: one slice spanning the tile's own min..max depth.
+//     SLICE_COUNT = 1: one slice spanning the tile's own min..max depth. A pixel with transparent
+//     surfaces in front records its whole depth span, into every slice the span crosses.
 //  2. the occupied slices are listed, each with its frustum segment bounded by the distances of
 //     the pixels really in it (computed once per slice, not per light);
 //  3. each (occupied slice, light) pair is tested: the light's conservative shapes against the
@@ -27,6 +28,12 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_CULL_LIGHTS) readonly buffer 
 layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) writeonly buffer GridBlock { uint lightGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
+// The transparent surfaces' depth span per pixel (transparent_depth.frag), when the frame has
+// any (frame.lightCounts.w): a pixel then shades every depth from its opaque surface (or, over
+// the background, its farthest transparent one) to its nearest transparent one.
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
+    uint transparentDepth[];
+};
 
 const uint kThreads = 64u;
 const uint kSide = 8u;
@@ -84,6 +91,29 @@ void main() {
             uvec2 pixel = tile * TILE_SIZE + uvec2(x, y);
             if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
             float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
+            if (frame.lightCounts.w != 0u) {
+                uint index = pixel.y * viewport.x + pixel.x;
+                uint nearestBits = transparentDepth[index];
+                if (nearestBits != 0u) {
+                    float nearest = uintBitsToFloat(nearestBits);
+                    float farthest = isBackgroundDepth(depth) ? uintBitsToFloat(transparentDepth[viewport.x * viewport.y + index])
+                                                              : depth;
+                    uint nearSlice, farSlice;
+                    PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(nearSlice, nearest, sliceStart, SLICE_COUNT);
+                    PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(farSlice, farthest, sliceStart, SLICE_COUNT);
+                    // Each crossed slice gets the part of the span inside it: from its start (or the
+                    // span's near end) to the next slice's start (or the span's far end).
+                    for (uint slice = nearSlice; slice <= farSlice; ++slice) {
+                        float top = slice == nearSlice ? nearest : sliceStart[slice];
+                        float bottom = slice == farSlice ? farthest : sliceStart[slice + 1u];
+                        atomicMin(sliceMinDistance[slice], floatBitsToUint(viewDistanceFromDepth(top, frame.depthToView.xy)));
+                        atomicMax(sliceMaxDistance[slice], floatBitsToUint(viewDistanceFromDepth(bottom, frame.depthToView.xy)));
+                    }
+                    threadMin = min(threadMin, floatBitsToUint(viewDistanceFromDepth(nearest, frame.depthToView.xy)));
+                    threadMax = max(threadMax, floatBitsToUint(viewDistanceFromDepth(farthest, frame.depthToView.xy)));
+                    continue;
+                }
+            }
             if (isBackgroundDepth(depth)) continue;  // nothing to shade
             // The pixel's slice: the same search as pixelGridCell() in forward.frag (culling.h),
             // so both pick the same slice.

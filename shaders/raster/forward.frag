@@ -18,6 +18,7 @@
 #include "shadows.h"
 #include "shadow_tent.h"
 #include "cascades.h"
+#include "materials.h"
 
 // Depth test before shading: only the visible fragment of each pixel runs (EQUAL against the
 // prepass). Without it, the statistics variant's buffer writes would make drivers test depth late
@@ -39,20 +40,26 @@ layout(constant_id = PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT) const uint POINT_SHADOW_
 layout(constant_id = PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS) const bool WRITE_SHADOW_FACTORS = false;
 layout(constant_id = PUNCTUAL_SPEC_SHADOW_RECEIVER_PLANE) const bool SHADOW_RECEIVER_PLANE = true;
 layout(constant_id = PUNCTUAL_SPEC_CASCADE_BLEND) const uint CASCADE_BLEND = PUNCTUAL_CASCADE_BLEND_HARD;
+// The transparent pass: alphaMode BLEND surfaces, written with their base colour's alpha for the
+// pipeline's "over" blending; the opaque pass writes alpha 1.
+layout(constant_id = PUNCTUAL_SPEC_TRANSPARENT) const bool TRANSPARENT = false;
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHTS) readonly buffer LightBlock { GpuPunctualLight lights[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_OBJECTS) readonly buffer ObjectBlock { GpuObject objects[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_MATERIALS) readonly buffer MaterialBlock { GpuMaterial materials[]; };
-// The draw's base-colour texture (a white texel when its material has none), in set 1, bound per
-// material. One texture per set instead of an array indexed per draw: lavapipe (Mesa 22.3) moves
-// dynamically indexed samplers into out-of-line functions whose code LLVM 15 fails to compile
-// for array textures, the shadow maps.
+// The draw's base-colour and emissive textures (a white texel where its material has none), in
+// set 1, bound per material. One set per material instead of an array indexed per draw: lavapipe
+// (Mesa 22.3) moves dynamically indexed samplers into out-of-line functions whose code LLVM 15
+// fails to compile for array textures, the shadow maps.
 layout(set = 1, binding = 0) uniform sampler2D baseColorTexture;
+layout(set = 1, binding = 1) uniform sampler2D emissiveTexture;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) readonly buffer GridBlock { uint lightGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_OBJECT_LIGHTS) readonly buffer ObjectLightBlock { uint objectLights[]; };
-layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_STATS) writeonly buffer LightStatsBlock { uvec4 lightStats[]; };
+// Four words per pixel for the opaque surface, then four per pixel for its transparent fragments
+// (gpu_types.h): several of those may land on one pixel, so they add up atomically.
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_STATS) buffer LightStatsBlock { uint lightStatWords[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_VIEWS) readonly buffer ShadowViewBlock { GpuShadowView shadowViews[]; };
 layout(set = 0, binding = PUNCTUAL_BINDING_SHADOW_ATLAS) uniform sampler2DShadow shadowAtlas;
 layout(set = 0, binding = PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH) uniform sampler2D shadowAtlasDepth;
@@ -66,6 +73,8 @@ uint shadowFactorWords[PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS];
 layout(location = 0) in vec3 inWorldPosition;
 layout(location = 1) in vec3 inWorldNormal;
 layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec2 inUv1;
+layout(location = 4) flat in uint inObject;  // unread here (draw.objectIndex is): mesh.vert's full interface
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -85,6 +94,7 @@ uint pixelGridCell() {
 }
 
 #include "shadow_sampling.glsl"
+#include "texture_sampling.glsl"
 
 // Validation variant: the cascade the sun's shadow read at this pixel, plus one (0: none).
 uint sunCascadeWord = 0u;
@@ -141,13 +151,24 @@ void main() {
     }
     GpuObject object = objects[draw.objectIndex];
     GpuMaterial material = materials[object.material.x];
-    vec4 baseColor = material.baseColorFactor;
-    if (material.baseColorTexture >= 0) baseColor *= texture(baseColorTexture, inUv);
-
-    // Faces are drawn two-sided; the normal is turned towards the viewer on back faces.
     // object.material.y marks mirrored transforms (negative determinant), whose winding flips.
-    vec3 normal = normalize(inWorldNormal);
     bool frontFacing = gl_FrontFacing != (object.material.y != 0u);
+    // The prepass drew neither a single-sided material's back faces nor masked-out fragments, so
+    // these fail the EQUAL test already unless another surface lies at exactly their depth; the
+    // tests make the forward pass agree with the prepass by construction.
+    // Both textures are sampled before any fragment of the quad is discarded: implicit
+    // derivatives are undefined once the quad's control flow diverges.
+    vec4 baseColor = material.baseColorFactor;
+    if (material.baseColorTexture >= 0)
+        baseColor *= sampleMaterialTexture(baseColorTexture, material.baseColorUv[0], material.baseColorUv[1]);
+    vec3 emission = material.emission.rgb;
+    if (material.emissiveTexture >= 0)
+        emission *= sampleMaterialTexture(emissiveTexture, material.emissiveUv[0], material.emissiveUv[1]).rgb;
+    if (materialIsSingleSided(material) && !frontFacing) discard;
+    if (materialIsMasked(material) && !alphaMaskKeeps(baseColor.a, material.emission.w)) discard;
+
+    // Double-sided faces: the normal is turned towards the viewer on back faces.
+    vec3 normal = normalize(inWorldNormal);
     if (!frontFacing) normal = -normal;
 
     vec3 viewDir = normalize(frame.cameraPosition.xyz - inWorldPosition);
@@ -196,7 +217,10 @@ void main() {
             unknownVariant = true;
             break;
     }
-    outRadiance = vec4(unknownVariant ? kUnknownVariantRadiance : radiance, 1.0);
+    // Emission last, after every light, in the reference's order. It lights nothing else.
+    radiance += emission;
+    outRadiance = vec4(unknownVariant ? kUnknownVariantRadiance : radiance,
+                       TRANSPARENT && !unknownVariant ? baseColor.a : 1.0);
 
     if (WRITE_SHADOW_FACTORS) {
         uvec2 pixel = uvec2(gl_FragCoord.xy);
@@ -222,9 +246,21 @@ void main() {
             if (punctualAttenuation(lights[i], inWorldPosition) > 0.0) ++affecting;
             bruteRadiance += shadeLight(surface, lights[i]);
         }
+        bruteRadiance += emission;
         uvec2 pixel = uvec2(gl_FragCoord.xy);
-        lightStats[pixel.y * uint(frame.viewport.x) + pixel.x] =
-            uvec4(tested, affecting | 0x80000000u, floatBitsToUint(luminance(radiance)),
-                  floatBitsToUint(luminance(bruteRadiance)));
+        uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
+        if (TRANSPARENT) {
+            uint base = (uint(frame.viewport.x * frame.viewport.y) + index) * 4u;
+            atomicAdd(lightStatWords[base + 0u], tested);
+            atomicAdd(lightStatWords[base + 1u], affecting);
+            atomicAdd(lightStatWords[base + 2u], 1u);
+            // Light went missing: the statistics' own test (culling_stats.cpp), per fragment.
+            if (luminance(radiance) < luminance(bruteRadiance) * (1.0 - 1e-6)) atomicAdd(lightStatWords[base + 3u], 1u);
+        } else {
+            lightStatWords[index * 4u + 0u] = tested;
+            lightStatWords[index * 4u + 1u] = affecting | 0x80000000u;
+            lightStatWords[index * 4u + 2u] = floatBitsToUint(luminance(radiance));
+            lightStatWords[index * 4u + 3u] = floatBitsToUint(luminance(bruteRadiance));
+        }
     }
 }

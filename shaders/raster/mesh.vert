@@ -14,10 +14,15 @@ layout(push_constant) uniform DrawConstants { uint objectIndex; } draw;
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec2 inUv1;
 
 layout(location = 0) out vec3 outWorldPosition;
 layout(location = 1) out vec3 outWorldNormal;
 layout(location = 2) out vec2 outUv;
+layout(location = 3) out vec2 outUv1;
+// The object, for fragment shaders without the push constant's copy (alpha_mask.frag is shared
+// with the shadow caster passes).
+layout(location = 4) flat out uint outObject;
 
 void main() {
     GpuObject object = objects[draw.objectIndex];
@@ -25,6 +30,8 @@ void main() {
     outWorldPosition = world.xyz;
     outWorldNormal = mat3(object.normalMatrix) * inNormal;
     outUv = inUv;
+    outUv1 = inUv1;
+    outObject = draw.objectIndex;
     precise vec4 clip = frame.viewProjection * world;
     gl_Position = clip;
 }

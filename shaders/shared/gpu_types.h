@@ -28,13 +28,20 @@
 #define PUNCTUAL_BINDING_LIGHT_GRID 6     // per tile (or cluster): 3 words = 64-bit spot mask, 32-bit point mask
 #define PUNCTUAL_BINDING_DEPTH_RANGE 7    // GpuDepthRange: the frame's geometry depth range and cluster slice starts
 #define PUNCTUAL_BINDING_OBJECT_LIGHTS 8  // per object: PUNCTUAL_MAX_LIGHTS_PER_OBJECT packed-light indices
-#define PUNCTUAL_BINDING_LIGHT_STATS 9    // debug: per pixel uvec4 (tested, affecting | covered bit, luminances)
+// Debug: per pixel uvec4 (tested, affecting | covered bit, luminances) of the opaque surface; then
+// per pixel the sums over its transparent fragments (tested, affecting, fragments, fragments
+// missing light).
+#define PUNCTUAL_BINDING_LIGHT_STATS 9
 #define PUNCTUAL_BINDING_CULL_LIGHTS 10   // CullLight per packed light: view-space culling shapes (culling.h)
 #define PUNCTUAL_BINDING_SHADOW_VIEWS 11  // GpuShadowView per rendered shadow view
 #define PUNCTUAL_BINDING_SHADOW_ATLAS 12 // sampler2DShadow: every spot view and point slice (lights/shadow_atlas.h)
 #define PUNCTUAL_BINDING_POINT_SHADOWS 13 // samplerCubeArrayShadow: one cube per shadowed point (cube layout)
 #define PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH 14 // sampler2D: the atlas's raw depths, gathered for receiver-plane compares
 #define PUNCTUAL_BINDING_SHADOW_DEBUG 15  // validation: per-pixel surface and shadow factors (see below)
+// Per pixel, the float bits of the nearest (first width x height words) and the farthest (the next
+// width x height) depth of the alphaMode BLEND surfaces in front of the opaque ones; 0 and
+// 0xFFFFFFFF where there are none. Written by transparent_depth.frag, read by the culling kernels.
+#define PUNCTUAL_BINDING_TRANSPARENT_DEPTH 16
 
 // Shadow validation buffer (forward shader's WRITE_SHADOW_FACTORS variant), in 32-bit words:
 // per pixel PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS words (world position xyz, 1 if covered, shading
@@ -72,6 +79,11 @@
 #define PUNCTUAL_CASCADE_BLEND_COUNT 3u
 #define PUNCTUAL_MAX_CASCADES 4
 
+// GpuMaterial::flags.
+#define PUNCTUAL_MATERIAL_ALPHA_MASK 1u    // glTF alphaMode MASK: dropped where alpha < cutoff
+#define PUNCTUAL_MATERIAL_ALPHA_BLEND 2u   // glTF alphaMode BLEND: the transparent pass
+#define PUNCTUAL_MATERIAL_SINGLE_SIDED 4u  // not doubleSided: back faces are not drawn
+
 // Words per light-grid cell: spot bits 0-31, spot bits 32-63, point bits 0-31.
 #define PUNCTUAL_GRID_WORDS 3
 // Clusters use at most 32 depth slices, so a tile's occupied slices fit one 32-bit mask.
@@ -96,6 +108,7 @@
 #define PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS 9
 #define PUNCTUAL_SPEC_SHADOW_RECEIVER_PLANE 10
 #define PUNCTUAL_SPEC_CASCADE_BLEND 11
+#define PUNCTUAL_SPEC_TRANSPARENT 12
 
 PUNCTUAL_NAMESPACE_BEGIN
 
@@ -174,9 +187,16 @@ struct GpuObject {
 
 struct GpuMaterial {
     vec4 baseColorFactor;  // linear RGBA
+    vec4 emission;         // rgb: emitted radiance (emissiveFactor x emissive strength); w: alpha cutoff (MASK)
+    vec4 baseColorUv[2];   // KHR_texture_transform rows U, V (xyz, materials.h); [0].w: texcoord set
+    vec4 emissiveUv[2];    // the same for the emissive texture
     vec2 metallicRoughness;
-    int baseColorTexture;  // index into the texture array, -1 for none
-    uint flags;            // reserved
+    int baseColorTexture;  // index into the scene's textures, -1 for none (a white texel is bound)
+    uint flags;            // PUNCTUAL_MATERIAL_* bits
+    int emissiveTexture;   // -1 for none (a white texel is bound)
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
 };
 
 PUNCTUAL_NAMESPACE_END

@@ -152,6 +152,23 @@ std::vector<FailureStudy> studies(vk::Context& context, bool quick, uint32_t wid
                         frame.factors = renderer.readShadowFactors();
                         return std::pair{lightBeyondCaps(frame, scene, renderer.lights()), frame.result.medianMs.total};
                     }});
+    list.push_back({"transparency-tiled-depth-bounds", "wall distance behind the glass (m)",
+                    "share of transparent fragments missing light",
+                    quick ? std::vector<double>{1.0, 8.0} : std::vector<double>{0.5, 1.0, 2.0, 4.0, 8.0},
+                    {"tiled: opaque depth", "tiled", "clustered: opaque depth", "clustered"},
+                    [&context, base](double value, const std::string& variant) {
+                        // "opaque depth": tiles and clusters bounded by the depth prepass alone,
+                        // as before the transparent depth span (render/transparent_depth_pass.h).
+                        const bool opaqueOnly = variant.find("opaque depth") != std::string::npos;
+                        render::RenderSettings s = base(render::parseMethod(variant.substr(0, variant.find(':'))));
+                        s.shadows.enabled = false;
+                        s.collectLightStats = true;
+                        s.opaqueCullingDepth = opaqueOnly;
+                        render::Renderer renderer(context, study::glassPanesScene(float(value)), s);
+                        const double ms = renderer.render(1, 1).medianMs.total;
+                        const CullingStats stats = computeCullingStats(renderer.readLightStats());
+                        return std::pair{fraction(stats.transparentFragmentsMissingLight, stats.transparentFragments), ms};
+                    }});
     // The sun's cascades: shimmering, seams, perspective aliasing and pancaking.
     for (FailureStudy& study : cascadeFailureStudies(context, quick, width, height)) list.push_back(std::move(study));
     return list;

@@ -43,6 +43,11 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
         {"missed_energy", stats.missedEnergy},
         {"pixels_missing_light", stats.pixelsMissingLight},
         {"covered_pixels", stats.coveredPixels},
+        // The alphaMode BLEND fragments, counted apart from the opaque pixels under them.
+        {"transparent_fragments", stats.transparentFragments},
+        {"transparent_tested_per_fragment", stats.transparentTestedPerFragment},
+        {"transparent_affecting_per_fragment", stats.transparentAffectingPerFragment},
+        {"transparent_fragments_missing_light", stats.transparentFragmentsMissingLight},
     };
     if (render::usesLightGrid(settings.method)) {
         const render::LightGridLayout& grid = renderer.gridLayout();

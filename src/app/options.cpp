@@ -162,6 +162,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             }
         } else if (arg == "--cascade-blend") {
             options.shadows.cascades.blend = parseCascadeBlend(value());
+        } else if (arg == "--transparent-shadows") {
+            options.shadows.transparent = parseTransparentShadows(value());
         } else if (arg == "--shadow-receiver-plane") {
             const std::string& text = value();
             if (text != "on" && text != "off") throw Error(arg, "expected on or off, got '" + text + "'");
@@ -261,7 +263,9 @@ options:
            R"(  --shadow-receiver-plane on|off  on (default): hw and tent filters compare each texel with
                        the receiver's plane under it, so the bias need not cover the filter's
                        reach; off: the design notes' compares (disk and cube maps always)
-  --shadow-strength S  0 (no shadow) to 1 (default 1), times each light's own strength
+  --transparent-shadows M  how alphaMode BLEND surfaces cast shadows:
+)" + variantHelp(kTransparentShadowModes, defaults.shadows.transparent, kListIndent) +
+           R"(  --shadow-strength S  0 (no shadow) to 1 (default 1), times each light's own strength
   --point-shadow-layout L  how point lights' shadow maps are stored:
 )" + variantHelp(kPointShadowLayouts, defaults.shadows.pointLayout, kListIndent) +
            R"(  --exposure X         linear exposure before tone mapping (default 1)

@@ -93,6 +93,7 @@ int runReferenceCommand(const std::vector<std::string>& args) {
     settings.height = options.height;
     settings.exposure = options.exposure;
     settings.shadows = shadows;
+    settings.transparentShadows = options.shadows.transparent;
     settings.showProgress = isatty(STDERR_FILENO) != 0;
     const reference::ReferenceRenderer renderer(scene, settings);
     reference::ReferenceStats stats;

@@ -97,6 +97,7 @@ int runValidateCommand(const std::vector<std::string>& args) {
     referenceSettings.height = options.height;
     referenceSettings.exposure = options.exposure;
     referenceSettings.shadows = true;
+    referenceSettings.transparentShadows = options.shadows.transparent;
     const reference::ReferenceRenderer referenceRenderer(scene, referenceSettings);
     const ImageRgba8 referenceImage = referenceRenderer.render();
     const reference::ShadowValidation validation = reference::validateShadows(

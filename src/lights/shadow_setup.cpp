@@ -201,6 +201,7 @@ glm::mat4 cubeFaceViewProjection(const glm::vec3& position, uint32_t face, float
 ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3& cameraPosition,
                        const ShadowSettings& settings) {
     ShadowPlan plan;
+    plan.transparentShadows = settings.transparent;
     for (gpu::GpuPunctualLight& light : lights.packed) {
         light.angleOffsetShadow.y = -1.0f;
         light.angleOffsetShadow.w = 0.0f;

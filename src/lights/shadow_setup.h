@@ -25,6 +25,7 @@
 #include "lights/shadow_atlas.h"
 #include "lights/shadow_budget.h"
 #include "lights/shadow_filters.h"
+#include "lights/transparent_shadows.h"
 #include "scene/scene.h"
 
 namespace punctual {
@@ -59,6 +60,7 @@ struct ShadowSettings {
     bool receiverPlane = true;
     float strength = 1.0f;  // multiplies every light's own shadow strength
     CascadeSettings cascades;  // the sun's (lights/cascade_setup.h)
+    TransparentShadows transparent = TransparentShadows::Clip;  // alphaMode BLEND casters
     // For the failure study only (bench), never needed to render correctly:
     bool pancaking = false;         // clamp caster vertices' depth onto the near plane (Unity's pancaking)
     float spotNearFraction = 0.0f;  // > 0: spot near plane at this fraction of the range, not fitted
@@ -121,6 +123,9 @@ struct ShadowPlan {
     uint32_t receiverSamples = 0;   // auto: visible receiver samples the demand came from
     uint32_t sampleStep = 0;        // auto: pixels between them
     CascadePlan cascades;           // the sun's (planCascades)
+    // How alphaMode BLEND casters shadow (ShadowSettings::transparent), for whoever checks the
+    // views against rays (reference/shadow_validation.h).
+    TransparentShadows transparentShadows = TransparentShadows::Clip;
 };
 
 // Chooses the shadowed lights (by lightImportance, see light_setup.h), builds their views (casters,

@@ -25,6 +25,18 @@ CullingStats computeCullingStats(const LightStatsImage& image) {
         stats.testedPerPixel = tested / double(stats.coveredPixels);
         stats.affectingPerPixel = affecting / double(stats.coveredPixels);
     }
+    double transparentTested = 0.0;
+    double transparentAffecting = 0.0;
+    for (size_t i = 0; i < image.transparentFragments.size(); ++i) {
+        stats.transparentFragments += image.transparentFragments[i];
+        transparentTested += image.transparentTested[i];
+        transparentAffecting += image.transparentAffecting[i];
+        stats.transparentFragmentsMissingLight += image.transparentMissingLight[i];
+    }
+    if (stats.transparentFragments > 0) {
+        stats.transparentTestedPerFragment = transparentTested / double(stats.transparentFragments);
+        stats.transparentAffectingPerFragment = transparentAffecting / double(stats.transparentFragments);
+    }
     stats.efficiency = affecting > 0.0 ? tested / affecting : 0.0;
     stats.missedEnergy = bruteSum > 0.0 ? std::max(0.0, 1.0 - methodSum / bruteSum) : 0.0;
     return stats;

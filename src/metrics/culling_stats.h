@@ -15,6 +15,11 @@ struct LightStatsImage {
     std::vector<uint8_t> covered;        // 1 where geometry is, 0 for background
     std::vector<float> methodLuminance;  // luminance of the method's radiance
     std::vector<float> bruteLuminance;   // luminance of the brute-force radiance
+    // Per pixel, sums over the transparent (alphaMode BLEND) fragments drawn there.
+    std::vector<uint32_t> transparentTested;
+    std::vector<uint32_t> transparentAffecting;
+    std::vector<uint32_t> transparentFragments;
+    std::vector<uint32_t> transparentMissingLight;  // fragments whose method radiance fell short of brute force's
 };
 
 struct CullingStats {
@@ -31,6 +36,12 @@ struct CullingStats {
     // relative: where light went missing.
     uint64_t pixelsMissingLight = 0;
     uint64_t coveredPixels = 0;
+    // The transparent fragments: shaded like pixels, and as able to miss lights (tiled depth
+    // bounds come from the opaque depth unless the transparent depth span widens them).
+    uint64_t transparentFragments = 0;
+    double transparentTestedPerFragment = 0.0;
+    double transparentAffectingPerFragment = 0.0;
+    uint64_t transparentFragmentsMissingLight = 0;
 };
 
 CullingStats computeCullingStats(const LightStatsImage& image);

@@ -5,6 +5,8 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "materials.h"
+#include "reference/material_sampling.h"
 
 namespace punctual::reference {
 
@@ -49,7 +51,80 @@ float epsilonFloor(const Bounds& bounds) {
     return scale > 0.0f && std::isfinite(scale) ? scale : 1.0f;
 }
 
+// The hit's texture coordinates from its barycentrics, as the primary ray's shading does.
+bool alphaKept(const EmbreeScene::SurfaceFilter& filter, uint32_t triangle, float u, float v) {
+    const Scene& scene = *filter.scene;
+    const Mesh& mesh = scene.meshes[scene.objects[filter.object].mesh];
+    const Material& material = scene.materials[mesh.material];
+    const uint32_t* corner = &scene.indices[mesh.firstIndex + 3 * size_t(triangle)];
+    const Vertex& a = scene.vertices[mesh.vertexOffset + corner[0]];
+    const Vertex& b = scene.vertices[mesh.vertexOffset + corner[1]];
+    const Vertex& c = scene.vertices[mesh.vertexOffset + corner[2]];
+    const float w = 1.0f - u - v;
+    const float alpha = baseColorAlpha(scene, material, w * a.uv + u * b.uv + v * c.uv, w * a.uv1 + u * b.uv1 + v * c.uv1);
+    return gpu::alphaMaskKeeps(alpha, filter.blended ? kTransparentShadowCutoff : material.alphaCutoff);
+}
+
+const RayContext& rayContextOf(const RTCFilterFunctionNArguments* args) {
+    return *reinterpret_cast<const RayContext*>(args->context);
+}
+
+// Embree calls these for every candidate hit on the object's triangles; valid[i] = 0 rejects one
+// and the ray goes on.
+void intersectFilter(const RTCFilterFunctionNArguments* args) {
+    const auto& filter = *static_cast<const EmbreeScene::SurfaceFilter*>(args->geometryUserPtr);
+    const RayKind kind = rayContextOf(args).kind;
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        if (filter.blended != (kind == RayKind::TransparentLayers)) {
+            args->valid[i] = 0;  // primary rays pass transparent surfaces; layer rays see nothing else
+            continue;
+        }
+        if (filter.singleSided) {
+            // As traceSurface decides front and back: Ng points to the CCW side.
+            const glm::vec3 ng(RTCHitN_Ng_x(args->hit, args->N, i), RTCHitN_Ng_y(args->hit, args->N, i),
+                               RTCHitN_Ng_z(args->hit, args->N, i));
+            const glm::vec3 direction(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                                      RTCRayN_dir_z(args->ray, args->N, i));
+            const bool ccwSideSeen = glm::dot(ng, direction) < 0.0f;
+            if (ccwSideSeen == filter.mirrored) {
+                args->valid[i] = 0;
+                continue;
+            }
+        }
+        if (filter.masked && !alphaKept(filter, RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                                        RTCHitN_v(args->hit, args->N, i)))
+            args->valid[i] = 0;
+    }
+}
+
+void occludedFilter(const RTCFilterFunctionNArguments* args) {
+    const auto& filter = *static_cast<const EmbreeScene::SurfaceFilter*>(args->geometryUserPtr);
+    const TransparentShadows mode = rayContextOf(args).transparentShadows;
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        if (filter.blended && mode == TransparentShadows::On) continue;
+        if (filter.blended && mode == TransparentShadows::Off) {
+            args->valid[i] = 0;
+            continue;
+        }
+        // Masked, or transparent clipped or dithered: the alpha test (dither's coverage follows
+        // alpha, which its filtered shadow turns dark from 0.5 on).
+        if (!alphaKept(filter, RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                       RTCHitN_v(args->hit, args->N, i)))
+            args->valid[i] = 0;
+    }
+}
+
 }  // namespace
+
+RayContext makeRayContext(RayKind kind, TransparentShadows transparentShadows) {
+    RayContext context;
+    rtcInitIntersectContext(&context.embree);
+    context.kind = kind;
+    context.transparentShadows = transparentShadows;
+    return context;
+}
 
 EmbreeScene::EmbreeScene(const Scene& scene) : errors_(std::make_unique<ErrorLog>()) {
     // rtcNewDevice reports its own failure only through rtcGetDeviceError(nullptr): there is no
@@ -73,6 +148,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : errors_(std::make_unique<ErrorLog
     }
     rayEpsilonFloor_ = epsilonFloor(bounds);
 
+    filters_.reserve(scene.objects.size());
     for (uint32_t i = 0; i < scene.objects.size(); ++i) addObject(scene, i);
     rtcCommitScene(scene_.get());
     throwIfError("building the scene");
@@ -115,6 +191,19 @@ void EmbreeScene::addObject(const Scene& scene, uint32_t objectIndex) {
             throw Error(scene.source, "mesh '" + mesh.name + "' has an index past its vertices");
         }
         indices[k] = index;
+    }
+    const Material& material = scene.materials.at(mesh.material);
+    SurfaceFilter& filter = filters_.emplace_back();
+    filter.scene = &scene;
+    filter.object = objectIndex;
+    filter.masked = material.alphaMode == AlphaMode::Mask;
+    filter.blended = material.alphaMode == AlphaMode::Blend;
+    filter.singleSided = !material.doubleSided;
+    filter.mirrored = glm::determinant(glm::mat3(object.model)) < 0.0f;
+    if (filter.masked || filter.blended || filter.singleSided) {
+        rtcSetGeometryUserData(geometry, &filter);
+        rtcSetGeometryIntersectFilterFunction(geometry, &intersectFilter);
+        if (filter.masked || filter.blended) rtcSetGeometryOccludedFilterFunction(geometry, &occludedFilter);
     }
     rtcCommitGeometry(geometry);
     rtcAttachGeometryByID(scene_.get(), geometry, objectIndex);  // geomID == object index

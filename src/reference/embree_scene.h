@@ -6,22 +6,44 @@
 // Mapping: object i of the Scene is Embree geometry i (attached by ID), one
 // RTC_GEOMETRY_TYPE_TRIANGLE each with its vertices transformed by Object::model, so a hit's
 // geomID is the object index and its primID the triangle within the object's mesh.
+//
+// Materials, as the GPU's passes treat them, through filter functions that read the ray's
+// RayContext:
+//  - alphaMode MASK: hits where the base colour's alpha is below the cutoff are dropped, for every
+//    ray (the GPU's depth prepass and every shadow caster pass test alpha);
+//  - single-sided (not doubleSided): hits on back faces are dropped for camera rays only (the GPU
+//    culls back faces in the prepass; shadow casters are two-sided);
+//  - alphaMode BLEND: primary rays pass through (they find the opaque surface, as the prepass
+//    does), transparent-layer rays see only these, and shadow rays treat them as the ray's
+//    TransparentShadows mode says (on: solid; clip and dither: alpha >= 0.5; off: never).
 #include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <embree3/rtcore.h>
 #include <glm/glm.hpp>
 
+#include "lights/transparent_shadows.h"
 #include "scene/scene.h"
 
 namespace punctual::reference {
 
+// What a ray is for, read by the filter functions. Embree's extended-context pattern: the
+// RTCIntersectContext comes first, so the filters cast args->context back to the RayContext.
+enum class RayKind : uint8_t { Primary, TransparentLayers, Shadow };
+struct RayContext {
+    RTCIntersectContext embree;
+    RayKind kind = RayKind::Primary;
+    TransparentShadows transparentShadows = TransparentShadows::Clip;  // shadow rays
+};
+RayContext makeRayContext(RayKind kind, TransparentShadows transparentShadows = TransparentShadows::Clip);
+
 class EmbreeScene {
 public:
     // Throws punctual::Error("embree", ...) when Embree reports an error (device creation,
-    // geometry setup, commit).
+    // geometry setup, commit). `scene` must outlive this (the filter functions read it).
     explicit EmbreeScene(const Scene& scene);
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene&) = delete;
@@ -59,6 +81,19 @@ private:
 
     void addObject(const Scene& scene, uint32_t objectIndex);
 
+public:
+    // What an object's filter functions read (geometryUserPtr); public for the callbacks only.
+    struct SurfaceFilter {
+        const Scene* scene = nullptr;
+        uint32_t object = 0;
+        bool masked = false;       // alphaMode MASK
+        bool blended = false;      // alphaMode BLEND
+        bool singleSided = false;  // not doubleSided: primary rays pass its back faces
+        bool mirrored = false;     // the transform reverses the winding
+    };
+
+private:
+    std::vector<SurfaceFilter> filters_;  // one per object, reserved up front: stable addresses
     std::unique_ptr<ErrorLog> errors_;
     // Declared after errors_ and before scene_: the scene is released first, then the device,
     // then the log the device's callback may still write to while releasing.

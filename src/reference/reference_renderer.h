@@ -20,6 +20,7 @@
 #include "gpu_types.h"
 #include "lights/light_setup.h"
 #include "reference/embree_scene.h"
+#include "reference/material_sampling.h"
 #include "scene/scene.h"
 
 namespace punctual::reference {
@@ -29,6 +30,8 @@ struct ReferenceSettings {
     uint32_t height = 720;
     float exposure = 1.0f;      // linear multiplier before tone mapping, as the GPU's
     bool shadows = true;        // false: every light is unoccluded (what the GPU draws today)
+    // How alphaMode BLEND surfaces shadow (--transparent-shadows), as the GPU's caster passes.
+    TransparentShadows transparentShadows = TransparentShadows::Clip;
     bool showProgress = false;  // one updating line on stderr (the command sets it for terminals)
 };
 
@@ -51,7 +54,12 @@ struct SurfaceHit {
     glm::vec3 position{0.0f};         // world space
     glm::vec3 normal{0.0f};           // unit shading normal, turned to the viewer like the GPU's
     glm::vec3 geometricNormal{0.0f};  // unit normal of the triangle plane, on the viewer's side
-    glm::vec2 uv{0.0f};
+    glm::vec2 uv{0.0f};     // TEXCOORD_0
+    // Both coordinate sets with their change across one pixel right and one down (the pixel
+    // footprint the GPU's implicit level of detail comes from), found by intersecting the
+    // neighbouring pixels' rays with the hit triangle's plane; the derivatives only where the
+    // material has a texture.
+    SurfaceUv texCoords;
     bool backFace = false;  // the viewer sees the side opposite the mesh's front (CCW) face
 };
 
@@ -59,9 +67,12 @@ struct SurfaceHit {
 // `normal` is the unit geometric normal on the side the point is seen from (SurfaceHit::
 // geometricNormal); the ray leaves from the point lifted along it (see the .cpp for the
 // tnear/tfar rule). The light's attenuation is not looked at: this is geometry only.
-float visibility(const EmbreeScene& scene, glm::vec3 point, glm::vec3 normal, const gpu::GpuPunctualLight& light);
+// Transparent (alphaMode BLEND) surfaces block it as `transparentShadows` says.
+float visibility(const EmbreeScene& scene, glm::vec3 point, glm::vec3 normal, const gpu::GpuPunctualLight& light,
+                 TransparentShadows transparentShadows = TransparentShadows::Clip);
 // A directional light: the ray goes to infinity along directionToLight.
-float visibility(const EmbreeScene& scene, glm::vec3 point, glm::vec3 normal, const gpu::GpuDirectionalLight& sun);
+float visibility(const EmbreeScene& scene, glm::vec3 point, glm::vec3 normal, const gpu::GpuDirectionalLight& sun,
+                 TransparentShadows transparentShadows = TransparentShadows::Clip);
 
 // The GPU's tone mapping (tonemap.comp): exposure, ACES, sRGB encoding, then packUnorm4x8's
 // quantisation round(clamp(c, 0, 1) * 255); alpha 255.
@@ -76,12 +87,17 @@ public:
     ReferenceRenderer(const ReferenceRenderer&) = delete;
     ReferenceRenderer& operator=(const ReferenceRenderer&) = delete;
 
-    // The primary ray through the centre of pixel (x, y), rows top to bottom.
+    // The primary ray through the centre of pixel (x, y), rows top to bottom: the nearest opaque
+    // or masked surface (transparent ones are passed, as the GPU's depth prepass leaves them out).
     SurfaceHit traceSurface(uint32_t x, uint32_t y) const;
     // Linear radiance (before exposure) leaving `hit` towards the camera: the sun, then every
     // packed spot and point light in the GPU's order, each times its visibility when shadows are
     // on. Adds the shadow rays it casts to `shadowRays` when given. Background: black.
     glm::vec3 shade(const SurfaceHit& hit, uint64_t* shadowRays = nullptr) const;
+    // The pixel's radiance: shade(hit), then every transparent surface in front of it blended over
+    // it, farthest first, by its base colour's alpha (the GPU's transparent pass, per surface hit
+    // where the GPU sorts per object).
+    glm::vec3 shadePixel(uint32_t x, uint32_t y, const SurfaceHit& hit, uint64_t* shadowRays = nullptr) const;
 
     // The whole image, parallel over rows (TBB). Deterministic: every pixel is computed on its
     // own, so scheduling cannot change a bit. `surfaces`, when given, receives every pixel's hit.
@@ -101,6 +117,19 @@ private:
         bool mirrored = false;         // negative determinant: the world winding is reversed
     };
 
+    struct PixelRay {
+        glm::vec3 origin;     // on the near plane
+        glm::vec3 direction;  // unit
+        float length;         // to the far plane
+    };
+    // The ray through the point (x, y) of the image, in pixels from its top-left corner.
+    PixelRay pixelRay(double x, double y) const;
+    // The SurfaceHit of an intersection query for pixel (x, y).
+    SurfaceHit surfaceOf(const RTCRayHit& query, uint32_t x, uint32_t y) const;
+    // Fills hit.texCoords' derivatives from the rays through the centres right of and below
+    // pixel (x, y).
+    void addUvFootprint(SurfaceHit& hit, uint32_t x, uint32_t y, const glm::vec3 corners[3],
+                        const glm::vec2 uv0[3], const glm::vec2 uv1[3]) const;
     glm::vec4 baseColor(const SurfaceHit& hit) const;
 
     const Scene& scene_;
@@ -113,6 +142,7 @@ private:
     glm::vec3 cameraPosition_{0.0f};
     FrameLights lights_;
     double buildSeconds_ = 0.0;
+    bool hasTransparency_ = false;  // some mesh's material is alphaMode BLEND
 };
 
 // Convenience: build, render, report.

@@ -184,7 +184,9 @@ ShadowValidation validateShadows(const EmbreeScene& embree, const ShadowFactorIm
         ComparedLight compared;
         compared.factor = [&](size_t i) { return factors.factors[i * factors.slots + validation.slot]; };
         compared.toLight = [&](const glm::vec3& p) { return lightPosition - p; };
-        compared.rayLit = [&](const glm::vec3& p, const glm::vec3& n) { return visibility(embree, p, n, light) > 0.5f; };
+        compared.rayLit = [&](const glm::vec3& p, const glm::vec3& n) {
+            return visibility(embree, p, n, light, plan.transparentShadows) > 0.5f;
+        };
         compared.texelSize = [&](const glm::vec3& p) { return texelWorldSize(light, plan, firstView, p); };
         compareLight(factors, compared, band, validation.verdicts, validation.inBand, validation.counts);
         (validation.isPoint ? result.points : result.spots).add(validation.counts);
@@ -198,7 +200,9 @@ ShadowValidation validateShadows(const EmbreeScene& embree, const ShadowFactorIm
         ComparedLight compared;
         compared.factor = [&](size_t i) { return factors.sunFactors[i]; };
         compared.toLight = [&](const glm::vec3&) { return glm::vec3(light.directionToLight); };
-        compared.rayLit = [&](const glm::vec3& p, const glm::vec3& n) { return visibility(embree, p, n, light) > 0.5f; };
+        compared.rayLit = [&](const glm::vec3& p, const glm::vec3& n) {
+            return visibility(embree, p, n, light, plan.transparentShadows) > 0.5f;
+        };
         compared.texelSize = [&](const glm::vec3& p) {
             const uint32_t cascade = cascadeAt(plan.cascades, p);
             return cascade < plan.cascades.count ? cascadeTexelSize(plan, cascade) : 0.0f;

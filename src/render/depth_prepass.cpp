@@ -4,6 +4,7 @@
 #include "gpu_types.h"
 #include "render/frame_bindings.h"
 #include "render/scene_gpu.h"
+#include "shaders/raster_alpha_mask_frag_spv.h"
 #include "shaders/raster_mesh_vert_spv.h"
 #include "vk/context.h"
 #include "vk/descriptors.h"
@@ -55,16 +56,37 @@ void DepthPrepass::createPipelines(const vk::Context& context, const FrameBindin
     // Reversed Z (Camera::projection): nearer is greater. Strictly greater, so that of two
     // fragments at the same depth the first drawn stays, as LESS did with the usual mapping.
     pipelineDesc.depthCompare = VK_COMPARE_OP_GREATER;
-    pipeline_ = vk::createGraphicsPipeline(context.device(), pipelineDesc);
+    const VkDevice device = context.device();
+    pipelines_[uint32_t(DepthDrawKind::OpaqueTwoSided)] = vk::createGraphicsPipeline(device, pipelineDesc);
+    pipelineDesc.cullMode = VK_CULL_MODE_BACK_BIT;
+    pipelines_[uint32_t(DepthDrawKind::OpaqueCullBackCcw)] = vk::createGraphicsPipeline(device, pipelineDesc);
+    pipelineDesc.frontFace = VK_FRONT_FACE_CLOCKWISE;
+    pipelines_[uint32_t(DepthDrawKind::OpaqueCullBackCw)] = vk::createGraphicsPipeline(device, pipelineDesc);
+
+    // Masked objects: alpha_mask.frag drops masked-out fragments and, for single-sided materials,
+    // back faces (whichever way the object's transform winds them).
+    pipelineDesc.cullMode = VK_CULL_MODE_NONE;
+    pipelineDesc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    pipelineDesc.fragmentSpirv = raster_alpha_mask_frag_spv;
+    const VkBool32 cullBackFaces = VK_TRUE;
+    const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
+    const VkSpecializationInfo specialization{1, &entry, sizeof(VkBool32), &cullBackFaces};
+    pipelineDesc.fragmentSpecialization = &specialization;
+    pipelines_[uint32_t(DepthDrawKind::Masked)] = vk::createGraphicsPipeline(device, pipelineDesc);
 }
 
 void DepthPrepass::record(const FrameContext& frame) const {
     VkClearValue clear{};
     clear.depthStencil = {PUNCTUAL_DEPTH_CLEAR, 0};  // the far plane of the reversed mapping
     vk::beginRenderPass(frame.cmd, renderPass_, framebuffer_, width_, height_, {&clear, 1});
-    vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     frame.bindings.bind(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
-    frame.scene.drawObjects(frame.cmd, frame.bindings.pipelineLayout(), /*withTextures=*/false);
+    for (uint32_t kind = 0; kind < kPrepassDrawKinds; ++kind) {
+        const std::span<const uint32_t> objects = frame.scene.objectsOfKind(DepthDrawKind(kind));
+        if (objects.empty()) continue;
+        vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_[kind]);
+        frame.scene.drawObjects(frame.cmd, frame.bindings.pipelineLayout(), objects, 0, kRasterStages,
+                                /*withTextures=*/DepthDrawKind(kind) == DepthDrawKind::Masked);
+    }
     vkCmdEndRenderPass(frame.cmd);
     // Depth writes must land before the culling kernel samples them and the forward pass's EQUAL
     // test reads them.

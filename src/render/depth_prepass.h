@@ -1,12 +1,16 @@
 #pragma once
-// Depth prepass: every object into a D32 (float) depth buffer, no colour. The depth is reversed
+// Depth prepass: every object into a D32 (float) depth buffer, no colour; single-sided
+// materials' back faces culled and alpha-masked fragments dropped, as the forward pass shades. The depth is reversed
 // (1 at the near plane, cleared to 0 at the far one, GREATER wins; see Camera::projection and
 // culling.h), which keeps its precision at any near plane. The forward pass then shades each
 // pixel once (EQUAL test, no depth writes), and the culling passes read this depth (set 0,
 // PUNCTUAL_BINDING_DEPTH).
+#include <array>
+
 #include <vulkan/vulkan.h>
 
 #include "render/pass.h"
+#include "render/scene_gpu.h"
 #include "vk/handle.h"
 #include "vk/image.h"
 
@@ -35,7 +39,8 @@ private:
     vk::Handle<VkSampler> sampler_;  // nearest, for texelFetch in the culling kernels
     vk::Handle<VkRenderPass> renderPass_;
     vk::Handle<VkFramebuffer> framebuffer_;
-    vk::Handle<VkPipeline> pipeline_;
+    // One per DepthDrawKind (render/scene_gpu.h): opaque two-sided, culled CCW, culled CW, masked.
+    std::array<vk::Handle<VkPipeline>, kPrepassDrawKinds> pipelines_;
     uint32_t width_ = 0;
     uint32_t height_ = 0;
 };

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstddef>
+#include <utility>
 
 #include "gpu_types.h"
 #include "render/depth_prepass.h"
@@ -17,12 +18,20 @@
 namespace punctual::render {
 
 ForwardPass::ForwardPass(const vk::Context& context, const vk::Image& radiance, const vk::Image& depth,
-                         const ForwardVariant& variant, const vk::Buffer* debugOutput)
-    : variant_(variant), debugOutput_(debugOutput), width_(radiance.desc().width), height_(radiance.desc().height) {
+                         const ForwardVariant& variant, std::vector<uint32_t> drawOrder, const vk::Buffer* debugOutput)
+    : variant_(variant),
+      drawOrder_(std::move(drawOrder)),
+      debugOutput_(debugOutput),
+      width_(radiance.desc().width),
+      height_(radiance.desc().height) {
     const VkDevice device = context.device();
     vk::RenderPassDesc passDesc;
     passDesc.colorFormat = kRadianceFormat;
     passDesc.colorFinalLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    if (variant.transparent) {  // over the opaque pass's image, which it left readable
+        passDesc.colorLoad = VK_ATTACHMENT_LOAD_OP_LOAD;
+        passDesc.colorInitialLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    }
     passDesc.depthFormat = DepthPrepass::kDepthFormat;
     passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_LOAD;
     passDesc.depthStore = VK_ATTACHMENT_STORE_OP_STORE;
@@ -48,13 +57,15 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
         VkBool32 writeShadowFactors;
         VkBool32 shadowReceiverPlane;
         uint32_t cascadeBlend;
+        VkBool32 transparent;
     };
     const Constants constants{variant.lightList, variant.tileSize, variant.slices,
                               variant.writeLightStats ? VK_TRUE : VK_FALSE, variant.shadows ? VK_TRUE : VK_FALSE,
                               variant.shadowFilter, variant.shadowSamples, variant.pointShadowLayout,
                               variant.writeShadowFactors ? VK_TRUE : VK_FALSE,
-                              variant.shadowReceiverPlane ? VK_TRUE : VK_FALSE, variant.cascadeBlend};
-    const std::array<VkSpecializationMapEntry, 11> entries = {{
+                              variant.shadowReceiverPlane ? VK_TRUE : VK_FALSE, variant.cascadeBlend,
+                              variant.transparent ? VK_TRUE : VK_FALSE};
+    const std::array<VkSpecializationMapEntry, 12> entries = {{
         {PUNCTUAL_SPEC_LIGHT_LIST, offsetof(Constants, lightList), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_TILE_SIZE, offsetof(Constants, tileSize), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, offsetof(Constants, slices), sizeof(uint32_t)},
@@ -66,6 +77,7 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
         {PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS, offsetof(Constants, writeShadowFactors), sizeof(VkBool32)},
         {PUNCTUAL_SPEC_SHADOW_RECEIVER_PLANE, offsetof(Constants, shadowReceiverPlane), sizeof(VkBool32)},
         {PUNCTUAL_SPEC_CASCADE_BLEND, offsetof(Constants, cascadeBlend), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_TRANSPARENT, offsetof(Constants, transparent), sizeof(VkBool32)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(constants), &constants};
 
@@ -79,23 +91,32 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
     pipelineDesc.vertexAttributes = SceneGpu::vertexAttributes();
     pipelineDesc.hasColorAttachment = true;
     pipelineDesc.depthWrite = false;
-    pipelineDesc.depthCompare = VK_COMPARE_OP_EQUAL;
+    // Opaque: exactly the prepass's surface. Transparent: in front of it (reversed depth).
+    pipelineDesc.depthCompare = variant.transparent ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_EQUAL;
+    pipelineDesc.alphaBlend = variant.transparent;
     pipeline_ = vk::createGraphicsPipeline(context.device(), pipelineDesc);
 }
 
 void ForwardPass::record(const FrameContext& frame) const {
     const VkCommandBuffer cmd = frame.cmd;
-    if (debugOutput_) {
+    if (debugOutput_ && !variant_.transparent) {  // the transparent variant adds to what the opaque one wrote
         vkCmdFillBuffer(cmd, debugOutput_->handle(), 0, VK_WHOLE_SIZE, 0u);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+    }
+    if (variant_.transparent) {
+        if (drawOrder_.empty()) return;  // the opaque image stays as it is
+        // The opaque pass's colour writes land before these blend over them.
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
     }
     std::array<VkClearValue, 2> clears{};
     clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
     vk::beginRenderPass(cmd, renderPass_, framebuffer_, width_, height_, clears);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
-    frame.scene.drawObjects(cmd, frame.bindings.pipelineLayout(), /*withTextures=*/true);
+    frame.scene.drawObjects(cmd, frame.bindings.pipelineLayout(), drawOrder_, 0, kRasterStages, /*withTextures=*/true);
     vkCmdEndRenderPass(cmd);
     if (debugOutput_) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,

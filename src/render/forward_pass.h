@@ -1,6 +1,10 @@
 #pragma once
-// Forward pass: shades each visible pixel once (depth EQUAL against the prepass, no writes) into
-// an RGBA16F radiance target.
+// Forward pass: shades each visible pixel of the opaque and masked objects once (depth EQUAL
+// against the prepass, no writes) into an RGBA16F radiance target. Its transparent variant
+// (ForwardVariant::transparent, the frame's "transparent" pass) then composites the alphaMode
+// BLEND objects over it, back to front, with the same shader and the same light lists.
+#include <vector>
+
 #include <vulkan/vulkan.h>
 
 #include "render/pass.h"
@@ -26,6 +30,9 @@ struct ForwardVariant {
     bool writeShadowFactors = false;  // validation variant: per-pixel shadow factors
     bool shadowReceiverPlane = true;  // per-texel receiver-plane compares (shadow_sampling.glsl)
     uint32_t cascadeBlend = 0;        // PUNCTUAL_CASCADE_BLEND_*
+    // The transparent pass: the alphaMode BLEND objects, back to front, composited over the
+    // opaque image by their base colour's alpha, depth-tested against the prepass (GREATER).
+    bool transparent = false;
 };
 
 class ForwardPass final : public Pass {
@@ -34,10 +41,14 @@ public:
     // DEPTH_STENCIL_READ_ONLY_OPTIMAL (the prepass leaves it so) and stays there. `debugOutput`
     // (the statistics and validation variants only): the buffer the variant writes, cleared to 0
     // before the pass and made visible to transfers after it.
+    // `drawOrder`: the objects to draw, in order (the opaque pass: every unblended object in
+    // object order; the transparent pass: the blended ones, farthest first).
     ForwardPass(const vk::Context& context, const vk::Image& radiance, const vk::Image& depth,
-                const ForwardVariant& variant, const vk::Buffer* debugOutput = nullptr);
+                const ForwardVariant& variant, std::vector<uint32_t> drawOrder,
+                const vk::Buffer* debugOutput = nullptr);
 
-    const char* name() const override { return "forward"; }
+    const char* name() const override { return variant_.transparent ? "transparent" : "forward"; }
+    bool timed() const override { return !drawOrder_.empty() || !variant_.transparent; }
     void createPipelines(const vk::Context& context, const FrameBindings& bindings) override;
     void record(const FrameContext& frame) const override;
 
@@ -45,6 +56,7 @@ public:
 
 private:
     ForwardVariant variant_;
+    std::vector<uint32_t> drawOrder_;
     const vk::Buffer* debugOutput_ = nullptr;
     vk::Handle<VkRenderPass> renderPass_;
     vk::Handle<VkFramebuffer> framebuffer_;

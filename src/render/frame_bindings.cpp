@@ -29,6 +29,7 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
         bindings.push_back(row.layout);
     }
     setLayout_ = vk::createDescriptorSetLayout(device, bindings);
+    materialSetLayout_ = scene.materialSetLayout();
     pipelineLayout_ = vk::createPipelineLayout(device, {setLayout_.get(), scene.materialSetLayout()},
                                                {kRasterStages, 0, sizeof(uint32_t)});
     descriptors_ = vk::allocateDescriptorSet(device, setLayout_, bindings);

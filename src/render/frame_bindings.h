@@ -52,12 +52,15 @@ public:
 
     VkDescriptorSetLayout setLayout() const { return setLayout_; }
     VkPipelineLayout pipelineLayout() const { return pipelineLayout_; }
+    // Set 1: the scene's per-material textures (SceneGpu::materialSetLayout).
+    VkDescriptorSetLayout materialSetLayout() const { return materialSetLayout_; }
     void bind(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint) const;
     // Binds set 0 through another layout that shares it (e.g. with other push constants).
     void bind(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint, VkPipelineLayout layout) const;
 
 private:
     vk::Handle<VkDescriptorSetLayout> setLayout_;
+    VkDescriptorSetLayout materialSetLayout_ = VK_NULL_HANDLE;  // owned by the SceneGpu
     vk::Handle<VkPipelineLayout> pipelineLayout_;
     vk::DescriptorSet descriptors_;
 };

@@ -30,6 +30,9 @@ struct RenderSettings {
     // cascades are fitted to, when not the scene's. The shimmering study renders one camera's
     // pixels under the cascades of a moving one, so that every frame shows the same receivers.
     std::optional<Camera> cascadeCamera;
+    // For the failure study only: cull tiles and clusters by the opaque depth alone, as before the
+    // transparent depth span existed, to show the lights a transparent surface then misses.
+    bool opaqueCullingDepth = false;
 };
 
 

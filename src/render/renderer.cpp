@@ -19,6 +19,7 @@
 #include "render/shadow_maps.h"
 #include "render/shadow_pass.h"
 #include "render/tonemap_pass.h"
+#include "render/transparent_depth_pass.h"
 #include "vk/buffer.h"
 #include "vk/check.h"
 #include "vk/command_buffer.h"
@@ -42,12 +43,14 @@ struct Renderer::Resources {
     // The passes in frame order; the typed pointers below point into this list.
     std::vector<std::unique_ptr<Pass>> passes;
     DepthPrepass* depth = nullptr;
+    TransparentDepthPass* transparentDepth = nullptr;
     LightCullingPass* culling = nullptr;
     ShadowPass* shadows = nullptr;
     TonemapPass* tonemap = nullptr;
     // Debug variants of the forward pass, each recorded into its own command buffer after the
     // passes before "forward"; never timed.
     std::unique_ptr<ForwardPass> lightStatsPass;     // with collectLightStats
+    std::unique_ptr<ForwardPass> transparentStatsPass;  // with collectLightStats: the transparent fragments
     std::unique_ptr<ForwardPass> shadowFactorsPass;  // with collectShadowFactors
     std::unique_ptr<FrameBindings> bindings;
     vk::Buffer readback;
@@ -93,6 +96,17 @@ struct Renderer::Resources {
         return variant;
     }
 
+    // The transparent objects farthest first (by their bounds' centres), so each blends over the
+    // ones behind it; ties keep object order. Per object, not per triangle: an object's own
+    // triangles blend in index order (README, "Materials").
+    static std::vector<uint32_t> backToFront(const Scene& scene, std::vector<uint32_t> objects, glm::vec3 eye) {
+        std::stable_sort(objects.begin(), objects.end(), [&](uint32_t a, uint32_t b) {
+            return glm::distance(scene.objects[a].worldBounds.center(), eye) >
+                   glm::distance(scene.objects[b].worldBounds.center(), eye);
+        });
+        return objects;
+    }
+
     template <typename P, typename... Args>
     P* addPass(Args&&... args) {
         passes.push_back(std::make_unique<P>(std::forward<Args>(args)...));
@@ -109,7 +123,8 @@ struct Renderer::Resources {
           lights(context, std::max<size_t>(frameLights.packed.size(), 1) * sizeof(gpu::GpuPunctualLight),
                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "lights"),
           objectLights(storageWords(context, perObject.lights, "object lights")),
-          lightStats(debugOutput(context, settings.collectLightStats, VkDeviceSize(settings.width) * settings.height * 16,
+          // Four words per pixel for the opaque surfaces, four for the transparent fragments.
+          lightStats(debugOutput(context, settings.collectLightStats, VkDeviceSize(settings.width) * settings.height * 32,
                                  "light stats")),
           shadowDebug(debugOutput(context, settings.collectShadowFactors,
                                   VkDeviceSize(settings.width) * settings.height *
@@ -134,19 +149,35 @@ struct Renderer::Resources {
         for (const gpu::GpuPunctualLight& light : frameLights.packed) cullLights.push_back(gpu::makeCullLight(light, view));
 
         // The frame, in order.
+        const std::span<const uint32_t> blendedSpan = scene.objectsOfKind(DepthDrawKind::Blended);
+        const std::vector<uint32_t> blended(blendedSpan.begin(), blendedSpan.end());
+        const std::vector<uint32_t> unblended(scene.unblendedObjects().begin(), scene.unblendedObjects().end());
         depth = addPass<DepthPrepass>(context, settings.width, settings.height);
+        transparentDepth = addPass<TransparentDepthPass>(context, depth->depth(), blended,
+                                                         usesLightGrid(settings.method) && !settings.opaqueCullingDepth,
+                                                         settings.width, settings.height);
         culling = addPass<LightCullingPass>(context, gridLayout, usesLightGrid(settings.method), settings.width,
                                             settings.height, cullLights);
         shadows = addPass<ShadowPass>(context, shadowPlan, settings.shadows);
-        addPass<ForwardPass>(context, radiance, depth->depth(), forwardVariant(settings, gridLayout, false, false));
+        addPass<ForwardPass>(context, radiance, depth->depth(), forwardVariant(settings, gridLayout, false, false),
+                             unblended);
+        ForwardVariant transparent = forwardVariant(settings, gridLayout, false, false);
+        transparent.transparent = true;
+        addPass<ForwardPass>(context, radiance, depth->depth(), transparent,
+                             backToFront(sceneData, blended, glm::vec3(glm::inverse(view)[3])));
         tonemap = addPass<TonemapPass>(context, radiance, settings.exposure);
         if (settings.collectLightStats) {
-            lightStatsPass = std::make_unique<ForwardPass>(context, radiance, depth->depth(),
-                                                           forwardVariant(settings, gridLayout, true, false), &lightStats);
+            lightStatsPass = std::make_unique<ForwardPass>(
+                context, radiance, depth->depth(), forwardVariant(settings, gridLayout, true, false), unblended, &lightStats);
+            ForwardVariant transparentStats = forwardVariant(settings, gridLayout, true, false);
+            transparentStats.transparent = true;
+            transparentStatsPass = std::make_unique<ForwardPass>(
+                context, radiance, depth->depth(), transparentStats,
+                backToFront(sceneData, blended, glm::vec3(glm::inverse(view)[3])), &lightStats);
         }
         if (settings.collectShadowFactors) {
             shadowFactorsPass = std::make_unique<ForwardPass>(
-                context, radiance, depth->depth(), forwardVariant(settings, gridLayout, false, true), &shadowDebug);
+                context, radiance, depth->depth(), forwardVariant(settings, gridLayout, false, true), unblended, &shadowDebug);
         }
 
         // Set 0: the frame's own buffers, then what each pass owns.
@@ -165,7 +196,7 @@ struct Renderer::Resources {
         for (const auto& pass : passes) pass->addBindings(table);
         bindings = std::make_unique<FrameBindings>(context, scene, table);
         for (const auto& pass : passes) pass->createPipelines(context, *bindings);
-        for (ForwardPass* variant : {lightStatsPass.get(), shadowFactorsPass.get()}) {
+        for (ForwardPass* variant : {lightStatsPass.get(), transparentStatsPass.get(), shadowFactorsPass.get()}) {
             if (variant) variant->createPipelines(context, *bindings);
         }
     }
@@ -256,7 +287,8 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     resources_ =
         std::make_unique<Resources>(context, scene, settings, lights_, perObjectLists_, gridLayout_, shadowPlan_, view_);
     Resources& r = *resources_;
-    const gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_, gridLayout_, shadowPlan_);
+    gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_, gridLayout_, shadowPlan_);
+    frame.lightCounts.w = r.transparentDepth->needed() ? 1u : 0u;
     r.frameUniform.write(&frame, sizeof(frame));
 
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
@@ -281,7 +313,9 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     };
     if (r.lightStatsPass) {
         r.lightStatsCommands = vk::CommandBuffer(context.device(), context.commandPool());
-        recordFrame(r.lightStatsCommands, debugFrame(*r.lightStatsPass), /*timed=*/false);
+        std::vector<const Pass*> passes = debugFrame(*r.lightStatsPass);
+        passes.push_back(r.transparentStatsPass.get());  // adds the transparent fragments' counts
+        recordFrame(r.lightStatsCommands, passes, /*timed=*/false);
     }
     if (r.shadowFactorsPass) {
         r.shadowFactorsCommands = vk::CommandBuffer(context.device(), context.commandPool());
@@ -402,7 +436,7 @@ LightStatsImage Renderer::readLightStats() {
     submitAndWait(resources_->lightStatsCommands);
     const std::vector<uint8_t> bytes = readBuffer(resources_->lightStats);
     const size_t pixels = size_t(settings_.width) * settings_.height;
-    std::vector<uint32_t> words(pixels * 4);
+    std::vector<uint32_t> words(pixels * 8);
     std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
     LightStatsImage stats;
     stats.width = settings_.width;
@@ -412,6 +446,17 @@ LightStatsImage Renderer::readLightStats() {
     stats.covered.resize(pixels);
     stats.methodLuminance.resize(pixels);
     stats.bruteLuminance.resize(pixels);
+    stats.transparentTested.resize(pixels);
+    stats.transparentAffecting.resize(pixels);
+    stats.transparentFragments.resize(pixels);
+    stats.transparentMissingLight.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+        const uint32_t* t = &words[(pixels + i) * 4];
+        stats.transparentTested[i] = t[0];
+        stats.transparentAffecting[i] = t[1];
+        stats.transparentFragments[i] = t[2];
+        stats.transparentMissingLight[i] = t[3];
+    }
     for (size_t i = 0; i < pixels; ++i) {
         const uint32_t* w = &words[i * 4];
         stats.covered[i] = (w[1] & 0x80000000u) ? uint8_t{1} : uint8_t{0};  // the shader marks every pixel it shades

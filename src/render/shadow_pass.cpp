@@ -6,6 +6,8 @@
 #include "gpu_types.h"
 #include "render/frame_bindings.h"
 #include "render/scene_gpu.h"
+#include "shaders/raster_alpha_mask_frag_spv.h"
+#include "shaders/raster_shadow_masked_vert_spv.h"
 #include "shaders/raster_shadow_vert_spv.h"
 #include "vk/check.h"
 #include "vk/context.h"
@@ -88,21 +90,36 @@ void ShadowPass::addBindings(BindingTable& table) const {
 
 void ShadowPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
     const VkDevice device = context.device();
-    pipelineLayout_ = vk::createPipelineLayout(device, {bindings.setLayout()},
+    pipelineLayout_ = vk::createPipelineLayout(device, {bindings.setLayout(), bindings.materialSetLayout()},
                                                {VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(ShadowDrawConstants)});
-    vk::GraphicsPipelineDesc pipelineDesc;
-    pipelineDesc.layout = pipelineLayout_;
-    pipelineDesc.renderPass = renderPass_;
-    pipelineDesc.vertexSpirv = raster_shadow_vert_spv;
-    pipelineDesc.vertexStride = SceneGpu::vertexStride();
-    pipelineDesc.vertexAttributes = {SceneGpu::vertexAttributes().front()};  // position only
-    pipelineDesc.depthCompare = VK_COMPARE_OP_LESS;
+    vk::GraphicsPipelineDesc opaque;
+    opaque.layout = pipelineLayout_;
+    opaque.renderPass = renderPass_;
+    opaque.vertexSpirv = raster_shadow_vert_spv;
+    opaque.vertexStride = SceneGpu::vertexStride();
+    opaque.vertexAttributes = {SceneGpu::vertexAttributes().front()};  // position only
+    opaque.depthCompare = VK_COMPARE_OP_LESS;
+    // Alpha-masked casters: their texture coordinates, and alpha_mask.frag's test. Two-sided like
+    // every caster (no back-face test: CULL_SINGLE_SIDED_BACK_FACES stays false).
+    vk::GraphicsPipelineDesc masked = opaque;
+    masked.vertexSpirv = raster_shadow_masked_vert_spv;
+    masked.vertexAttributes = SceneGpu::maskedCasterAttributes();
+    masked.fragmentSpirv = raster_alpha_mask_frag_spv;
+    // Transparent (alphaMode BLEND) casters in dither mode pass alpha against the noise instead of
+    // the cutoff (alpha_mask.frag); constant 0 (the prepass's back-face test) stays off.
+    const VkBool32 dither = settings_.transparent == TransparentShadows::Dither ? VK_TRUE : VK_FALSE;
+    const VkSpecializationMapEntry ditherEntry{1, 0, sizeof(VkBool32)};
+    const VkSpecializationInfo fragmentSpecialization{1, &ditherEntry, sizeof(VkBool32), &dither};
+    masked.fragmentSpecialization = &fragmentSpecialization;
+
     // Pancaking exists only for the failure study; spot and point shadows never use it.
     const VkBool32 pancaking = settings_.pancaking ? VK_TRUE : VK_FALSE;
     const VkSpecializationMapEntry pancakingEntry{0, 0, sizeof(VkBool32)};
     const VkSpecializationInfo vertexSpecialization{1, &pancakingEntry, sizeof(VkBool32), &pancaking};
-    pipelineDesc.vertexSpecialization = &vertexSpecialization;
-    pipeline_ = vk::createGraphicsPipeline(device, pipelineDesc);
+    opaque.vertexSpecialization = &vertexSpecialization;
+    masked.vertexSpecialization = &vertexSpecialization;
+    pipelines_.opaque = vk::createGraphicsPipeline(device, opaque);
+    pipelines_.masked = vk::createGraphicsPipeline(device, masked);
 
     // Cascades pancake (the seed's "pancaking"), with the depth clamp where the device has it: the
     // vertex clamp bends the depth of triangles that cross the near plane, the depth clamp does
@@ -112,18 +129,43 @@ void ShadowPass::createPipelines(const vk::Context& context, const FrameBindings
         const bool clamp = pancake && context.enabledFeatures().depthClamp == VK_TRUE;
         const VkBool32 vertexPancaking = pancake && !clamp ? VK_TRUE : VK_FALSE;
         const VkSpecializationInfo cascadeSpecialization{1, &pancakingEntry, sizeof(VkBool32), &vertexPancaking};
-        pipelineDesc.vertexSpecialization = &cascadeSpecialization;
-        pipelineDesc.depthClamp = clamp;
-        cascadePipeline_ = vk::createGraphicsPipeline(device, pipelineDesc);
+        opaque.vertexSpecialization = &cascadeSpecialization;
+        masked.vertexSpecialization = &cascadeSpecialization;
+        opaque.depthClamp = clamp;
+        masked.depthClamp = clamp;
+        cascadePipelines_.opaque = vk::createGraphicsPipeline(device, opaque);
+        cascadePipelines_.masked = vk::createGraphicsPipeline(device, masked);
     }
 }
 
 void ShadowPass::drawView(const FrameContext& frame, const ShadowView& view) const {
     const VkCommandBuffer cmd = frame.cmd;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, view.isCascade ? cascadePipeline_ : pipeline_);
+    const Pipelines& pipelines = view.isCascade ? cascadePipelines_ : pipelines_;
+    std::vector<uint32_t> opaque;
+    std::vector<uint32_t> masked;
+    for (const uint32_t object : view.casters) {
+        if (!frame.scene.blended(object)) {
+            (frame.scene.masked(object) ? masked : opaque).push_back(object);
+            continue;
+        }
+        switch (settings_.transparent) {  // the seed's shadow modes (lights/transparent_shadows.h)
+            case TransparentShadows::On: opaque.push_back(object); break;
+            case TransparentShadows::Clip:
+            case TransparentShadows::Dither: masked.push_back(object); break;
+            case TransparentShadows::Off: break;
+        }
+    }
     frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_);
     vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::mat4), &view.gpu.viewProjection);
-    frame.scene.drawObjects(cmd, pipelineLayout_, view.casters, kObjectIndexOffset, VK_SHADER_STAGE_VERTEX_BIT);
+    if (!opaque.empty()) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.opaque);
+        frame.scene.drawObjects(cmd, pipelineLayout_, opaque, kObjectIndexOffset, VK_SHADER_STAGE_VERTEX_BIT);
+    }
+    if (!masked.empty()) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.masked);
+        frame.scene.drawObjects(cmd, pipelineLayout_, masked, kObjectIndexOffset, VK_SHADER_STAGE_VERTEX_BIT,
+                                /*withTextures=*/true);
+    }
 }
 
 void ShadowPass::record(const FrameContext& frame) const {

@@ -51,10 +51,14 @@ private:
     vk::Buffer views_;  // GpuShadowView per plan view (one slot when there are none)
     vk::Handle<VkRenderPass> renderPass_;
     vk::Handle<VkPipelineLayout> pipelineLayout_;
-    vk::Handle<VkPipeline> pipeline_;
+    struct Pipelines {
+        vk::Handle<VkPipeline> opaque;  // depth only, no fragment shader
+        vk::Handle<VkPipeline> masked;  // alpha-masked casters (alpha_mask.frag)
+    };
+    Pipelines pipelines_;
     // The sun's cascades: casters between the sun and a cascade's near plane are pancaked onto it
     // (depth clamp, or the vertex clamp where the device lacks it), never clipped.
-    vk::Handle<VkPipeline> cascadePipeline_;
+    Pipelines cascadePipelines_;
     std::vector<Target> targets_;  // the atlas first (when it has storage), then the cube faces
 };
 

@@ -54,9 +54,9 @@ struct UriFiles {
 // type are silently replaced by their defaults. Throws Error.
 void preflight(const nlohmann::json& gltf, const std::string& path);
 
-// Image indices referenced (through a texture) as some material's baseColorTexture: the only
-// images we decode.
-std::set<int> baseColorImages(const nlohmann::json& gltf);
+// Image indices referenced (through a texture, and its EXT_texture_webp) as some material's
+// baseColorTexture or emissiveTexture: the only images we decode.
+std::set<int> colourImages(const nlohmann::json& gltf);
 
 // User data of decodeImage: which images to decode, how large they may stay, and why decoding
 // failed for the others.
@@ -82,6 +82,34 @@ std::string describeLoadError(const std::string& tinygltfError, const nlohmann::
 // tinygltf's warning text split into distinct lines, minus the lines about images that could
 // not be read: loadGltf issues its own single warning for each of those it actually uses.
 std::vector<std::string> relevantWarnings(const std::string& tinygltfWarnings);
+
+// --- gltf_materials.cpp ----------------------------------------------------------------------
+
+// Converts glTF materials one by one, appending the textures they use to `textures` (each image
+// once, with its mip chain). Throws Error(path, ...) for invalid values; warns and falls back to
+// the factor for images that cannot be used.
+class MaterialConverter {
+public:
+    MaterialConverter(const tinygltf::Model& model, const std::string& path, const ImageDecoding& decoding,
+                      const UriFiles& files, std::vector<Texture>& textures);
+    Material convert(size_t materialIndex);
+
+private:
+    [[noreturn]] void fail(const std::string& problem) const;
+    TextureRef textureRef(int textureIndex, int texCoord, const tinygltf::ExtensionMap& extensions,
+                          const std::string& who, const char* slot);
+    TextureSampler sampler(int samplerIndex, const std::string& who) const;
+    bool imageDecoded(int imageIndex) const;
+    std::string describeImage(int imageIndex) const;
+    int textureOfImage(int imageIndex, const std::string& who, const char* slot);
+
+    const tinygltf::Model& model_;
+    const std::string& path_;
+    const ImageDecoding& decoding_;
+    const UriFiles& files_;
+    std::vector<Texture>& textures_;
+    std::map<int, int> textureOfImage_;  // image index -> index into textures_, or -1
+};
 
 // --- gltf_primitives.cpp ---------------------------------------------------------------------
 

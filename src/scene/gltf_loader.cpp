@@ -8,6 +8,7 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -34,6 +35,13 @@ std::string modeName(int mode) {
         case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
         default: return "mode " + std::to_string(mode);
     }
+}
+
+// Extensions a file may require: their data is read, not just tolerated.
+bool supportedExtension(const std::string& extension) {
+    static const std::set<std::string> supported = {
+        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform", "EXT_texture_webp"};
+    return supported.count(extension) > 0;
 }
 
 bool finite(const glm::mat4& m) {
@@ -69,7 +77,7 @@ public:
         // The spec requires a loader to refuse a file that requires an extension it lacks (e.g.
         // Draco-compressed geometry, which would otherwise surface as confusing accessor errors).
         for (const std::string& extension : model_.extensionsRequired)
-            if (extension != "KHR_lights_punctual")
+            if (!supportedExtension(extension))
                 fail("requires the glTF extension " + extension + ", which is not supported");
         convertMaterials();
         const std::vector<Light> lightPrototypes = convertLights();
@@ -103,73 +111,8 @@ private:
     // --- materials and textures ------------------------------------------------------------
 
     void convertMaterials() {
-        for (size_t i = 0; i < model_.materials.size(); ++i) {
-            const tinygltf::Material& source = model_.materials[i];
-            const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
-            Material material;
-            material.name = source.name.empty() ? "material " + std::to_string(i) : source.name;
-            // The spec bounds all these factors to [0, 1]; the shading model assumes it.
-            if (pbr.baseColorFactor.size() == 4)
-                material.baseColorFactor = glm::clamp(
-                    glm::vec4(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
-                              float(pbr.baseColorFactor[2]), float(pbr.baseColorFactor[3])),
-                    0.0f, 1.0f);
-            material.metallic = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
-            material.roughness = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
-            material.doubleSided = source.doubleSided;
-            material.baseColorTexture = baseColorTexture(pbr.baseColorTexture.index, material.name);
-            scene_.materials.push_back(std::move(material));
-        }
-    }
-
-    std::string describeImage(int imageIndex) const {
-        const tinygltf::Image& image = model_.images[size_t(imageIndex)];
-        std::string description = "image " + std::to_string(imageIndex);
-        if (!image.uri.empty()) return description + " " + quoted(image.uri);
-        if (!image.name.empty()) description += " " + quoted(image.name);
-        return description + (image.bufferView >= 0 ? " (in buffer view " + std::to_string(image.bufferView) + ")"
-                                                     : " (embedded)");
-    }
-
-    // Index into Scene::textures, or -1 when the material must fall back to its factor.
-    int baseColorTexture(int textureIndex, const std::string& materialName) {
-        if (textureIndex < 0) return -1;
-        if (size_t(textureIndex) >= model_.textures.size())
-            fail("material " + quoted(materialName) + " uses texture " + std::to_string(textureIndex) +
-                 ", which does not exist");
-        const int imageIndex = model_.textures[size_t(textureIndex)].source;
-        if (imageIndex < 0 || size_t(imageIndex) >= model_.images.size()) {
-            log::warn(path_ + ": material " + quoted(materialName) + ": texture " + std::to_string(textureIndex) +
-                      " has no image we can decode; using baseColorFactor instead");
-            return -1;
-        }
-        if (const auto known = textureOfImage_.find(imageIndex); known != textureOfImage_.end()) return known->second;
-
-        const tinygltf::Image& image = model_.images[size_t(imageIndex)];
-        const size_t expectedBytes = size_t(std::max(image.width, 0)) * size_t(std::max(image.height, 0)) * 4;
-        int result = -1;
-        if (!image.image.empty() && image.image.size() == expectedBytes) {
-            Texture texture;
-            texture.name = !image.uri.empty() ? image.uri : !image.name.empty() ? image.name : describeImage(imageIndex);
-            texture.width = uint32_t(image.width);
-            texture.height = uint32_t(image.height);
-            texture.rgba = image.image;
-            result = int(scene_.textures.size());
-            scene_.textures.push_back(std::move(texture));
-        } else {
-            std::string reason = "has no pixel data";
-            if (const auto failure = decoding_.failures.find(imageIndex); failure != decoding_.failures.end())
-                reason = "cannot be decoded (" + failure->second + ")";
-            else if (!image.uri.empty() && !files_.problemWith(image.uri).empty())
-                reason = "cannot be read (" + files_.problemWith(image.uri) + ")";
-            else if (!image.uri.empty())
-                reason = "cannot be read (missing, empty or unreadable file)";
-            // One warning per image, however many materials use it.
-            log::warn(path_ + ": material " + quoted(materialName) + ": base colour " + describeImage(imageIndex) +
-                      " " + reason + "; using baseColorFactor instead");
-        }
-        textureOfImage_[imageIndex] = result;
-        return result;
+        MaterialConverter converter(model_, path_, decoding_, files_, scene_.textures);
+        for (size_t i = 0; i < model_.materials.size(); ++i) scene_.materials.push_back(converter.convert(i));
     }
 
     uint32_t defaultMaterial() {
@@ -481,7 +424,6 @@ private:
     const ImageDecoding& decoding_;
     const UriFiles& files_;
     Scene scene_;
-    std::map<int, int> textureOfImage_;  // image index -> Scene::textures index or -1
     std::map<std::pair<size_t, size_t>, std::optional<uint32_t>> primitiveMeshes_;
     std::map<int, int> skippedPrimitives_;  // mode -> count
     std::optional<uint32_t> defaultMaterialIndex_;
@@ -497,7 +439,7 @@ Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
     preflight(source.json, path);
 
     ImageDecoding decoding;
-    decoding.wanted = baseColorImages(source.json);
+    decoding.wanted = colourImages(source.json);
     decoding.limit = options.textureLimit;
     decoding.source = path;
     UriFiles files(source.json, source.baseDir);

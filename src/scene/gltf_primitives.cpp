@@ -146,13 +146,13 @@ public:
         return values;
     }
 
-    std::vector<glm::vec2> readTexcoords(int accessorIndex) const {
-        const AccessorSpan s = span(accessorIndex, "TEXCOORD_0");
+    std::vector<glm::vec2> readTexcoords(int accessorIndex, const std::string& semantic) const {
+        const AccessorSpan s = span(accessorIndex, semantic);
         const bool isFloat = s.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
         const bool isUnorm8 = s.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && s.normalized;
         const bool isUnorm16 = s.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && s.normalized;
         if (s.type != TINYGLTF_TYPE_VEC2 || !(isFloat || isUnorm8 || isUnorm16))
-            fail("TEXCOORD_0 accessor " + std::to_string(accessorIndex) +
+            fail(semantic + " accessor " + std::to_string(accessorIndex) +
                  " is not VEC2 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT");
         std::vector<glm::vec2> values(s.count);
         for (size_t i = 0; i < s.count; ++i) {
@@ -253,11 +253,14 @@ std::optional<Mesh> appendPrimitive(const tinygltf::Model& model, const tinygltf
             reader.fail("NORMAL has " + std::to_string(normals.size()) + " elements but POSITION has " +
                         std::to_string(vertexCount));
     }
-    std::vector<glm::vec2> texcoords;
-    if (const int accessor = attribute(primitive, "TEXCOORD_0"); accessor >= 0) {
-        texcoords = reader.readTexcoords(accessor);
-        if (texcoords.size() != vertexCount)
-            reader.fail("TEXCOORD_0 has " + std::to_string(texcoords.size()) + " elements but POSITION has " +
+    std::vector<glm::vec2> texcoordSets[2];
+    for (size_t set = 0; set < 2; ++set) {
+        const std::string semantic = set == 0 ? "TEXCOORD_0" : "TEXCOORD_1";
+        const int accessor = attribute(primitive, semantic.c_str());
+        if (accessor < 0) continue;
+        texcoordSets[set] = reader.readTexcoords(accessor, semantic);
+        if (texcoordSets[set].size() != vertexCount)
+            reader.fail(semantic + " has " + std::to_string(texcoordSets[set].size()) + " elements but POSITION has " +
                         std::to_string(vertexCount));
     }
 
@@ -292,7 +295,9 @@ std::optional<Mesh> appendPrimitive(const tinygltf::Model& model, const tinygltf
     mesh.indexCount = uint32_t(triangleIndices.size());
     mesh.vertexOffset = uint32_t(vertices.size());
     mesh.vertexCount = uint32_t(outputVertices);
-    const auto uvOf = [&](size_t v) { return texcoords.empty() ? glm::vec2(0.0f) : texcoords[v]; };
+    const auto uvOf = [&](size_t set, size_t v) {
+        return texcoordSets[set].empty() ? glm::vec2(0.0f) : texcoordSets[set][v];
+    };
 
     vertices.reserve(vertices.size() + outputVertices);
     indices.reserve(indices.size() + triangleIndices.size());
@@ -302,14 +307,14 @@ std::optional<Mesh> appendPrimitive(const tinygltf::Model& model, const tinygltf
             const glm::vec3 normal = faceNormal(positions[a], positions[b], positions[c]);
             for (uint32_t v : {a, b, c}) {
                 indices.push_back(uint32_t(vertices.size()) - mesh.vertexOffset);
-                vertices.push_back(Vertex{positions[v], normal, uvOf(v)});
+                vertices.push_back(Vertex{positions[v], normal, uvOf(0, v), uvOf(1, v)});
                 mesh.localBounds.extend(positions[v]);
             }
         }
     } else {
         repairNormals(normals, positions, triangleIndices);
         for (size_t v = 0; v < vertexCount; ++v) {
-            vertices.push_back(Vertex{positions[v], normals[v], uvOf(v)});
+            vertices.push_back(Vertex{positions[v], normals[v], uvOf(0, v), uvOf(1, v)});
             mesh.localBounds.extend(positions[v]);
         }
         indices.insert(indices.end(), triangleIndices.begin(), triangleIndices.end());

@@ -13,7 +13,7 @@
 
 #include <sys/stat.h>
 
-#include <stb_image.h>
+#include "scene/image_decoding.h"
 
 #include "core/error.h"
 #include "core/log.h"
@@ -314,21 +314,31 @@ void preflight(const nlohmann::json& gltf, const std::string& path) {
     checkLightPropertyTypes(gltf, path);
 }
 
-std::set<int> baseColorImages(const nlohmann::json& gltf) {
+std::set<int> colourImages(const nlohmann::json& gltf) {
     std::set<int> images;
+    const auto addTexture = [&](const nlohmann::json& owner, const char* member) {
+        const auto info = owner.find(member);
+        if (info == owner.end() || !info->is_object()) return;
+        const std::optional<uint64_t> textureIndex = unsignedMember(*info, "index");
+        const nlohmann::json* texture = textureIndex ? arrayElement(gltf, "textures", *textureIndex) : nullptr;
+        if (!texture) return;
+        std::vector<std::optional<uint64_t>> sources = {unsignedMember(*texture, "source")};
+        // EXT_texture_webp names its own image; the plain source stays as the fallback.
+        const auto extensions = texture->find("extensions");
+        if (extensions != texture->end() && extensions->is_object()) {
+            const auto webp = extensions->find("EXT_texture_webp");
+            if (webp != extensions->end() && webp->is_object()) sources.push_back(unsignedMember(*webp, "source"));
+        }
+        for (const std::optional<uint64_t>& source : sources)
+            if (source && *source <= uint64_t(std::numeric_limits<int>::max())) images.insert(static_cast<int>(*source));
+    };
     const auto materials = gltf.find("materials");
     if (materials == gltf.end() || !materials->is_array()) return images;
     for (const nlohmann::json& material : *materials) {
         if (!material.is_object()) continue;
+        addTexture(material, "emissiveTexture");
         const auto pbr = material.find("pbrMetallicRoughness");
-        if (pbr == material.end() || !pbr->is_object()) continue;
-        const auto info = pbr->find("baseColorTexture");
-        if (info == pbr->end() || !info->is_object()) continue;
-        const std::optional<uint64_t> textureIndex = unsignedMember(*info, "index");
-        const nlohmann::json* texture = textureIndex ? arrayElement(gltf, "textures", *textureIndex) : nullptr;
-        if (!texture) continue;
-        const std::optional<uint64_t> source = unsignedMember(*texture, "source");
-        if (source && *source <= uint64_t(std::numeric_limits<int>::max())) images.insert(static_cast<int>(*source));
+        if (pbr != material.end() && pbr->is_object()) addTexture(*pbr, "baseColorTexture");
     }
     return images;
 }
@@ -345,13 +355,11 @@ bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* /*err*/, s
     }
     int width = 0;
     int height = 0;
-    int channelsInFile = 0;
-    const std::unique_ptr<stbi_uc, void (*)(void*)> decoded(
-        stbi_load_from_memory(bytes, size, &width, &height, &channelsInFile, STBI_rgb_alpha), &stbi_image_free);
-    const stbi_uc* pixels = decoded.get();
+    std::string failure;
+    const std::unique_ptr<uint8_t, void (*)(void*)> decoded = decodeRgba8(bytes, size, width, height, failure);
+    const uint8_t* pixels = decoded.get();
     if (pixels == nullptr) {
-        const char* reason = stbi_failure_reason();
-        decoding.failures[imageIndex] = reason ? reason : "unknown error";
+        decoding.failures[imageIndex] = failure;
         return true;
     }
     // Downscale here, straight from stb's pixels: a texture too large for the frame never
@@ -360,7 +368,7 @@ bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* /*err*/, s
     const TextureSize to = fittedTextureSize(from.width, from.height, decoding.limit.maxSide);
     if (to.width != from.width || to.height != from.height) {
         image->image = resizedRgba8Srgb(pixels, from, to);
-        std::string what = "base colour image " + std::to_string(imageIndex);
+        std::string what = "image " + std::to_string(imageIndex);
         if (!image->uri.empty()) what += " '" + image->uri + "'";
         else if (!image->name.empty()) what += " '" + image->name + "'";
         log::warn(decoding.source + ": " + downscaleWarning(what, from, to, decoding.limit.reason));

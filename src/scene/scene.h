@@ -25,30 +25,94 @@ struct Bounds {
     Bounds transformed(const glm::mat4& m) const;  // AABB of the 8 transformed corners
 };
 
-// Interleaved vertex, 32 bytes; the layout the vertex shaders read.
+// Interleaved vertex, 40 bytes; the layout the vertex shaders read. uv1 is glTF's TEXCOORD_1
+// (zero where the file has none).
 struct Vertex {
     glm::vec3 position;
     glm::vec3 normal;
     glm::vec2 uv;
+    glm::vec2 uv1{0.0f};
 };
-static_assert(sizeof(Vertex) == 32);
+static_assert(sizeof(Vertex) == 40);
 
-// Decoded texture: RGBA8, sRGB-encoded (glTF base-colour textures are sRGB).
-struct Texture {
-    std::string name;
+// One mip level of a texture: RGBA8, rows top to bottom.
+struct TextureLevel {
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<uint8_t> rgba;
 };
 
-// glTF metallic-roughness material.
+// Decoded texture: RGBA8, sRGB-encoded colour (glTF base-colour and emissive textures are sRGB),
+// linear alpha. Level 0 is width x height x rgba; `mipLevels` holds levels 1.. down to 1x1 once
+// generateMipmaps (scene/texture_mips.h) has run, which the glTF loader does for every texture.
+struct Texture {
+    std::string name;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint8_t> rgba;
+    std::vector<TextureLevel> mipLevels;
+
+    uint32_t levelCount() const { return 1 + uint32_t(mipLevels.size()); }
+};
+
+// A glTF sampler, as Vulkan samples it (render/scene_gpu.cpp) and the reference mirrors it
+// (reference/texture_sampler.h). glTF leaves an absent filter to the implementation: trilinear.
+enum class TextureFilter : uint8_t { Nearest, Linear };
+enum class TextureWrap : uint8_t { Repeat, MirroredRepeat, ClampToEdge };
+struct TextureSampler {
+    TextureFilter magFilter = TextureFilter::Linear;
+    TextureFilter minFilter = TextureFilter::Linear;
+    TextureFilter mipFilter = TextureFilter::Linear;
+    bool mipmaps = true;  // false for glTF's minFilter NEAREST or LINEAR: level 0 only
+    TextureWrap wrapU = TextureWrap::Repeat;
+    TextureWrap wrapV = TextureWrap::Repeat;
+
+    bool operator==(const TextureSampler&) const = default;
+};
+
+// KHR_texture_transform: uv' = T(offset) * R(rotation) * S(scale) * uv (the matrix is built in
+// shaders/shared/materials.h, for the GPU and the reference alike).
+struct TextureTransform {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;  // radians
+    glm::vec2 scale{1.0f};
+};
+
+// A material's use of a texture: which image, read through which sampler, from which texture
+// coordinate set, transformed how.
+struct TextureRef {
+    int image = -1;         // index into Scene::textures, -1 for none
+    uint32_t texCoord = 0;  // TEXCOORD_0 or TEXCOORD_1
+    TextureSampler sampler;
+    TextureTransform transform;
+
+    bool present() const { return image >= 0; }
+};
+
+// glTF's alphaMode. OPAQUE ignores alpha; MASK keeps a fragment where alpha >= alphaCutoff and
+// drops it elsewhere, in every pass that draws it (depth, forward, every shadow caster pass);
+// BLEND is drawn after the opaque surfaces, blended over them.
+enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
+
+// glTF metallic-roughness material, with emission (KHR_materials_emissive_strength) and alpha.
 struct Material {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};  // linear
     float metallic = 1.0f;            // glTF defaults
     float roughness = 1.0f;
-    int baseColorTexture = -1;        // index into Scene::textures, -1 for none
+    TextureRef baseColorTexture;
+    // Emitted radiance (linear, the units of shaded radiance): emissiveFactor x emissiveStrength x
+    // the emissive texture. The camera sees it; it lights nothing else.
+    glm::vec3 emissiveFactor{0.0f};
+    float emissiveStrength = 1.0f;
+    TextureRef emissiveTexture;
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;  // MASK only
+    // false: back faces (as wound in the file) are not drawn, and primary rays pass through them.
+    // Shadow casters are two-sided either way (README, "Materials").
     bool doubleSided = false;
+
+    glm::vec3 emission() const { return emissiveFactor * emissiveStrength; }
 };
 
 // A triangle list inside Scene::indices/vertices. Indices are relative to `vertexOffset`.

@@ -36,6 +36,31 @@ void addBox(Scene& scene, const glm::vec3& center, const glm::vec3& size, uint32
     scene.objects.push_back(object);
 }
 
+void addQuad(Scene& scene, const std::string& name, glm::vec3 center, glm::vec3 u, glm::vec3 v, float halfU,
+             float halfV, uint32_t material, float uvScale, const glm::mat4& model) {
+    const glm::vec3 normal = glm::normalize(glm::cross(u, v));
+    Mesh mesh;
+    mesh.name = name;
+    mesh.firstIndex = uint32_t(scene.indices.size());
+    mesh.vertexOffset = uint32_t(scene.vertices.size());
+    mesh.vertexCount = 4;
+    mesh.indexCount = 6;
+    mesh.material = material;
+    const glm::vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (const glm::vec2 corner : corners) {
+        const glm::vec3 position = center + (corner.x * 2.0f - 1.0f) * halfU * u + (corner.y * 2.0f - 1.0f) * halfV * v;
+        scene.vertices.push_back(Vertex{position, normal, corner * uvScale, corner * uvScale * 0.5f});
+        mesh.localBounds.extend(position);
+    }
+    scene.indices.insert(scene.indices.end(), {0, 1, 2, 0, 2, 3});
+    scene.meshes.push_back(mesh);
+    Object object;
+    object.name = name;
+    object.mesh = uint32_t(scene.meshes.size() - 1);
+    object.model = model;
+    scene.objects.push_back(object);
+}
+
 Light pointLight(const glm::vec3& position, float range, float intensity) {
     Light light;
     light.type = LightType::Point;
@@ -169,6 +194,46 @@ Light sunLight(const glm::vec3& direction, float lux) {
     light.intensity = lux;
     light.castsShadow = true;
     return light;
+}
+
+Scene glassPanesScene(float wallDistance) {
+    Scene scene;
+    scene.source = "glass panes in front of a wall";
+    Material wall;
+    wall.name = "wall";
+    wall.baseColorFactor = glm::vec4(0.7f, 0.7f, 0.7f, 1.0f);
+    wall.metallic = 0.0f;
+    wall.roughness = 0.8f;
+    scene.materials.push_back(wall);
+    Material glass = wall;
+    glass.name = "blue glass";
+    glass.baseColorFactor = glm::vec4(0.3f, 0.5f, 0.9f, 0.5f);
+    glass.roughness = 0.3f;
+    glass.alphaMode = AlphaMode::Blend;
+    glass.doubleSided = true;
+    scene.materials.push_back(glass);
+    Material amber = glass;
+    amber.name = "amber glass";
+    amber.baseColorFactor = glm::vec4(0.9f, 0.6f, 0.2f, 0.35f);
+    scene.materials.push_back(amber);
+    const float wallZ = -3.0f - wallDistance;
+    addQuad(scene, "wall", glm::vec3(0.0f, 0.0f, wallZ), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), 2.5f * -wallZ,
+            1.6f * -wallZ, 0);
+    addQuad(scene, "blue pane", glm::vec3(-0.6f, 0.0f, -3.0f), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), 1.0f, 1.2f, 1);
+    addQuad(scene, "amber pane", glm::vec3(0.6f, 0.2f, -4.5f), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), 1.2f, 1.0f, 2);
+    for (int i = 0; i < 6; ++i) {
+        const float x = -1.5f + 0.6f * float(i);
+        scene.lights.push_back(pointLight(glm::vec3(x, 0.5f - 0.3f * float(i % 3), -2.4f), 1.2f, 1.5f));
+        scene.lights.push_back(pointLight(glm::vec3(x + 0.3f, -0.4f, -3.9f), 1.2f, 1.5f));
+    }
+    scene.lights.push_back(pointLight(glm::vec3(0.0f, 2.0f, wallZ + 3.0f), 8.0f, 20.0f));  // lights the wall
+    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    scene.camera.yfov = 0.8f;
+    scene.camera.znear = 0.1f;
+    scene.camera.zfar = 4.0f - 2.0f * wallZ;
+    scene.cameraFromFile = true;
+    scene.computeBounds();
+    return scene;
 }
 
 Scene cascadeFieldScene() {

@@ -13,6 +13,11 @@ namespace punctual::study {
 Scene floorScene(const std::string& name);
 // A box of `size` centred at `center` (mesh + object); call scene.computeBounds() when done.
 void addBox(Scene& scene, const glm::vec3& center, const glm::vec3& size, uint32_t material = 0);
+// A rectangle centred on `center` spanning +-halfU along `u` and +-halfV along `v` (unit axes),
+// facing cross(u, v) (counter-clockwise seen from there), with texture coordinates 0..uvScale
+// from the corner at -u -v, and TEXCOORD_1 = TEXCOORD_0 / 2. One object drawn with `material`.
+void addQuad(Scene& scene, const std::string& name, glm::vec3 center, glm::vec3 u, glm::vec3 v, float halfU,
+             float halfV, uint32_t material, float uvScale = 1.0f, const glm::mat4& model = glm::mat4(1.0f));
 Light pointLight(const glm::vec3& position, float range, float intensity);
 Light spotLight(const glm::vec3& position, const glm::vec3& direction, float range, float intensity, float innerAngle,
                 float outerAngle);
@@ -57,6 +62,12 @@ Scene cascadePancakingScene(float deckHeight);
 // long shadows fall away from it, across every split of the view. The seed's culling bias leaves the
 // posts deep inside a cascade out of the next one, though their shadows reach into it.
 Scene cascadeSeamScene();
+// Transparency with tiled depth bounds: two glass panes (alphaMode BLEND, alpha 0.5 and 0.35,
+// overlapping) 3 and 4.5 m from the camera, in front of a wall `wallDistance` metres behind the
+// nearer pane, with small point lights (range 1.2 m) just in front of the panes. From about 2 m
+// on those lights reach the glass but not the wall, so tiles bounded by the opaque depth alone
+// lose them; one more light lights the wall.
+Scene glassPanesScene(float wallDistance);
 // The sun's light: travelling along `direction` (need not be unit), `lux` bright.
 Light sunLight(const glm::vec3& direction, float lux);
 

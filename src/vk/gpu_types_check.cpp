@@ -53,9 +53,13 @@ static_assert(sizeof(GpuObject) == 144);
 static_assert(offsetof(GpuObject, normalMatrix) == 64);
 static_assert(offsetof(GpuObject, material) == 128);
 
-static_assert(sizeof(GpuMaterial) == 32);
-static_assert(offsetof(GpuMaterial, metallicRoughness) == 16);
-static_assert(offsetof(GpuMaterial, baseColorTexture) == 24);
-static_assert(offsetof(GpuMaterial, flags) == 28);
+static_assert(sizeof(GpuMaterial) == 128);
+static_assert(offsetof(GpuMaterial, emission) == 16);
+static_assert(offsetof(GpuMaterial, baseColorUv) == 32);
+static_assert(offsetof(GpuMaterial, emissiveUv) == 64);
+static_assert(offsetof(GpuMaterial, metallicRoughness) == 96);
+static_assert(offsetof(GpuMaterial, baseColorTexture) == 104);
+static_assert(offsetof(GpuMaterial, flags) == 108);
+static_assert(offsetof(GpuMaterial, emissiveTexture) == 112);
 
 }  // namespace punctual::gpu

@@ -18,7 +18,7 @@ Image::Image(const Context& context, const ImageDesc& desc) : device_(context.de
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = desc.format;
     info.extent = {desc.width, desc.height, 1};
-    info.mipLevels = 1;
+    info.mipLevels = desc.mipLevels;
     info.arrayLayers = desc.layers;
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -40,7 +40,7 @@ Image::Image(const Context& context, const ImageDesc& desc) : device_(context.de
         viewInfo.image = image_;
         viewInfo.viewType = desc.viewType;
         viewInfo.format = desc.format;
-        viewInfo.subresourceRange = {aspect(), 0, 1, 0, desc.layers};
+        viewInfo.subresourceRange = {aspect(), 0, desc.mipLevels, 0, desc.layers};
         check(vkCreateImageView(device_, &viewInfo, nullptr, &view_), "vkCreateImageView");
     } catch (...) {
         release();

@@ -1,5 +1,5 @@
 #pragma once
-// A VkImage with its own memory and one view covering all its layers.
+// A VkImage with its own memory and one view covering all its layers and mip levels.
 #include <cstdint>
 #include <string>
 
@@ -14,6 +14,7 @@ struct ImageDesc {
     uint32_t width = 1;
     uint32_t height = 1;
     uint32_t layers = 1;
+    uint32_t mipLevels = 1;
     VkImageUsageFlags usage = 0;
     VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D;
     VkImageCreateFlags flags = 0;  // e.g. VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT

@@ -48,7 +48,7 @@ Handle<VkPipeline> createGraphicsPipeline(VkDevice device, const GraphicsPipelin
     VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
     raster.polygonMode = VK_POLYGON_MODE_FILL;
     raster.cullMode = desc.cullMode;
-    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.frontFace = desc.frontFace;
     raster.depthBiasEnable = desc.depthBias ? VK_TRUE : VK_FALSE;
     raster.depthClampEnable = desc.depthClamp ? VK_TRUE : VK_FALSE;
     raster.lineWidth = 1.0f;
@@ -64,6 +64,15 @@ Handle<VkPipeline> createGraphicsPipeline(VkDevice device, const GraphicsPipelin
     VkPipelineColorBlendAttachmentState blendAttachment{};
     blendAttachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
                                      VK_COLOR_COMPONENT_A_BIT;
+    if (desc.alphaBlend) {
+        blendAttachment.blendEnable = VK_TRUE;
+        blendAttachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+        blendAttachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        blendAttachment.colorBlendOp = VK_BLEND_OP_ADD;
+        blendAttachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;  // the target's alpha stays 1
+        blendAttachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        blendAttachment.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
     VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     blend.attachmentCount = desc.hasColorAttachment ? 1 : 0;
     blend.pAttachments = &blendAttachment;
@@ -115,11 +124,11 @@ Handle<VkRenderPass> createRenderPass(VkDevice device, const RenderPassDesc& des
         VkAttachmentDescription color{};
         color.format = desc.colorFormat;
         color.samples = VK_SAMPLE_COUNT_1_BIT;
-        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        color.loadOp = desc.colorLoad;
         color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
         color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
         color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-        color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        color.initialLayout = desc.colorInitialLayout;
         color.finalLayout = desc.colorFinalLayout;
         attachments.push_back(color);
     }

@@ -23,10 +23,15 @@ struct GraphicsPipelineDesc {
     uint32_t vertexStride = 0;
     std::vector<VkVertexInputAttributeDescription> vertexAttributes;
     bool hasColorAttachment = false;
+    // "Over" compositing: rgb = src.rgb * src.a + dst.rgb * (1 - src.a) (the transparent pass).
+    bool alphaBlend = false;
     bool depthTest = true;
     bool depthWrite = true;
     VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+    // Counter-clockwise is glTF's front face under punctual's projections (forward.frag's
+    // gl_FrontFacing); clockwise culls the back faces of objects whose transform mirrors.
+    VkFrontFace frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     bool depthBias = false;  // dynamic depth bias (vkCmdSetDepthBias)
     bool depthClamp = false;  // clamp depth to the viewport instead of clipping at near and far (feature depthClamp)
 };
@@ -39,6 +44,8 @@ Handle<VkPipeline> createComputePipeline(VkDevice device, VkPipelineLayout layou
 struct RenderPassDesc {
     VkFormat colorFormat = VK_FORMAT_UNDEFINED;  // UNDEFINED: no colour attachment
     VkImageLayout colorFinalLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    VkAttachmentLoadOp colorLoad = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    VkImageLayout colorInitialLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // LOAD needs the layout it is in
     VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
     VkAttachmentLoadOp depthLoad = VK_ATTACHMENT_LOAD_OP_CLEAR;
     VkAttachmentStoreOp depthStore = VK_ATTACHMENT_STORE_OP_STORE;

@@ -38,9 +38,9 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     std::getline(csv, header);
     EXPECT_EQ(header,
               "config,series,method,spot,point,shadows,shadow_res,shadow_format,shadow_filter,point_layout,"
-              "shadowed_spots,shadowed_points,frames,depth_ms,culling_ms,shadows_ms,forward_ms,tonemap_ms,total_ms,"
-              "depth_spread_ms,culling_spread_ms,shadows_spread_ms,forward_spread_ms,tonemap_spread_ms,"
-              "total_spread_ms,tested_per_pixel,affecting_per_pixel,efficiency,missed_energy,image_error,pixels_off,"
+              "shadowed_spots,shadowed_points,frames,depth_ms,transparent_depth_ms,culling_ms,shadows_ms,forward_ms,"
+              "transparent_ms,tonemap_ms,total_ms,depth_spread_ms,transparent_depth_spread_ms,culling_spread_ms,"
+              "shadows_spread_ms,forward_spread_ms,transparent_spread_ms,tonemap_spread_ms,total_spread_ms,tested_per_pixel,affecting_per_pixel,efficiency,missed_energy,image_error,pixels_off,"
               "shadow_views,shadow_memory_bytes,shadow_texels_rendered,shadow_filter_taps,shadow_reduced_views,"
               "shadow_misclassified,shadow_misclassified_all,shadow_misclassified_1px,shadow_false_shadow,"
               "shadow_false_lit,cascades,sun_misclassified,sun_misclassified_1px,sun_cascade0_misclassified_1px,"
@@ -108,7 +108,8 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     }
     EXPECT_EQ(cascadeSettings, (std::set<std::string>{"1-512-hw", "1-512-tent5", "4-512-hw", "4-512-tent5"}));
     // The names the chart scripts read instead of lists of their own: every pass has its columns.
-    EXPECT_EQ(json["passes"], nlohmann::json({"depth", "culling", "shadows", "forward", "tonemap"}));
+    EXPECT_EQ(json["passes"], nlohmann::json({"depth", "transparent_depth", "culling", "shadows", "forward",
+                                              "transparent", "tonemap"}));
     EXPECT_EQ(json["methods"], nlohmann::json({"brute", "per-object", "tiled", "clustered"}));
     EXPECT_EQ(json["shadow_filters"], nlohmann::json({"hw", "tent3", "tent5", "tent7", "disk"}));
     EXPECT_EQ(json["point_layouts"], nlohmann::json({"cube", "slices"}));
@@ -138,7 +139,7 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
                                               "wide-spot", "tile-depth-discontinuities", "per-object-large-objects",
                                               "beyond-the-caps", "cascade-shimmering", "cascade-shimmering-moving-view",
                                               "cascade-seams", "perspective-aliasing-splits", "perspective-aliasing-counts",
-                                              "cascade-pancaking"}));
+                                              "cascade-pancaking", "transparency-tiled-depth-bounds"}));
 }
 
 TEST(BenchCli, BadOptionsFailCleanly) {

@@ -204,7 +204,7 @@ TEST(CliInputs, TextureLargerThanTheFrameCanUseIsDownscaledWithOneWarning) {
         runBounded(folder, cat("render ", quoted(scene), " --validate --size 160x120 --out ", quoted(png)));
     ASSERT_EQ(run.exitCode, 0) << run.err;
     EXPECT_EQ(run.err, cat("punctual: warning: ", scene,
-                           ": base colour image 0 'big.png' is 16385x2 texels; downscaled to 256x1 (enough for a "
+                           ": image 0 'big.png' is 16385x2 texels; downscaled to 256x1 (enough for a "
                            "160x120 frame)\n"));
     const ImageRgba8 image = readPng(png);
     const uint8_t* centre = image.at(80, 60);

@@ -13,6 +13,7 @@
 #include "culling_test_scenes.h"
 #include "gpu_test_support.h"
 #include "reference/reference_renderer.h"
+#include "reference_agreement.h"
 #include "reference_test_support.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
@@ -24,91 +25,16 @@ namespace {
 
 using reference::ReferenceRenderer;
 using reference::SurfaceHit;
+using testing::Agreement;
+using testing::compare;
+using testing::expectAgreement;
+using testing::GpuFrame;
 using testing::greyMaterial;
+using testing::renderGpu;
 using testing::unshadowed;
 
 // ---- the reference against the GPU ------------------------------------------------------------
-
-struct Agreement {
-    size_t pixels = 0;
-    size_t within = 0;                // every channel within the tolerance
-    size_t offSilhouette = 0;         // differing pixels not on a silhouette or crease
-    double withinFraction() const { return double(within) / double(pixels); }
-};
-
-// A pixel is on a silhouette when its 3x3 neighbourhood in the GPU depth buffer holds background
-// or a view-distance jump above 3%, or when the reference's neighbouring hits cross an object
-// boundary or a crease (geometric normals apart by more than ~8 degrees). There, a pixel centre
-// can lie on the edge itself, and the rasteriser's tie-breaking and Embree's may pick different
-// sides; anywhere else the two must agree.
-Agreement compare(const ImageRgba8& gpu, const std::vector<float>& depth, const glm::mat4& projection,
-                  const ImageRgba8& ref, const std::vector<SurfaceHit>& hits, const std::string& name, int tolerance = 2) {
-    const int width = int(gpu.width), height = int(gpu.height);
-    // View distance from depth (culling.h): a / (depth + b) with a = P[3][2], b = P[2][2].
-    auto viewDistance = [&](size_t i) { return projection[3][2] / (depth[i] + projection[2][2]); };
-    auto onSilhouette = [&](int x, int y) {
-        const size_t centre = size_t(y) * size_t(width) + size_t(x);
-        for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
-                const int nx = std::clamp(x + dx, 0, width - 1), ny = std::clamp(y + dy, 0, height - 1);
-                const size_t i = size_t(ny) * size_t(width) + size_t(nx);
-                if (gpu::isBackgroundDepth(depth[i]) || gpu::isBackgroundDepth(depth[centre]) || !hits[i].hit || !hits[centre].hit) return true;
-                if (std::abs(viewDistance(i) - viewDistance(centre)) > 0.03f * viewDistance(centre)) return true;
-                if (hits[i].object != hits[centre].object) return true;
-                if (glm::dot(hits[i].geometricNormal, hits[centre].geometricNormal) < 0.99f) return true;
-            }
-        }
-        return false;
-    };
-    Agreement result;
-    ImageRgba8 diff = gpu;
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const uint8_t* g = gpu.at(uint32_t(x), uint32_t(y));
-            const uint8_t* r = ref.at(uint32_t(x), uint32_t(y));
-            int worst = 0;
-            for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(int(g[c]) - int(r[c])));
-            ++result.pixels;
-            uint8_t* d = diff.at(uint32_t(x), uint32_t(y));
-            const uint8_t shade = uint8_t(std::min(255, worst * 32));
-            d[0] = d[1] = d[2] = shade;  // grey: the difference x 32
-            if (worst <= tolerance) {
-                ++result.within;
-            } else if (onSilhouette(x, y)) {
-                d[0] = 0, d[1] = 0, d[2] = 255;  // blue: differs on a silhouette (allowed)
-            } else {
-                ++result.offSilhouette;
-                d[0] = 255, d[1] = 0, d[2] = 0;  // red: differs where it must not
-            }
-        }
-    }
-    testing::saveTestImage(name + "-gpu", gpu);
-    testing::saveTestImage(name + "-reference", ref);
-    testing::saveTestImage(name + "-diff", diff);
-    return result;
-}
-
-struct GpuFrame {
-    ImageRgba8 image;
-    std::vector<float> depth;
-    glm::mat4 projection;
-};
-
-GpuFrame renderGpu(vk::Context& context, const Scene& scene, uint32_t width, uint32_t height) {
-    render::RenderSettings settings = testing::renderSettings(width, height);
-    settings.method = render::LightListMethod::Brute;
-    settings.shadows.enabled = false;  // compared with the unshadowed reference
-    render::Renderer renderer(context, scene, settings);
-    GpuFrame frame{renderer.render(1, 0).image, {}, renderer.projection()};
-    frame.depth = renderer.readDepth();
-    return frame;
-}
-
-void expectAgreement(const Agreement& agreement, const std::string& what) {
-    EXPECT_GE(agreement.withinFraction(), 0.999) << what << ": " << agreement.pixels - agreement.within << " of "
-                                                 << agreement.pixels << " pixels differ by more than 2/255";
-    EXPECT_EQ(agreement.offSilhouette, 0u) << what << ": differing pixels away from silhouettes";
-}
+// (Agreement, compare, renderGpu and expectAgreement: reference_agreement.h)
 
 TEST(ReferenceImage, MatchesGpuBruteForceOnTheDefaultScene) {
     auto context = testing::makeValidatedContext();
@@ -131,13 +57,14 @@ TEST(ReferenceImage, MatchesGpuBruteForceOnTheDefaultScene) {
     testing::expectNoValidationMessages(*context);
 }
 
-// A room seen from inside (every wall is a back face, its normal must turn to the viewer on
-// both paths), with a mirrored box (negative determinant: its world winding is reversed) and a
+// A room seen from inside (every wall is a back face of a double-sided material, its normal must
+// turn to the viewer on both paths), with a mirrored single-sided box (negative determinant: its world winding is reversed) and a
 // rotated, non-uniformly scaled one (the inverse-transpose normal matrix matters).
 TEST(ReferenceImage, MatchesGpuOnBackFacesAndMirroredObjects) {
     Scene scene;
     scene.source = "room";
     scene.materials.push_back(greyMaterial());
+    scene.materials.back().doubleSided = true;  // the room's walls are seen from inside; the mirrored box is single-sided
     Material metal = greyMaterial();
     metal.baseColorFactor = glm::vec4(0.9f, 0.6f, 0.3f, 1.0f);
     metal.metallic = 1.0f;

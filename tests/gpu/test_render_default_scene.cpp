@@ -55,7 +55,8 @@ TEST(RenderDefaultScene, TimesEveryPassByNameAndRejectsUnrequestedDebugOutputs) 
     settings.method = render::LightListMethod::Brute;
     render::Renderer renderer(*context, scene, settings);
     const render::FrameResult result = renderer.render(1);
-    const std::vector<std::string> names = {"depth", "culling", "shadows", "forward", "tonemap"};
+    const std::vector<std::string> names = {"depth",   "transparent_depth", "culling", "shadows",
+                                            "forward", "transparent",       "tonemap"};
     EXPECT_EQ(renderer.passNames(), names);
     ASSERT_EQ(result.medianMs.passes.size(), names.size());
     double sum = 0.0;
@@ -64,6 +65,8 @@ TEST(RenderDefaultScene, TimesEveryPassByNameAndRejectsUnrequestedDebugOutputs) 
         sum += result.medianMs.passes[i].second;
     }
     EXPECT_EQ(result.medianMs.of("culling"), 0.0);  // brute force culls nothing
+    EXPECT_EQ(result.medianMs.of("transparent_depth"), 0.0);  // the hall has nothing transparent
+    EXPECT_EQ(result.medianMs.of("transparent"), 0.0);
     EXPECT_GT(result.medianMs.of("shadows"), 0.0);
     EXPECT_EQ(result.medianMs.of("no such pass"), 0.0);
     EXPECT_GE(result.medianMs.total, sum * 0.999);  // the passes lie inside the frame

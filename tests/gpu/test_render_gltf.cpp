@@ -7,6 +7,8 @@
 
 #include "core/image.h"
 #include "gpu_test_support.h"
+#include "reference/reference_renderer.h"
+#include "reference_test_support.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
 #include "scene/light_generator.h"
@@ -78,8 +80,8 @@ TEST(RenderGltf, CornellBoxWithGeneratedLights) {
     const std::string path = std::string(PUNCTUAL_SHARED_DATA_DIR) + "/cornell-box/cornellBox.gltf";
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path << " (../shared/data is absent)";
     Scene scene = loadGltf(path);
-    // Its own light is an emissive cube, which punctual does not model: light it with
-    // generated spot and point lights instead.
+    // Its own light is an emissive cube: seen (CornellBoxShowsItsEmissiveLamp), but emission
+    // lights nothing else, so generated spot and point lights light the box.
     replaceLights(scene, 8, 4, 3);
     auto context = testing::makeValidatedContext();
     render::RenderSettings settings = testing::renderSettings(160, 160);
@@ -90,6 +92,33 @@ TEST(RenderGltf, CornellBoxWithGeneratedLights) {
     settings.method = render::LightListMethod::Brute;
     render::Renderer brute(*context, scene, settings);
     EXPECT_TRUE(brute.render(1, 0).image.pixels == image.pixels);
+    testing::expectNoValidationMessages(*context);
+}
+
+TEST(RenderGltf, CornellBoxShowsItsEmissiveLamp) {
+    const std::string path = std::string(PUNCTUAL_SHARED_DATA_DIR) + "/cornell-box/cornellBox.gltf";
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path << " (../shared/data is absent)";
+    const Scene scene = loadGltf(path);
+    auto context = testing::makeValidatedContext();
+    render::RenderSettings settings = testing::renderSettings(200, 150);
+    render::Renderer renderer(*context, scene, settings);
+    const ImageRgba8 image = renderer.render(1, 0).image;
+    testing::saveTestImage("gltf-cornell-box-lamp", image);
+    // The lamp's pixels, found by the reference's primary rays: its material emits (factor 10).
+    const reference::ReferenceRenderer reference(scene, testing::unshadowed(200, 150));
+    size_t lampPixels = 0, lampWhite = 0;
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const reference::SurfaceHit hit = reference.traceSurface(x, y);
+            if (!hit.hit) continue;
+            const Material& material = scene.materials[scene.meshes[scene.objects[hit.object].mesh].material];
+            if (material.emission() == glm::vec3(0.0f)) continue;
+            ++lampPixels;
+            const uint8_t* rgb = image.at(x, y);
+            lampWhite += rgb[0] >= 240 && rgb[1] >= 240 && rgb[2] >= 240;
+        }
+    ASSERT_GT(lampPixels, 20u) << "the lamp is in the file's view";
+    EXPECT_GT(double(lampWhite) / double(lampPixels), 0.9) << "an emission of 10 saturates to white";
     testing::expectNoValidationMessages(*context);
 }
 

@@ -47,7 +47,7 @@ TEST(DefaultScene, Content) {
         minRoughness = std::min(minRoughness, material.roughness);
         maxRoughness = std::max(maxRoughness, material.roughness);
         metals += material.metallic > 0.5f ? 1 : 0;
-        EXPECT_EQ(material.baseColorTexture, -1);
+        EXPECT_EQ(material.baseColorTexture.image, -1);
     }
     EXPECT_GE(metals, 1);
     EXPECT_LT(metals, static_cast<int>(scene.materials.size()));

@@ -295,7 +295,7 @@ TEST(GltfMaterials, FactorsAreReadAndPrimitivesWithoutMaterialGetTheDefault) {
     EXPECT_FLOAT_EQ(first.metallic, 0.25f);
     EXPECT_FLOAT_EQ(first.roughness, 0.75f);
     EXPECT_TRUE(first.doubleSided);
-    EXPECT_EQ(first.baseColorTexture, -1);
+    EXPECT_EQ(first.baseColorTexture.image, -1);
     const Material& second = scene.materials[scene.meshes[1].material];  // glTF defaults
     EXPECT_FLOAT_EQ(second.metallic, 1.0f);
     EXPECT_FLOAT_EQ(second.roughness, 1.0f);
@@ -337,7 +337,7 @@ TEST(GltfTextures, DecodablePngIsLoadedAsRgba8) {
     EXPECT_EQ(scene.textures[0].width, 2u);
     EXPECT_EQ(scene.textures[0].height, 2u);
     EXPECT_EQ(scene.textures[0].rgba, std::vector<uint8_t>(pixels, pixels + sizeof pixels));
-    EXPECT_EQ(scene.materials[scene.meshes[0].material].baseColorTexture, 0);
+    EXPECT_EQ(scene.materials[scene.meshes[0].material].baseColorTexture.image, 0);
 }
 
 TEST(GltfTextures, GarbageImageFallsBackToFactorWithOneWarning) {
@@ -346,7 +346,7 @@ TEST(GltfTextures, GarbageImageFallsBackToFactorWithOneWarning) {
     WarningCapture capture;
     const Scene scene = loadGltf(texturedTriangle(dir, {"garbage.png"}));
     EXPECT_TRUE(scene.textures.empty());
-    EXPECT_EQ(scene.materials[0].baseColorTexture, -1);
+    EXPECT_EQ(scene.materials[0].baseColorTexture.image, -1);
     EXPECT_FLOAT_EQ(scene.materials[0].baseColorFactor.r, 0.5f);
     ASSERT_EQ(capture.warnings.size(), 1u);
     EXPECT_NE(capture.warnings[0].find("garbage.png"), std::string::npos) << capture.warnings[0];
@@ -360,8 +360,8 @@ TEST(GltfTextures, MissingImageFallsBackToFactorWithOneWarningEvenWhenSharedByTw
     const Scene scene = loadGltf(texturedTriangle(dir, {"missing.png"}, 2));
     EXPECT_TRUE(scene.textures.empty());
     ASSERT_EQ(scene.materials.size(), 2u);
-    EXPECT_EQ(scene.materials[0].baseColorTexture, -1);
-    EXPECT_EQ(scene.materials[1].baseColorTexture, -1);
+    EXPECT_EQ(scene.materials[0].baseColorTexture.image, -1);
+    EXPECT_EQ(scene.materials[1].baseColorTexture.image, -1);
     ASSERT_EQ(capture.warnings.size(), 1u);
     EXPECT_NE(capture.warnings[0].find("missing.png"), std::string::npos) << capture.warnings[0];
     EXPECT_NE(capture.warnings[0].find("image 0"), std::string::npos) << capture.warnings[0];
@@ -394,8 +394,8 @@ TEST(GltfTextures, PngInGlbBufferViewAndInDataUriAreDecoded) {
         EXPECT_EQ(texture.height, 1u);
         EXPECT_EQ(texture.rgba, std::vector<uint8_t>(pixels, pixels + sizeof pixels));
     }
-    EXPECT_EQ(scene.materials[0].baseColorTexture, 0);
-    EXPECT_EQ(scene.materials[1].baseColorTexture, 1);
+    EXPECT_EQ(scene.materials[0].baseColorTexture.image, 0);
+    EXPECT_EQ(scene.materials[1].baseColorTexture.image, 1);
 }
 
 // --- lights -----------------------------------------------------------------------------------

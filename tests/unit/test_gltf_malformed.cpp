@@ -416,7 +416,7 @@ TEST_F(GltfMalformed, ImageUriNamingAFolderOrFifoWarnsOnceAndFallsBack) {
         EXPECT_EQ(warning.rfind(path + ": ", 0), 0u) << warning;
         EXPECT_NE(warning.find("image 0 '" + c.uri + "' cannot be read (" + c.problem + ")"), std::string::npos) << warning;
         EXPECT_TRUE(outcome.scene->textures.empty());
-        EXPECT_EQ(outcome.scene->materials[0].baseColorTexture, -1);
+        EXPECT_EQ(outcome.scene->materials[0].baseColorTexture.image, -1);
     }
 }
 
@@ -523,7 +523,7 @@ TEST_F(GltfMalformed, TextureOverTheLimitIsDownscaledOnLoadWithOneWarning) {
     EXPECT_EQ(fitted.textures[0].height, 21u);  // 100 x 64 / 300 = 21.3
     EXPECT_EQ(fitted.textures[0].rgba, std::vector<uint8_t>(size_t(64) * 21 * 4, 200));  // a flat colour stays
     ASSERT_EQ(capture.warnings.size(), 1u);
-    EXPECT_EQ(capture.warnings[0], path + ": base colour image 0 'wide.png' is 300x100 texels; downscaled to 64x21 "
+    EXPECT_EQ(capture.warnings[0], path + ": image 0 'wide.png' is 300x100 texels; downscaled to 64x21 "
                                           "(a test's limit)");
 }
 

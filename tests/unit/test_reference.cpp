@@ -112,9 +112,9 @@ TEST(ReferenceEmbree, GeometricNormalIsCounterClockwiseFront) {
     query.ray.tfar = 10.0f;
     query.ray.mask = 0xFFFFFFFFu;
     query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcIntersect1(embree.handle(), &context, &query);
+    // Every ray carries a RayContext: the filter functions of single-sided geometry read it.
+    reference::RayContext context = reference::makeRayContext(reference::RayKind::Primary);
+    rtcIntersect1(embree.handle(), &context.embree, &query);
     ASSERT_EQ(query.hit.geomID, 0u);  // geomID == object index
     const glm::vec3 ng = reference::EmbreeScene::geometricNormal(query.hit);
     EXPECT_GT(ng.z, 0.0f) << "Ng must point to the side the vertices are seen counter-clockwise from";
