@@ -37,13 +37,6 @@ std::string modeName(int mode) {
     }
 }
 
-// Extensions a file may require: their data is read, not just tolerated.
-bool supportedExtension(const std::string& extension) {
-    static const std::set<std::string> supported = {
-        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform", "EXT_texture_webp"};
-    return supported.count(extension) > 0;
-}
-
 bool finite(const glm::mat4& m) {
     for (int column = 0; column < 4; ++column)
         for (int row = 0; row < 4; ++row)
@@ -74,15 +67,12 @@ public:
 
     Scene build() {
         scene_.source = path_;
-        // The spec requires a loader to refuse a file that requires an extension it lacks (e.g.
-        // Draco-compressed geometry, which would otherwise surface as confusing accessor errors).
-        for (const std::string& extension : model_.extensionsRequired)
-            if (!supportedExtension(extension))
-                fail("requires the glTF extension " + extension + ", which is not supported");
         convertMaterials();
         const std::vector<Light> lightPrototypes = convertLights();
         walk(rootNodes(), lightPrototypes);
-        if (scene_.objects.empty()) fail("no triangle meshes to draw");
+        if (scene_.objects.empty())
+            fail(skippedPrimitives_.empty() ? "no triangle meshes to draw"
+                                            : "no triangle meshes to draw, only " + describeSkipped());
         if (scene_.materials.empty()) scene_.materials.push_back(implicitDefaultMaterial());
         scene_.computeBounds();
         // Finite but huge coordinates (e.g. 1e38) overflow the bounds' extent, and with it the
@@ -311,7 +301,7 @@ private:
         const tinygltf::Primitive& primitive = model_.meshes[meshIndex].primitives[primitiveIndex];
         const std::string label = meshLabel(meshIndex) + " primitive " + std::to_string(primitiveIndex);
         std::optional<uint32_t> result;
-        if (primitive.mode != TINYGLTF_MODE_TRIANGLES) {
+        if (!drawsTriangles(primitive.mode)) {
             ++skippedPrimitives_[primitive.mode];
         } else if (std::optional<Mesh> mesh =
                        appendPrimitive(model_, primitive, label, path_, scene_.vertices, scene_.indices)) {
@@ -332,16 +322,21 @@ private:
         return result;
     }
 
-    void warnAboutSkippedPrimitives() const {
-        if (skippedPrimitives_.empty()) return;
+    // "3 primitive(s) that are not triangles (POINTS, LINES)", for the warning and the error.
+    std::string describeSkipped() const {
         int total = 0;
         std::string modes;
         for (const auto& [mode, count] : skippedPrimitives_) {
             total += count;
             modes += (modes.empty() ? "" : ", ") + modeName(mode);
         }
-        log::warn(path_ + ": skipped " + std::to_string(total) + " primitive(s) that are not triangle lists (" +
-                  modes + ")");
+        return std::to_string(total) + " primitive(s) that are not triangles (" + modes + ")";
+    }
+
+    // One line for the whole file, however many primitives and modes.
+    void warnAboutSkippedPrimitives() const {
+        if (skippedPrimitives_.empty()) return;
+        log::warn(path_ + ": skipped " + describeSkipped() + ": punctual draws only triangles");
     }
 
     // --- camera --------------------------------------------------------------------------------
@@ -432,17 +427,47 @@ private:
     bool sawOtherCamera_ = false;
 };
 
+// The extensions a file may require: those the loader implements. The spec requires refusing a
+// file that requires any other (its data would otherwise surface as confusing accessor errors,
+// or be silently drawn wrong). Checked before tinygltf sees the file, whose own complaints about
+// data only such an extension explains would hide the real reason.
+void checkRequiredExtensions(const nlohmann::json& gltf, const std::string& path) {
+    static const std::set<std::string> supported = {
+        "KHR_lights_punctual",     "KHR_mesh_quantization",          "KHR_draco_mesh_compression",
+        "EXT_meshopt_compression", "KHR_materials_emissive_strength", "KHR_texture_transform",
+        "EXT_texture_webp"};
+    const auto required = gltf.find("extensionsRequired");
+    if (required == gltf.end() || !required->is_array()) return;  // tinygltf reports a malformed one
+    std::vector<std::string> missing;
+    for (const nlohmann::json& name : *required)
+        if (name.is_string() && !supported.count(name.get<std::string>())) missing.push_back(name.get<std::string>());
+    if (missing.empty()) return;
+    std::string names;
+    for (const std::string& name : missing) names += (names.empty() ? "" : ", ") + name;
+    throw Error(path, (missing.size() == 1 ? "requires the glTF extension " : "requires the glTF extensions ") + names +
+                          (missing.size() == 1 ? ", which is not supported" : ", which are not supported"));
+}
+
 }  // namespace
 
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
-    const SourceFile source = readSource(path);
-    preflight(source.json, path);
+    SourceFile source = readSource(path);
+    checkRequiredExtensions(source.json, path);
+    // tinygltf refuses what the compression extensions rightly write (buffers without data, index
+    // accessors without buffer views): it reads a version of the file without those, which the
+    // checks below look at too, since it is what tinygltf acts on.
+    std::optional<nlohmann::json> patched;
+    addMeshoptPlaceholders(source.json, patched, source.binary, path);
+    hideDracoIndices(source.json, patched);
+    if (patched) source.bytes = withJson(source, *patched);
+    const nlohmann::json& gltf = patched ? *patched : source.json;
+    preflight(gltf, path);
 
     ImageDecoding decoding;
-    decoding.wanted = colourImages(source.json);
+    decoding.wanted = colourImages(gltf);
     decoding.limit = options.textureLimit;
     decoding.source = path;
-    UriFiles files(source.json, source.baseDir);
+    UriFiles files(gltf, source.baseDir);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&decodeImage, &decoding);
     loader.SetFsCallbacks(files.callbacks());
@@ -459,10 +484,12 @@ Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
             : loader.LoadASCIIFromString(&model, &error, &warning, reinterpret_cast<const char*>(source.bytes.data()),
                                          size, source.baseDir);
     for (const std::string& line : relevantWarnings(warning)) log::warn(path + ": " + line);
-    if (!loaded) throw Error(path, describeLoadError(error, source.json));
+    if (!loaded) throw Error(path, describeLoadError(error, gltf));
     // tinygltf also appends non-fatal complaints to the error text of a successful load.
     for (const std::string& line : relevantWarnings(error)) log::warn(path + ": " + line);
 
+    restoreDracoIndices(model, source.json);
+    decodeMeshoptViews(model, source.json, path);
     return SceneBuilder(model, path, decoding, files).build();
 }
 

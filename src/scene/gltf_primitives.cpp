@@ -1,74 +1,137 @@
-// glTF mesh primitives -> punctual vertices and indices. Every accessor is bounds-checked against
-// its buffer view and buffer before a byte is read: a malformed file must give an Error, never
-// an out-of-bounds read.
+// glTF mesh primitives -> punctual vertices and indices. The attributes are first gathered into
+// arrays that no longer say where they came from (plain accessors, meshopt-decoded views, Draco
+// data), then turned into a triangle list and vertices the same way for all of them.
 #include <cmath>
-#include <cstring>
 #include <limits>
 
-#include "core/error.h"
 #include "scene/gltf_detail.h"
+#include "scene/triangle_topology.h"
 
 namespace punctual::gltf_detail {
 namespace {
 
-// Elements of one accessor after validation: element i starts at first + i * stride, and all
-// `count` elements lie inside the buffer.
-struct AccessorSpan {
-    const unsigned char* first = nullptr;
-    size_t stride = 0;
-    size_t count = 0;
-    int componentType = 0;
-    int type = 0;
-    bool normalized = false;
+constexpr const char* kDraco = "KHR_draco_mesh_compression";
 
-    const unsigned char* element(size_t i) const { return first + i * stride; }
+int attribute(const tinygltf::Primitive& primitive, const std::string& semantic) {
+    const auto it = primitive.attributes.find(semantic);
+    return it == primitive.attributes.end() ? -1 : it->second;
+}
+
+// A primitive's vertex data, one element per vertex in every non-empty array.
+struct PrimitiveArrays {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;                           // empty: the file has none
+    std::map<std::string, std::vector<glm::vec2>> texcoords;  // by semantic, e.g. "TEXCOORD_0"
+    std::optional<std::vector<uint32_t>> indices;             // nullopt: not indexed
 };
 
-size_t componentBytes(int componentType) {
-    switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-        case TINYGLTF_COMPONENT_TYPE_SHORT:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-        default: return 0;  // INT and DOUBLE are not valid glTF 2.0 accessor types
+// Reads a primitive's attributes from wherever the file keeps them: the Draco data for those
+// its extension maps, the accessors for the rest.
+class AttributeSource {
+public:
+    AttributeSource(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const AccessorReader& reader)
+        : primitive_(primitive), reader_(reader) {
+        if (const auto extension = primitive.extensions.find(kDraco); extension != primitive.extensions.end()) {
+            // The extension only defines triangle data; anything else is a broken file, not
+            // a topology to guess at.
+            if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != TINYGLTF_MODE_TRIANGLE_STRIP)
+                reader.fail(std::string(kDraco) + " needs mode TRIANGLES or TRIANGLE_STRIP, not mode " +
+                            std::to_string(primitive.mode));
+            draco_ = std::make_unique<DracoPrimitive>(model, extension->second, reader);
+        }
+    }
+
+    // nullopt when the primitive has no such attribute.
+    std::optional<std::vector<glm::vec3>> vec3(const std::string& semantic, AttributeKind kind) const {
+        const int accessor = attribute(primitive_, semantic);
+        if (draco_ && draco_->has(semantic)) {
+            if (accessor < 0)
+                reader_.fail(std::string(kDraco) + " maps " + semantic + ", which the primitive's attributes lack");
+            return draco_->readVec3(semantic, accessor, kind);
+        }
+        if (accessor < 0) return std::nullopt;
+        return reader_.readVec3(accessor, semantic, kind);
+    }
+
+    // A texture coordinate set by its semantic ("TEXCOORD_0", "TEXCOORD_1", ...).
+    std::optional<std::vector<glm::vec2>> texcoords(const std::string& semantic) const {
+        const int accessor = attribute(primitive_, semantic);
+        if (draco_ && draco_->has(semantic)) {
+            if (accessor < 0)
+                reader_.fail(std::string(kDraco) + " maps " + semantic + ", which the primitive's attributes lack");
+            return draco_->readTexcoords(semantic, accessor);
+        }
+        if (accessor < 0) return std::nullopt;
+        return reader_.readTexcoords(accessor, semantic);
+    }
+
+    std::optional<std::vector<uint32_t>> indices() const {
+        // Draco data always has faces: they are the indices, whether or not an accessor says so.
+        if (draco_) return draco_->indices(primitive_.indices);
+        if (primitive_.indices < 0) return std::nullopt;
+        return reader_.readIndices(primitive_.indices);
+    }
+
+private:
+    const tinygltf::Primitive& primitive_;
+    const AccessorReader& reader_;
+    std::unique_ptr<DracoPrimitive> draco_;
+};
+
+// The texture coordinate sets the renderer uses.
+const char* const kTexcoordSets[] = {"TEXCOORD_0", "TEXCOORD_1"};
+
+PrimitiveArrays gatherArrays(const AttributeSource& source, const AccessorReader& reader) {
+    PrimitiveArrays arrays;
+    std::optional<std::vector<glm::vec3>> positions = source.vec3("POSITION", AttributeKind::Position);
+    if (!positions) reader.fail("has no POSITION attribute");
+    arrays.positions = std::move(*positions);
+    const size_t vertexCount = arrays.positions.size();
+    const auto checkCount = [&](const std::string& semantic, size_t count) {
+        if (count != vertexCount)
+            reader.fail(semantic + " has " + std::to_string(count) + " elements but POSITION has " +
+                        std::to_string(vertexCount));
+    };
+    if (std::optional<std::vector<glm::vec3>> normals = source.vec3("NORMAL", AttributeKind::Normal)) {
+        checkCount("NORMAL", normals->size());
+        arrays.normals = std::move(*normals);
+    }
+    for (const char* semantic : kTexcoordSets) {
+        if (std::optional<std::vector<glm::vec2>> texcoords = source.texcoords(semantic)) {
+            checkCount(semantic, texcoords->size());
+            arrays.texcoords[semantic] = std::move(*texcoords);
+        }
+    }
+    arrays.indices = source.indices();
+    return arrays;
+}
+
+// The primitive's triangles as a list of vertex indices, whatever its topology.
+std::vector<uint32_t> triangleList(int mode, const PrimitiveArrays& arrays, const AccessorReader& reader) {
+    const size_t vertexCount = arrays.positions.size();
+    std::vector<uint32_t> topology;
+    if (arrays.indices) {
+        topology = *arrays.indices;
+        for (size_t i = 0; i < topology.size(); ++i)
+            if (topology[i] >= vertexCount)
+                reader.fail("index " + std::to_string(i) + " is " + std::to_string(topology[i]) + ", out of range for " +
+                            std::to_string(vertexCount) + " vertices");
+    } else {
+        if (vertexCount > std::numeric_limits<uint32_t>::max()) reader.fail("has more than 2^32 vertices");
+        topology.reserve(vertexCount);
+        for (size_t v = 0; v < vertexCount; ++v) topology.push_back(uint32_t(v));
+    }
+    switch (mode) {
+        case TINYGLTF_MODE_TRIANGLE_STRIP: return triangleListFromStrip(topology);
+        case TINYGLTF_MODE_TRIANGLE_FAN: return triangleListFromFan(topology);
+        default:
+            if (topology.size() % 3 != 0)
+                reader.fail(std::to_string(topology.size()) +
+                            (arrays.indices ? " indices are not a whole number of triangles"
+                                            : " vertices (no indices) are not a whole number of triangles"));
+            return topology;
     }
 }
-
-size_t componentsPerElement(int type) {
-    switch (type) {
-        case TINYGLTF_TYPE_SCALAR: return 1;
-        case TINYGLTF_TYPE_VEC2: return 2;
-        case TINYGLTF_TYPE_VEC3: return 3;
-        case TINYGLTF_TYPE_VEC4:
-        case TINYGLTF_TYPE_MAT2: return 4;
-        case TINYGLTF_TYPE_MAT3: return 9;
-        case TINYGLTF_TYPE_MAT4: return 16;
-        default: return 0;
-    }
-}
-
-// a + b and a * b on sizes that come straight from the file, where wrap-around would hide an
-// out-of-bounds read.
-bool checkedAdd(size_t a, size_t b, size_t& sum) { return !__builtin_add_overflow(a, b, &sum); }
-bool checkedMultiply(size_t a, size_t b, size_t& product) { return !__builtin_mul_overflow(a, b, &product); }
-
-float readFloat(const unsigned char* bytes) {
-    float value;
-    std::memcpy(&value, bytes, sizeof value);
-    return value;
-}
-
-template <typename T>
-T readUnsigned(const unsigned char* bytes) {
-    T value;
-    std::memcpy(&value, bytes, sizeof value);
-    return value;
-}
-
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
 // Unit normal of triangle (a, b, c) wound counter-clockwise, or +Y for a degenerate triangle.
 // Computed in double so thin but valid triangles keep their true normal.
@@ -81,124 +144,6 @@ glm::vec3 faceNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
     if (!(length > 1e-12 * glm::length(edge1) * glm::length(edge2)) || !std::isfinite(length))
         return glm::vec3(0.0f, 1.0f, 0.0f);
     return glm::vec3(normal / length);
-}
-
-class PrimitiveReader {
-public:
-    PrimitiveReader(const tinygltf::Model& model, const std::string& label, const std::string& path)
-        : model_(model), label_(label), path_(path) {}
-
-    [[noreturn]] void fail(const std::string& problem) const { throw Error(path_, label_ + ": " + problem); }
-
-    AccessorSpan span(int accessorIndex, const std::string& semantic) const {
-        if (accessorIndex < 0 || size_t(accessorIndex) >= model_.accessors.size())
-            fail(semantic + " refers to accessor " + std::to_string(accessorIndex) + ", which does not exist");
-        const tinygltf::Accessor& accessor = model_.accessors[size_t(accessorIndex)];
-        const std::string who = semantic + " accessor " + std::to_string(accessorIndex);
-        if (accessor.sparse.isSparse) fail(who + " is sparse, which is not supported");
-        if (accessor.bufferView < 0) fail(who + " has no buffer view");
-        if (size_t(accessor.bufferView) >= model_.bufferViews.size())
-            fail(who + " refers to buffer view " + std::to_string(accessor.bufferView) + ", which does not exist");
-        const tinygltf::BufferView& view = model_.bufferViews[size_t(accessor.bufferView)];
-        const std::string viewName = "buffer view " + std::to_string(accessor.bufferView);
-        if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
-            fail(viewName + " refers to buffer " + std::to_string(view.buffer) + ", which does not exist");
-        const tinygltf::Buffer& buffer = model_.buffers[size_t(view.buffer)];
-        size_t viewEnd = 0;
-        if (!checkedAdd(view.byteOffset, view.byteLength, viewEnd) || viewEnd > buffer.data.size())
-            fail(viewName + " reads past the end of buffer " + std::to_string(view.buffer));
-
-        const size_t componentSize = componentBytes(accessor.componentType);
-        const size_t components = componentsPerElement(accessor.type);
-        if (componentSize == 0 || components == 0) fail(who + " has an unsupported componentType or type");
-        const size_t elementSize = componentSize * components;
-        const size_t stride = view.byteStride != 0 ? view.byteStride : elementSize;
-        if (stride < elementSize)
-            fail(viewName + " has byteStride " + std::to_string(stride) + ", smaller than one element of " + who);
-
-        AccessorSpan result;
-        result.stride = stride;
-        result.count = accessor.count;
-        result.componentType = accessor.componentType;
-        result.type = accessor.type;
-        result.normalized = accessor.normalized;
-        if (accessor.count == 0) return result;
-        // The last element must end inside the view:
-        // byteOffset + stride * (count - 1) + elementSize <= view.byteLength.
-        size_t end = 0;
-        if (!checkedMultiply(stride, accessor.count - 1, end) || !checkedAdd(end, accessor.byteOffset, end) ||
-            !checkedAdd(end, elementSize, end) || end > view.byteLength)
-            fail(who + " reads past the end of " + viewName);
-        result.first = buffer.data.data() + view.byteOffset + accessor.byteOffset;
-        return result;
-    }
-
-    std::vector<glm::vec3> readVec3(int accessorIndex, const std::string& semantic, const char* what) const {
-        const AccessorSpan s = span(accessorIndex, semantic);
-        if (s.type != TINYGLTF_TYPE_VEC3 || s.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
-            fail(semantic + " accessor " + std::to_string(accessorIndex) + " is not VEC3 of FLOAT");
-        std::vector<glm::vec3> values(s.count);
-        for (size_t i = 0; i < s.count; ++i) {
-            const unsigned char* e = s.element(i);
-            values[i] = glm::vec3(readFloat(e), readFloat(e + 4), readFloat(e + 8));
-            if (!finite(values[i])) fail(std::string(what) + " " + std::to_string(i) + " is not finite (NaN or inf)");
-        }
-        return values;
-    }
-
-    std::vector<glm::vec2> readTexcoords(int accessorIndex, const std::string& semantic) const {
-        const AccessorSpan s = span(accessorIndex, semantic);
-        const bool isFloat = s.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
-        const bool isUnorm8 = s.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && s.normalized;
-        const bool isUnorm16 = s.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && s.normalized;
-        if (s.type != TINYGLTF_TYPE_VEC2 || !(isFloat || isUnorm8 || isUnorm16))
-            fail(semantic + " accessor " + std::to_string(accessorIndex) +
-                 " is not VEC2 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT");
-        std::vector<glm::vec2> values(s.count);
-        for (size_t i = 0; i < s.count; ++i) {
-            const unsigned char* e = s.element(i);
-            if (isFloat) {
-                values[i] = glm::vec2(readFloat(e), readFloat(e + 4));
-            } else if (isUnorm8) {
-                values[i] = glm::vec2(float(e[0]), float(e[1])) / 255.0f;
-            } else {
-                values[i] = glm::vec2(float(readUnsigned<uint16_t>(e)), float(readUnsigned<uint16_t>(e + 2))) / 65535.0f;
-            }
-            if (!finite(values[i]))
-                fail("texture coordinate " + std::to_string(i) + " is not finite (NaN or inf)");
-        }
-        return values;
-    }
-
-    std::vector<uint32_t> readIndices(int accessorIndex) const {
-        const AccessorSpan s = span(accessorIndex, "indices");
-        if (s.type != TINYGLTF_TYPE_SCALAR ||
-            (s.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-             s.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-             s.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-            fail("indices accessor " + std::to_string(accessorIndex) +
-                 " is not SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
-        std::vector<uint32_t> values(s.count);
-        for (size_t i = 0; i < s.count; ++i) {
-            const unsigned char* e = s.element(i);
-            switch (s.componentType) {
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: values[i] = e[0]; break;
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: values[i] = readUnsigned<uint16_t>(e); break;
-                default: values[i] = readUnsigned<uint32_t>(e); break;
-            }
-        }
-        return values;
-    }
-
-private:
-    const tinygltf::Model& model_;
-    const std::string& label_;
-    const std::string& path_;
-};
-
-int attribute(const tinygltf::Primitive& primitive, const char* semantic) {
-    const auto it = primitive.attributes.find(semantic);
-    return it == primitive.attributes.end() ? -1 : it->second;
 }
 
 // Loaded normals made unit length. A zero normal carries no direction; such a vertex gets the
@@ -237,54 +182,28 @@ void repairNormals(std::vector<glm::vec3>& normals, const std::vector<glm::vec3>
 
 }  // namespace
 
+bool drawsTriangles(int mode) {
+    return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
 std::optional<Mesh> appendPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                                     const std::string& label, const std::string& path,
                                     std::vector<Vertex>& vertices, std::vector<uint32_t>& indices) {
-    const PrimitiveReader reader(model, label, path);
-    const int positionAccessor = attribute(primitive, "POSITION");
-    if (positionAccessor < 0) reader.fail("has no POSITION attribute");
-    const std::vector<glm::vec3> positions = reader.readVec3(positionAccessor, "POSITION", "position");
-    const size_t vertexCount = positions.size();
-
-    std::vector<glm::vec3> normals;
-    if (const int accessor = attribute(primitive, "NORMAL"); accessor >= 0) {
-        normals = reader.readVec3(accessor, "NORMAL", "normal");
-        if (normals.size() != vertexCount)
-            reader.fail("NORMAL has " + std::to_string(normals.size()) + " elements but POSITION has " +
-                        std::to_string(vertexCount));
-    }
-    std::vector<glm::vec2> texcoordSets[2];
-    for (size_t set = 0; set < 2; ++set) {
-        const std::string semantic = set == 0 ? "TEXCOORD_0" : "TEXCOORD_1";
-        const int accessor = attribute(primitive, semantic.c_str());
-        if (accessor < 0) continue;
-        texcoordSets[set] = reader.readTexcoords(accessor, semantic);
-        if (texcoordSets[set].size() != vertexCount)
-            reader.fail(semantic + " has " + std::to_string(texcoordSets[set].size()) + " elements but POSITION has " +
-                        std::to_string(vertexCount));
-    }
-
-    std::vector<uint32_t> triangleIndices;
-    if (primitive.indices >= 0) {
-        triangleIndices = reader.readIndices(primitive.indices);
-        for (size_t i = 0; i < triangleIndices.size(); ++i)
-            if (triangleIndices[i] >= vertexCount)
-                reader.fail("index " + std::to_string(i) + " is " + std::to_string(triangleIndices[i]) +
-                            ", out of range for " + std::to_string(vertexCount) + " vertices");
-        if (triangleIndices.size() % 3 != 0)
-            reader.fail(std::to_string(triangleIndices.size()) + " indices are not a whole number of triangles");
-    } else {
-        if (vertexCount % 3 != 0)
-            reader.fail(std::to_string(vertexCount) + " vertices (no indices) are not a whole number of triangles");
-        if (vertexCount > std::numeric_limits<uint32_t>::max()) reader.fail("has more than 2^32 vertices");
-        triangleIndices.reserve(vertexCount);
-        for (size_t v = 0; v < vertexCount; ++v) triangleIndices.push_back(uint32_t(v));
-    }
+    const AccessorReader reader(model, label, path);
+    PrimitiveArrays arrays = gatherArrays(AttributeSource(model, primitive, reader), reader);
+    const std::vector<uint32_t> triangleIndices = triangleList(primitive.mode, arrays, reader);
     if (triangleIndices.empty()) return std::nullopt;
+
+    const std::vector<glm::vec3>& positions = arrays.positions;
+    const size_t vertexCount = positions.size();
+    const auto uvs = arrays.texcoords.find("TEXCOORD_0");
+    const auto uvs1 = arrays.texcoords.find("TEXCOORD_1");
+    const auto uvOf = [&](size_t v) { return uvs == arrays.texcoords.end() ? glm::vec2(0.0f) : uvs->second[v]; };
+    const auto uv1Of = [&](size_t v) { return uvs1 == arrays.texcoords.end() ? glm::vec2(0.0f) : uvs1->second[v]; };
 
     // Without NORMAL the glTF spec asks for flat shading: every triangle gets its own three
     // vertices carrying the face normal.
-    const bool flat = normals.empty();
+    const bool flat = arrays.normals.empty();
     const size_t outputVertices = flat ? triangleIndices.size() : vertexCount;
     constexpr size_t kMaxCount = std::numeric_limits<uint32_t>::max();
     if (outputVertices > kMaxCount - vertices.size() || triangleIndices.size() > kMaxCount - indices.size())
@@ -295,9 +214,6 @@ std::optional<Mesh> appendPrimitive(const tinygltf::Model& model, const tinygltf
     mesh.indexCount = uint32_t(triangleIndices.size());
     mesh.vertexOffset = uint32_t(vertices.size());
     mesh.vertexCount = uint32_t(outputVertices);
-    const auto uvOf = [&](size_t set, size_t v) {
-        return texcoordSets[set].empty() ? glm::vec2(0.0f) : texcoordSets[set][v];
-    };
 
     vertices.reserve(vertices.size() + outputVertices);
     indices.reserve(indices.size() + triangleIndices.size());
@@ -307,14 +223,14 @@ std::optional<Mesh> appendPrimitive(const tinygltf::Model& model, const tinygltf
             const glm::vec3 normal = faceNormal(positions[a], positions[b], positions[c]);
             for (uint32_t v : {a, b, c}) {
                 indices.push_back(uint32_t(vertices.size()) - mesh.vertexOffset);
-                vertices.push_back(Vertex{positions[v], normal, uvOf(0, v), uvOf(1, v)});
+                vertices.push_back(Vertex{positions[v], normal, uvOf(v), uv1Of(v)});
                 mesh.localBounds.extend(positions[v]);
             }
         }
     } else {
-        repairNormals(normals, positions, triangleIndices);
+        repairNormals(arrays.normals, positions, triangleIndices);
         for (size_t v = 0; v < vertexCount; ++v) {
-            vertices.push_back(Vertex{positions[v], normals[v], uvOf(0, v), uvOf(1, v)});
+            vertices.push_back(Vertex{positions[v], arrays.normals[v], uvOf(v), uv1Of(v)});
             mesh.localBounds.extend(positions[v]);
         }
         indices.insert(indices.end(), triangleIndices.begin(), triangleIndices.end());

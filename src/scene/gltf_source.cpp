@@ -234,18 +234,41 @@ SourceFile readSource(const std::string& path) {
 
     const bool magic = source.bytes.size() >= 4 && readLittleEndian32(source.bytes.data()) == kGlbMagic;
     source.binary = magic || hasGlbExtension(path);
-    size_t jsonOffset = 0;
-    size_t jsonLength = source.bytes.size();
-    if (source.binary) std::tie(jsonOffset, jsonLength) = glbJsonChunk(source.bytes, path);
+    source.jsonOffset = 0;
+    source.jsonLength = source.bytes.size();
+    if (source.binary) std::tie(source.jsonOffset, source.jsonLength) = glbJsonChunk(source.bytes, path);
 
-    const auto jsonBegin = source.bytes.begin() + static_cast<std::ptrdiff_t>(jsonOffset);
+    const auto jsonBegin = source.bytes.begin() + static_cast<std::ptrdiff_t>(source.jsonOffset);
     try {
-        source.json = nlohmann::json::parse(jsonBegin, jsonBegin + static_cast<std::ptrdiff_t>(jsonLength));
+        source.json = nlohmann::json::parse(jsonBegin, jsonBegin + static_cast<std::ptrdiff_t>(source.jsonLength));
     } catch (const nlohmann::json::exception& e) {
         throw Error(path, "cannot parse JSON: " + withoutNlohmannPrefix(e.what()));
     }
     if (!source.json.is_object()) throw Error(path, "cannot parse JSON: the top level is not an object");
     return source;
+}
+
+std::vector<unsigned char> withJson(const SourceFile& source, const nlohmann::json& json) {
+    std::string text = json.dump();
+    if (!source.binary) return std::vector<unsigned char>(text.begin(), text.end());
+    // GLB chunks are 4-byte aligned; JSON is padded with spaces.
+    while (text.size() % 4 != 0) text += ' ';
+    // The chunks after the JSON one, up to the length the header declares (readSource checked
+    // that the JSON chunk ends within it).
+    const size_t rest = source.jsonOffset + source.jsonLength;
+    const size_t declaredEnd = readLittleEndian32(source.bytes.data() + 8);
+    std::vector<unsigned char> glb(source.bytes.begin(), source.bytes.begin() + kGlbHeaderBytes);
+    const auto appendU32 = [&glb](size_t value) {
+        for (int shift = 0; shift < 32; shift += 8) glb.push_back(static_cast<unsigned char>(value >> shift));
+    };
+    appendU32(text.size());
+    appendU32(kGlbJsonChunk);
+    glb.insert(glb.end(), text.begin(), text.end());
+    glb.insert(glb.end(), source.bytes.begin() + static_cast<std::ptrdiff_t>(rest),
+               source.bytes.begin() + static_cast<std::ptrdiff_t>(declaredEnd));
+    const size_t length = glb.size();
+    for (int i = 0; i < 4; ++i) glb[8 + size_t(i)] = static_cast<unsigned char>(length >> (8 * i));
+    return glb;
 }
 
 namespace {

@@ -182,9 +182,22 @@ TEST_F(GltfMalformed, NanNormalAndTexcoord) {
 }
 
 TEST_F(GltfMalformed, UnsupportedRequiredExtension) {
-    quad.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-    quad.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-    expectQuadLoadError("KHR_draco_mesh_compression");
+    quad.doc["extensionsUsed"] = {"KHR_texture_basisu"};
+    quad.doc["extensionsRequired"] = {"KHR_texture_basisu"};
+    expectQuadLoadError("requires the glTF extension KHR_texture_basisu, which is not supported");
+}
+
+TEST_F(GltfMalformed, UnsupportedRequiredExtensionsAreAllNamedBesideSupportedOnes) {
+    quad.doc["extensionsUsed"] = {"KHR_mesh_quantization", "EXT_unknown_a", "KHR_draco_mesh_compression", "EXT_unknown_b"};
+    quad.doc["extensionsRequired"] = quad.doc["extensionsUsed"];
+    expectQuadLoadError("requires the glTF extensions EXT_unknown_a, EXT_unknown_b, which are not supported");
+}
+
+TEST_F(GltfMalformed, SupportedRequiredExtensionsLoad) {
+    quad.doc["extensionsUsed"] = {"KHR_mesh_quantization", "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+                                  "KHR_lights_punctual"};
+    quad.doc["extensionsRequired"] = quad.doc["extensionsUsed"];
+    EXPECT_EQ(loadGltf(quad.write(dir.path())).triangleCount(), 2u);
 }
 
 TEST_F(GltfMalformed, IndexNotLessThanVertexCount) {
