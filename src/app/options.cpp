@@ -72,6 +72,26 @@ void parseShadowedCounts(const std::string& text, ShadowSettings& shadows) {
 
 }  // namespace
 
+uint64_t parseSceneTriangles(const std::string& text) {
+    const std::string expected = "expected a triangle count from 10k to 10M (e.g. 250k, 2M, 1e6), got '" + text + "'";
+    double scale = 1.0;
+    std::string digits = text;
+    if (!digits.empty() && (digits.back() == 'k' || digits.back() == 'M')) {
+        scale = digits.back() == 'k' ? 1e3 : 1e6;
+        digits.pop_back();
+    }
+    double value = 0.0;
+    if (digits.empty() || !(digits[0] >= '0' && digits[0] <= '9') || !parseNumber(digits, value)) {
+        throw Error("--scene-triangles", expected);
+    }
+    value *= scale;
+    if (!(value >= double(rooms_scene::kMinTriangles) && value <= double(rooms_scene::kMaxTriangles)) ||
+        value != std::floor(value)) {
+        throw Error("--scene-triangles", expected);
+    }
+    return uint64_t(value);
+}
+
 void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
     const auto x = text.find('x');
     const std::string expected = "expected WxH (e.g. 1280x720), got '" + text + "'";
@@ -92,6 +112,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         };
         if (arg == "--scene") {
             options.sceneName = parseBuiltinScene(value()).name;
+        } else if (arg == "--scene-triangles") {
+            options.sceneTriangles = parseSceneTriangles(value());
         } else if (arg == "--lights") {
             options.lights = parseLightCounts(value());
         } else if (arg == "--size") {
@@ -188,6 +210,16 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         throw Error("--scene", "a built-in scene and a scene file ('" + *options.scenePath +
                                    "') cannot both be given: choose one");
     }
+    if (options.sceneTriangles && !(options.sceneName && parseBuiltinScene(*options.sceneName).sized())) {
+        std::string sized;
+        for (const BuiltinScene& scene : kBuiltinScenes) {
+            if (scene.sized()) sized += std::string(sized.empty() ? "" : " or ") + "--scene " + scene.name;
+        }
+        throw Error("--scene-triangles", "sizes only " + sized + ", not " +
+                                             (options.scenePath ? "a scene file"
+                                                                : "--scene " + options.sceneName.value_or(
+                                                                                   kDefaultBuiltinScene.name)));
+    }
     render::validateRenderSettings(renderSettingsFrom(options));
     return options;
 }
@@ -223,7 +255,9 @@ Renders SCENE (or a built-in scene) on the GPU and prints per-pass GPU times.
 options:
   --scene NAME         a built-in scene instead of a file:
 )" + variantHelp(kBuiltinScenes, kDefaultBuiltinScene.value, kListIndent) +
-           R"(  --lights S,P[,SEED]  replace the scene's lights with S spot (<= 64) and P point (<= 32)
+           R"(  --scene-triangles N  the size of --scene rooms, 10k to 10M triangles (e.g. 250k, 2M, 1e6;
+                       default 100k)
+  --lights S,P[,SEED]  replace the scene's lights with S spot (<= 64) and P point (<= 32)
                        lights generated inside its bounds (same seed, same lights; seed 1)
   --size WxH           output size in pixels (default 1280x720)
   --out FILE.png       write the tone-mapped image

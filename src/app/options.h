@@ -17,6 +17,7 @@ namespace punctual::app {
 struct RenderOptions {
     std::optional<std::string> scenePath;  // a glTF file; none: a built-in scene
     std::optional<std::string> sceneName;  // --scene NAME, a name of kBuiltinScenes; none: the default one
+    std::optional<uint64_t> sceneTriangles;  // --scene-triangles N: the size of a sized built-in scene
     std::optional<LightCounts> lights;     // --lights S,P[,SEED]
     uint32_t width = 1280;
     uint32_t height = 720;
@@ -36,6 +37,10 @@ struct RenderOptions {
 
 // Parses the arguments after the command name. Throws punctual::Error naming the option.
 RenderOptions parseRenderOptions(const std::vector<std::string>& args);
+
+// "250k" -> 250000: a whole number, in scientific notation (1e6) or with a suffix k (x 10^3) or M
+// (x 10^6), from rooms_scene::kMinTriangles to kMaxTriangles. Throws Error("--scene-triangles", ...).
+uint64_t parseSceneTriangles(const std::string& text);
 
 // "1280x720" -> (1280, 720). Throws Error("--size", ...).
 void parseSize(const std::string& text, uint32_t& width, uint32_t& height);

@@ -42,6 +42,7 @@ options:
   --shadows on|off     shadow rays to every light reaching a point (default on)
   --no-shadows         the same as --shadows off: every light unoccluded
   --scene NAME         the built-in scene NAME instead of a file (see punctual render --help)
+  --scene-triangles N  the size of --scene rooms, 10k to 10M triangles (default 100k)
   --lights S,P[,SEED]  replace the scene's lights with S spot (<= 64) and P point (<= 32)
                        lights generated inside its bounds (same seed, same lights; seed 1)
   --size WxH           output size in pixels (default 1280x720)

@@ -13,8 +13,9 @@ Scene loadSceneForOptions(const RenderOptions& options) {
     GltfLoadOptions load;
     load.textureLimit = textureLimitForFrame(options.width, options.height);
     Scene scene = options.scenePath ? loadGltf(*options.scenePath, load)
-                                    : options.sceneName ? makeBuiltinScene(*options.sceneName)
-                                                        : kDefaultBuiltinScene.value();
+                                    : makeBuiltinScene(options.sceneName ? parseBuiltinScene(*options.sceneName)
+                                                                                         : kDefaultBuiltinScene,
+                                                       options.sceneTriangles);
     if (options.lights) {
         replaceLights(scene, options.lights->spot, options.lights->point, options.lights->seed);
     }

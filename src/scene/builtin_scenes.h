@@ -1,39 +1,59 @@
 #pragma once
 // The scenes punctual builds itself, chosen with `--scene NAME` (the first entry when neither a
-// scene file nor --scene is given). One entry each: its name, its maker and the one line --help
-// prints. Adding a scene is an entry here plus its maker and its test (docs/EXTENDING.md);
-// parsing, the error that lists the names and --help all read this table (core/variant_table.h).
+// scene file nor --scene is given). One entry each: its name, its maker, the one line --help
+// prints and, for a scene built to a size, its default size. Adding a scene is an entry here plus
+// its maker and its test (docs/EXTENDING.md); parsing, the error that lists the names and --help
+// all read this table (core/variant_table.h).
 #include <array>
+#include <cstdint>
+#include <optional>
 #include <string>
 
 #include "core/variant_table.h"
 #include "scene/default_scene.h"
 #include "scene/outdoor_scene.h"
+#include "scene/rooms_scene.h"
 #include "scene/scene.h"
 
 namespace punctual {
 
 struct BuiltinScene {
-    Scene (*value)();  // the maker (named `value` as in every variant table)
+    // The maker (named `value` as in every variant table), given the triangle count to aim at:
+    // --scene-triangles, else defaultTriangles. A scene of fixed size ignores it.
+    Scene (*value)(uint64_t triangles);
     const char* name;
     const char* description;
+    uint64_t defaultTriangles = 0;  // 0: a scene of fixed size, which --scene-triangles cannot size
+
+    bool sized() const { return defaultTriangles != 0; }
 };
 
-inline constexpr std::array<BuiltinScene, 2> kBuiltinScenes = {{
-    {makeDefaultScene, "hall", "a 40 m x 30 m hall of walls, pillars and crates, 96 lamps"},
-    {makeOutdoorScene, "outdoor", "a street in low sun, casters 0.9 to 300 m away, 32 lamps"},
+inline constexpr std::array<BuiltinScene, 3> kBuiltinScenes = {{
+    {[](uint64_t) { return makeDefaultScene(); }, "hall", "a 40 m x 30 m hall of walls, pillars and crates, 96 lamps"},
+    {[](uint64_t) { return makeOutdoorScene(); }, "outdoor",
+     "a street in low sun, casters 0.9 to 300 m away, 32 lamps"},
+    {makeRoomsScene, "rooms",
+     "furnished rooms, 10^4 to 10^7 triangles (--scene-triangles), 96 lamps, a sun",
+     rooms_scene::kDefaultTriangles},
 }};
 static_assert(namesAreUnique(kBuiltinScenes));
 
 // The scene used when neither a scene file nor --scene is given.
 inline constexpr const BuiltinScene& kDefaultBuiltinScene = kBuiltinScenes[0];
 
-// The entry named `name`. Throws Error("--scene", "expected hall or outdoor, got 'x'").
+// The entry named `name`. Throws Error("--scene", "expected hall, outdoor or rooms, got 'x'").
 inline const BuiltinScene& parseBuiltinScene(const std::string& name) {
     return parseVariant(kBuiltinScenes, name, "--scene");
 }
 
+// Builds `scene` with `triangles` (a sized scene; none: its default size).
+inline Scene makeBuiltinScene(const BuiltinScene& scene, std::optional<uint64_t> triangles = std::nullopt) {
+    return scene.value(triangles.value_or(scene.defaultTriangles));
+}
+
 // Builds the scene named `name` (see parseBuiltinScene for an unknown name).
-inline Scene makeBuiltinScene(const std::string& name) { return parseBuiltinScene(name).value(); }
+inline Scene makeBuiltinScene(const std::string& name, std::optional<uint64_t> triangles = std::nullopt) {
+    return makeBuiltinScene(parseBuiltinScene(name), triangles);
+}
 
 }  // namespace punctual

@@ -14,6 +14,11 @@ constexpr uint32_t kLeafSize = 4;
 }  // namespace
 
 TriangleBvh::TriangleBvh(const Scene& scene) {
+    // Reserved once: a scene of 10^7 triangles would otherwise hold up to twice its triangles while
+    // the array grows.
+    size_t triangleCount = 0;
+    for (const Object& object : scene.objects) triangleCount += scene.meshes.at(object.mesh).indexCount / 3;
+    triangles_.reserve(triangleCount);
     for (const Object& object : scene.objects) {
         const Mesh& mesh = scene.meshes.at(object.mesh);
         for (uint32_t i = 0; i + 2 < mesh.indexCount; i += 3) {

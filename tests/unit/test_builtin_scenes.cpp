@@ -11,11 +11,17 @@
 namespace punctual {
 namespace {
 
-TEST(BuiltinScenes, HallIsTheDefaultAndOutdoorIsListed) {
+TEST(BuiltinScenes, HallIsTheDefaultAndOutdoorAndRoomsAreListed) {
     EXPECT_STREQ(kDefaultBuiltinScene.name, "hall");
-    EXPECT_EQ(variantNames(kBuiltinScenes), (std::vector<std::string>{"hall", "outdoor"}));
-    EXPECT_EQ(kDefaultBuiltinScene.value, &makeDefaultScene);
-    EXPECT_EQ(parseBuiltinScene("outdoor").value, &makeOutdoorScene);
+    EXPECT_EQ(variantNames(kBuiltinScenes), (std::vector<std::string>{"hall", "outdoor", "rooms"}));
+    EXPECT_EQ(makeBuiltinScene(kDefaultBuiltinScene).source, default_scene::kSource);
+    EXPECT_EQ(makeBuiltinScene("outdoor").source, outdoor_scene::kSource);
+    EXPECT_EQ(makeBuiltinScene("rooms").source, rooms_scene::kSource);
+    // Only the rooms are built to a size; the others ignore one.
+    EXPECT_FALSE(kDefaultBuiltinScene.sized());
+    EXPECT_FALSE(parseBuiltinScene("outdoor").sized());
+    EXPECT_EQ(parseBuiltinScene("rooms").defaultTriangles, rooms_scene::kDefaultTriangles);
+    EXPECT_EQ(makeBuiltinScene("hall", 20'000).triangleCount(), makeDefaultScene().triangleCount());
 }
 
 TEST(BuiltinScenes, EveryEntryBuildsAValidSceneOfItsOwn) {
@@ -41,7 +47,7 @@ TEST(BuiltinScenes, UnknownNameFailsWithOneLineListingTheNames) {
             parseBuiltinScene(name);
             ADD_FAILURE() << "no error for '" << name << "'";
         } catch (const Error& error) {
-            EXPECT_EQ(std::string(error.what()), "--scene: expected hall or outdoor, got '" + name + "'");
+            EXPECT_EQ(std::string(error.what()), "--scene: expected hall, outdoor or rooms, got '" + name + "'");
         }
     }
 }
