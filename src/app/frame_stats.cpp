@@ -2,9 +2,28 @@
 
 #include <cstdio>
 
+#include "core/memory_usage.h"
 #include "lights/shadow_sizing.h"
+#include "lights/view_objects.h"
 
 namespace punctual::app {
+
+nlohmann::json geometryStatsJson(const render::Renderer& renderer, const Scene& scene) {
+    std::vector<uint32_t> everyObject(scene.objects.size());
+    for (uint32_t i = 0; i < everyObject.size(); ++i) everyObject[i] = i;
+    const render::CameraDraws& camera = renderer.cameraDraws();
+    const render::ShadowDraws shadows = renderer.shadowDraws();
+    return {{"triangles", scene.triangleCount()},
+            {"triangles_instanced", trianglesOf(scene, everyObject)},
+            {"objects", scene.objects.size()},
+            {"objects_in_view", camera.objectsInView},
+            {"camera_triangles", camera.triangles},
+            {"camera_draws", {{"depth", camera.depthDraws},
+                              {"forward", camera.forwardDraws},
+                              {"transparent", camera.transparentDraws}}},
+            {"shadow_draws", {{"total", shadows.total}, {"max_per_view", shadows.maxPerView}}},
+            {"shadow_triangles", shadows.triangles}};
+}
 
 nlohmann::json frameStatsJson(const render::FrameResult& result, const render::Renderer& renderer,
                               const Scene& scene, const std::string& deviceName, uint32_t frames) {
@@ -28,6 +47,8 @@ nlohmann::json frameStatsJson(const render::FrameResult& result, const render::R
                        {"in_scene", scene.lights.size()}};
     stats["triangles"] = scene.triangleCount();
     stats["objects"] = scene.objects.size();
+    stats["geometry"] = geometryStatsJson(renderer, scene);
+    stats["memory"] = {{"peak_rss_bytes", peakResidentBytes()}, {"device_bytes", renderer.deviceMemoryBytes()}};
     return stats;
 }
 

@@ -9,7 +9,8 @@
 namespace punctual::app {
 
 // {"gpu_ms": {<every pass by name, in frame order: depth, culling, shadows, forward, tonemap>, total}, "lights": {spot, point,
-//  directional, culled_by_frustum, dropped_by_cap, in_scene}, "frames", "size", "device", "scene"}
+//  directional, culled_by_frustum, dropped_by_cap, in_scene}, "frames", "size", "device", "scene",
+//  "triangles", "objects", "geometry": geometryStatsJson, "memory": {"peak_rss_bytes", "device_bytes"}}
 nlohmann::json frameStatsJson(const render::FrameResult& result, const render::Renderer& renderer,
                               const Scene& scene, const std::string& deviceName, uint32_t frames);
 
@@ -22,6 +23,11 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
 //  "shadowed_spots", "shadowed_points", "dropped_by_cap", "views_rendered", "views_skipped",
 //  "faces_rendered", "faces_skipped" (the same counts), "memory_bytes"}
 nlohmann::json shadowStatsJson(const render::Renderer& renderer);
+
+// {"triangles" (in the scene's buffers), "triangles_instanced" (each object's mesh once), "objects",
+//  "objects_in_view", "camera_triangles", "camera_draws": {"depth", "forward", "transparent"},
+//  "shadow_draws": {"total", "max_per_view"}, "shadow_triangles"}
+nlohmann::json geometryStatsJson(const render::Renderer& renderer, const Scene& scene);
 
 std::string timingTable(const render::PassTimings& ms);
 

@@ -1,5 +1,7 @@
 #include "render/depth_prepass.h"
 
+#include <utility>
+
 #include "culling.h"
 #include "gpu_types.h"
 #include "render/frame_bindings.h"
@@ -27,9 +29,11 @@ vk::Image depthImage(const vk::Context& context, uint32_t width, uint32_t height
 
 }  // namespace
 
-DepthPrepass::DepthPrepass(const vk::Context& context, uint32_t width, uint32_t height)
+DepthPrepass::DepthPrepass(const vk::Context& context, uint32_t width, uint32_t height,
+                           std::array<std::vector<uint32_t>, kPrepassDrawKinds> drawLists)
     : depth_(depthImage(context, width, height)),
       sampler_(vk::createSampler(context.device(), VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE)),
+      drawLists_(std::move(drawLists)),
       width_(width),
       height_(height) {
     vk::RenderPassDesc passDesc;
@@ -81,7 +85,7 @@ void DepthPrepass::record(const FrameContext& frame) const {
     vk::beginRenderPass(frame.cmd, renderPass_, framebuffer_, width_, height_, {&clear, 1});
     frame.bindings.bind(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
     for (uint32_t kind = 0; kind < kPrepassDrawKinds; ++kind) {
-        const std::span<const uint32_t> objects = frame.scene.objectsOfKind(DepthDrawKind(kind));
+        const std::vector<uint32_t>& objects = drawLists_[kind];
         if (objects.empty()) continue;
         vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_[kind]);
         frame.scene.drawObjects(frame.cmd, frame.bindings.pipelineLayout(), objects, 0, kRasterStages,

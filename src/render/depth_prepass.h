@@ -6,6 +6,7 @@
 // pixel once (EQUAL test, no depth writes), and the culling passes read this depth (set 0,
 // PUNCTUAL_BINDING_DEPTH).
 #include <array>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -18,7 +19,10 @@ namespace punctual::render {
 
 class DepthPrepass final : public Pass {
 public:
-    DepthPrepass(const vk::Context& context, uint32_t width, uint32_t height);
+    // `drawLists`: per DepthDrawKind before Blended, the objects to draw (those the camera sees),
+    // ascending.
+    DepthPrepass(const vk::Context& context, uint32_t width, uint32_t height,
+                 std::array<std::vector<uint32_t>, kPrepassDrawKinds> drawLists);
 
     const char* name() const override { return "depth"; }
     void addBindings(BindingTable& table) const override;
@@ -41,6 +45,7 @@ private:
     vk::Handle<VkFramebuffer> framebuffer_;
     // One per DepthDrawKind (render/scene_gpu.h): opaque two-sided, culled CCW, culled CW, masked.
     std::array<vk::Handle<VkPipeline>, kPrepassDrawKinds> pipelines_;
+    std::array<std::vector<uint32_t>, kPrepassDrawKinds> drawLists_;
     uint32_t width_ = 0;
     uint32_t height_ = 0;
 };

@@ -33,6 +33,10 @@ struct RenderSettings {
     // For the failure study only: cull tiles and clusters by the opaque depth alone, as before the
     // transparent depth span existed, to show the lights a transparent surface then misses.
     bool opaqueCullingDepth = false;
+    // For tests and studies only: false draws every object in the camera's passes (depth,
+    // forward, transparent) instead of only those whose bounds meet the camera's frustum. The
+    // image is the same either way; only the work differs.
+    bool cullObjectsToView = true;
 };
 
 

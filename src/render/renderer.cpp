@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -12,6 +13,7 @@
 #include "gpu_types.h"
 #include "lights/cascade_setup.h"
 #include "lights/shadow_sizing.h"
+#include "lights/view_objects.h"
 #include "render/depth_prepass.h"
 #include "render/forward_pass.h"
 #include "render/frame_bindings.h"
@@ -113,9 +115,11 @@ struct Renderer::Resources {
         return static_cast<P*>(passes.back().get());
     }
 
+    // `inView`: the objects the camera's passes draw, ascending; `draws` is filled with their counts.
     Resources(vk::Context& context, const Scene& sceneData, const RenderSettings& settings,
               const FrameLights& frameLights, const PerObjectLightLists& perObject, const LightGridLayout& gridLayout,
-              const ShadowPlan& shadowPlan, const glm::mat4& view)
+              const ShadowPlan& shadowPlan, const glm::mat4& view, const std::vector<uint32_t>& inView,
+              CameraDraws& draws)
         : scene(context, sceneData, perObject.counts),
           frameUniform(context, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload,
                        "frame"),
@@ -148,11 +152,23 @@ struct Renderer::Resources {
         std::vector<gpu::CullLight> cullLights;
         for (const gpu::GpuPunctualLight& light : frameLights.packed) cullLights.push_back(gpu::makeCullLight(light, view));
 
-        // The frame, in order.
-        const std::span<const uint32_t> blendedSpan = scene.objectsOfKind(DepthDrawKind::Blended);
-        const std::vector<uint32_t> blended(blendedSpan.begin(), blendedSpan.end());
-        const std::vector<uint32_t> unblended(scene.unblendedObjects().begin(), scene.unblendedObjects().end());
-        depth = addPass<DepthPrepass>(context, settings.width, settings.height);
+        // The frame, in order. The camera's passes draw the objects in view only, each list in
+        // object order as before (so every fragment is drawn in the same order: the same image).
+        auto visible = [&](std::span<const uint32_t> objects) {
+            return keepInView(std::vector<uint32_t>(objects.begin(), objects.end()), inView);
+        };
+        const std::vector<uint32_t> blended = visible(scene.objectsOfKind(DepthDrawKind::Blended));
+        const std::vector<uint32_t> unblended = visible(scene.unblendedObjects());
+        std::array<std::vector<uint32_t>, kPrepassDrawKinds> prepassLists;
+        for (uint32_t kind = 0; kind < kPrepassDrawKinds; ++kind) {
+            prepassLists[kind] = visible(scene.objectsOfKind(DepthDrawKind(kind)));
+            draws.depthDraws += prepassLists[kind].size();
+        }
+        draws.objectsInView = inView.size();
+        draws.forwardDraws = unblended.size();
+        draws.transparentDraws = blended.size();
+        draws.triangles = trianglesOf(sceneData, inView);
+        depth = addPass<DepthPrepass>(context, settings.width, settings.height, std::move(prepassLists));
         transparentDepth = addPass<TransparentDepthPass>(context, depth->depth(), blended,
                                                          usesLightGrid(settings.method) && !settings.opaqueCullingDepth,
                                                          settings.width, settings.height);
@@ -284,8 +300,15 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     if (method.objectLists) perObjectLists_ = buildPerObjectLightLists(scene, lights_);
     const uint32_t slices = method.depthSlices ? settings.clusterSlices : 1u;
     gridLayout_ = LightGridLayout::forFrame(settings.width, settings.height, settings.tileSize, slices);
-    resources_ =
-        std::make_unique<Resources>(context, scene, settings, lights_, perObjectLists_, gridLayout_, shadowPlan_, view_);
+    std::vector<uint32_t> inView;
+    if (settings.cullObjectsToView) {
+        inView = objectsInView(scene, projection_ * view_);
+    } else {
+        inView.resize(scene.objects.size());
+        for (uint32_t i = 0; i < inView.size(); ++i) inView[i] = i;
+    }
+    resources_ = std::make_unique<Resources>(context, scene, settings, lights_, perObjectLists_, gridLayout_,
+                                             shadowPlan_, view_, inView, cameraDraws_);
     Resources& r = *resources_;
     gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_, gridLayout_, shadowPlan_);
     frame.lightCounts.w = r.transparentDepth->needed() ? 1u : 0u;
@@ -506,6 +529,28 @@ ShadowFactorImage Renderer::readShadowFactors() {
 }
 
 uint64_t Renderer::shadowMemoryBytes() const { return resources_->shadows->memoryBytes(); }
+
+uint64_t Renderer::deviceMemoryBytes() const {
+    const Resources& r = *resources_;
+    uint64_t bytes = r.scene.memoryBytes() + r.radiance.allocatedBytes();
+    for (const vk::Buffer* buffer :
+         {&r.frameUniform, &r.lights, &r.objectLights, &r.lightStats, &r.shadowDebug, &r.readback}) {
+        bytes += buffer->size();
+    }
+    for (const auto& pass : r.passes) bytes += pass->memoryBytes();
+    return bytes;
+}
+
+ShadowDraws Renderer::shadowDraws() const {
+    ShadowDraws draws;
+    for (const ShadowView& view : shadowPlan_.views) {
+        if (!view.rendered()) continue;
+        draws.total += view.casters.size();
+        draws.maxPerView = std::max<uint64_t>(draws.maxPerView, view.casters.size());
+        draws.triangles += trianglesOf(scene_, view.casters);
+    }
+    return draws;
+}
 
 std::vector<float> Renderer::readDepth() {
     const vk::Image& depthImage = resources_->depth->depth();

@@ -42,6 +42,23 @@ struct PassTimings {
     double of(std::string_view name) const;
 };
 
+// What the camera's passes draw: the objects whose bounds meet its frustum (all of them with
+// RenderSettings::cullObjectsToView off), one draw each per pass that draws its kind.
+struct CameraDraws {
+    uint64_t objectsInView = 0;
+    uint64_t depthDraws = 0;        // the prepass: opaque and masked objects in view
+    uint64_t forwardDraws = 0;      // the forward pass: the same objects
+    uint64_t transparentDraws = 0;  // the transparent pass (and the transparent depth pass)
+    uint64_t triangles = 0;         // the triangles of the objects in view, each object's mesh once
+};
+
+// What the shadow passes draw: each rendered view's casters, one draw each.
+struct ShadowDraws {
+    uint64_t total = 0;
+    uint64_t maxPerView = 0;
+    uint64_t triangles = 0;  // summed over the rendered views
+};
+
 struct FrameResult {
     ImageRgba8 image;
     PassTimings medianMs;              // per pass, median over the timed frames
@@ -75,6 +92,11 @@ public:
     const PerObjectLightLists& perObjectLists() const { return perObjectLists_; }
     const ShadowPlan& shadowPlan() const { return shadowPlan_; }
     uint64_t shadowMemoryBytes() const;
+    // Device memory the renderer allocated: the scene's buffers and textures, every pass's images
+    // and buffers, the frame's own buffers (debug outputs and readback included).
+    uint64_t deviceMemoryBytes() const;
+    const CameraDraws& cameraDraws() const { return cameraDraws_; }
+    ShadowDraws shadowDraws() const;
     const FrameLights& lights() const { return lights_; }
     const glm::mat4& view() const { return view_; }
     const glm::mat4& projection() const { return projection_; }
@@ -100,6 +122,7 @@ private:
     PerObjectLightLists perObjectLists_;
     ShadowPlan shadowPlan_;
     LightGridLayout gridLayout_;
+    CameraDraws cameraDraws_;
     std::unique_ptr<Resources> resources_;
 };
 

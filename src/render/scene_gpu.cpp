@@ -252,6 +252,12 @@ void SceneGpu::createMaterialSets(vk::Context& context, const Scene& scene) {
     }
 }
 
+uint64_t SceneGpu::memoryBytes() const {
+    uint64_t bytes = vertices_.size() + indices_.size() + objects_.size() + materials_.size();
+    for (const vk::Image& texture : textures_) bytes += texture.allocatedBytes();
+    return bytes;
+}
+
 void SceneGpu::drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, bool withTextures) const {
     std::vector<uint32_t> all(draws_.size());
     for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;

@@ -58,6 +58,9 @@ public:
     void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<const uint32_t> objects,
                      uint32_t pushOffset, VkShaderStageFlags stages, bool withTextures = false) const;
 
+    // Bytes of the scene's device buffers and textures.
+    uint64_t memoryBytes() const;
+
     static std::vector<VkVertexInputAttributeDescription> vertexAttributes();
     // Position and the two texture coordinate sets: what shadow_masked.vert reads.
     static std::vector<VkVertexInputAttributeDescription> maskedCasterAttributes();
