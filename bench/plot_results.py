@@ -41,7 +41,9 @@ TRAILING_COLUMNS = """total_ms total_spread_ms tested_per_pixel affecting_per_pi
     shadow_filter_taps shadow_reduced_views shadow_misclassified shadow_misclassified_all
     shadow_misclassified_1px shadow_false_shadow shadow_false_lit cascades sun_misclassified
     sun_misclassified_1px sun_cascade0_misclassified_1px sun_cascade1_misclassified_1px
-    sun_cascade2_misclassified_1px sun_cascade3_misclassified_1px""".split()
+    sun_cascade2_misclassified_1px sun_cascade3_misclassified_1px scene_triangles objects
+    objects_in_view camera_triangles camera_draws shadow_draws shadow_draws_max shadow_triangles
+    peak_rss_bytes device_bytes""".split()
 # Method styles by position in results.json's "methods": the first four keep the colours the
 # charts have always had (brute, per-object, tiled, clustered). Grey and "x" are left out: they
 # mark a method that results.json does not list.

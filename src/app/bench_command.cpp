@@ -18,6 +18,7 @@
 #include "app/scene_source.h"
 #include "app/validation_report.h"
 #include "core/error.h"
+#include "core/memory_usage.h"
 #include "core/output_files.h"
 #include "core/output_folder.h"
 #include "lights/cascade_setup.h"
@@ -49,6 +50,7 @@ std::string usage() {
         if (!filter.footprint.fromDiskSettings) texelFilters.emplace_back(filter.name);
     }
     return R"(usage: punctual bench [SCENE|--scene NAME] [--quick] --out-dir DIR [--size WxH] [--frames N]
+                     [--series NAME[,NAME...]]
 
 Sweeps, on SCENE or the built-in scene NAME (default: )" + std::string(kDefaultBuiltinScene.name) +
            R"() with generated lights:
@@ -60,7 +62,9 @@ Sweeps, on SCENE or the built-in scene NAME (default: )" + std::string(kDefaultB
   the filters )" + joinNames(shadowFilterNames(), ", ") + R"( at auto resolution;
   the sun's cascades on the built-in outdoor scene (its own lights, the sun alone shadowed):
   1-4 cascades x resolution 512, 1024, 2048 x the filters )" + joinNames(texelFilters, ", ") + R"(;
-  each shadow configuration validated against Embree (edge band one texel, and one pixel).
+  each shadow configuration validated against Embree (edge band one texel, and one pixel);
+  cost against triangles: the built-in rooms scene at 10^4, 10^5, 10^6 and 10^7 triangles
+  (quick: 10^4 and 10^5) x every method, its own lights, shadows on, with peak memory.
 Every configuration renders one warm-up frame and N timed frames (default 5, quick 3) and keeps
 the median and spread of each pass. Writes DIR/results.csv, DIR/results.json and DIR/images/.
 Then the failure study (DIR/failures.csv): acne against bias, peter-panning against bias, cube
@@ -69,6 +73,8 @@ depth discontinuities (tiled against clustered), per-object lists on large objec
 beyond the caps, and the sun's cascades: shimmering along a camera path (texel snapping on and
 off), seams per blend, perspective aliasing against view depth (split schemes, 1-4 cascades) and
 pancaking (depth clamp on and off).
+--series: only the named series (mix, spot-only, point-only, shadows, shadow-quality,
+shadow-filters, cascades, triangles; failures: the failure study).
 --quick: 320x180, fewer counts, resolutions auto, 256 and 1024, 1 and 4 cascades at 512, fewer
 values in the failure study, filters )" +
            joinNames(quickFilters, " and ") + R"( (under 3 minutes
@@ -100,6 +106,12 @@ std::vector<std::string> resultColumns(const std::vector<std::string>& passes) {
     }
     // The sun's error per cascade, outside a one-pixel edge band (empty beyond the row's count).
     for (uint32_t i = 0; i < PUNCTUAL_MAX_CASCADES; ++i) columns.push_back(sunCascadeColumn(i));
+    // The triangle series' geometry and memory (empty in the other series).
+    for (const char* column : {"scene_triangles", "objects", "objects_in_view", "camera_triangles", "camera_draws",
+                               "shadow_draws", "shadow_draws_max", "shadow_triangles", "peak_rss_bytes",
+                               "device_bytes"}) {
+        columns.emplace_back(column);
+    }
     return columns;
 }
 
@@ -113,6 +125,7 @@ struct Config {
     uint32_t point = 0;
     ShadowSettings shadows;
     bool validateShadows = false;
+    uint64_t triangles = 0;  // a sized built-in scene's size (BuiltinScene::sized); 0: its default
 };
 
 using Row = std::map<std::string, std::string>;
@@ -153,6 +166,7 @@ std::string configName(const Config& c) {
     s << c.series << "-" << render::methodName(c.method) << "-";
     if (c.scene) {
         s << c.scene->name;
+        if (c.triangles) s << "-" << c.triangles << "t";
     } else {
         s << c.spot << "s" << c.point << "p";
     }
@@ -248,7 +262,38 @@ std::vector<Config> plan(bool quick) {
             }
         }
     }
+    // Cost against triangles: the rooms scene (its own 64 spots, 32 points and sun, every one
+    // shadowed at auto resolution) at each size, every method. Sizes ascending, so each size's
+    // peak memory is its own (the bench frees a size's scene before building the next).
+    const BuiltinScene& rooms = parseBuiltinScene("rooms");
+    const std::vector<uint64_t> sizes = quick ? std::vector<uint64_t>{10'000, 100'000}
+                                              : std::vector<uint64_t>{10'000, 100'000, 1'000'000, 10'000'000};
+    for (uint64_t triangles : sizes) {
+        for (render::LightListMethod method : methods) {
+            configs.push_back({"triangles", &rooms, method, 0, 0, ShadowSettings{}, false, triangles});
+        }
+    }
     return configs;
+}
+
+// The series --series names (and "failures" for the failure study); none given: all of them.
+std::vector<std::string> parseSeries(const std::string& text) {
+    const std::vector<std::string> known = {"mix",     "spot-only",      "point-only", "shadows",  "shadow-quality",
+                                            "shadow-filters", "cascades", "triangles",  "failures"};
+    std::vector<std::string> series;
+    size_t start = 0;
+    while (start <= text.size()) {
+        const size_t comma = std::min(text.find(',', start), text.size());
+        const std::string name = text.substr(start, comma - start);
+        if (std::find(known.begin(), known.end(), name) == known.end()) {
+            std::string list;
+            for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+            throw Error("--series", "expected names from " + list + ", got '" + name + "'");
+        }
+        series.push_back(name);
+        start = comma + 1;
+    }
+    return series;
 }
 
 }  // namespace
@@ -257,6 +302,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
     std::vector<std::string> renderArgs;
     std::optional<std::string> outDir;
     bool quick = false;
+    std::optional<std::vector<std::string>> onlySeries;
     for (size_t i = 0; i < args.size(); ++i) {
         if (args[i] == "--help" || args[i] == "-h") {
             std::fputs(usage().c_str(), stdout);
@@ -266,6 +312,9 @@ int runBenchCommand(const std::vector<std::string>& args) {
         } else if (args[i] == "--out-dir") {
             if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--out-dir", "needs a value");
             outDir = args[++i];
+        } else if (args[i] == "--series") {
+            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--series", "needs a value");
+            onlySeries = parseSeries(args[++i]);
         } else if (args[i] == "--scene" || args[i] == "--size" || args[i] == "--frames" || args[i] == "--device" ||
                    args[i] == "--validate" || args[i] == "--exposure" || args[i].rfind("--", 0) != 0) {
             renderArgs.push_back(args[i]);
@@ -289,12 +338,24 @@ int runBenchCommand(const std::vector<std::string>& args) {
     const Scene baseScene = loadSceneForOptions(options);
     vk::Context context(contextOptionsFrom(options));
     const reference::EmbreeScene embree(baseScene);  // geometry only: shared by every configuration
-    // The series with built-in scenes of their own (the cascades' outdoor scene): each scene and its
-    // Embree scene built once, on first use.
-    std::map<const BuiltinScene*, std::pair<Scene, std::unique_ptr<reference::EmbreeScene>>> ownScenes;
+    // The series with built-in scenes of their own (the cascades' outdoor scene, the rooms at each
+    // size): each scene built once, on first use, its Embree scene only when a configuration
+    // validates against it. A sized scene replaces the previous size's, so memory holds one size.
+    struct OwnScene {
+        Scene scene;
+        std::unique_ptr<reference::EmbreeScene> embree;
+    };
+    std::map<std::pair<const BuiltinScene*, uint64_t>, OwnScene> ownScenes;
 
-    const std::vector<Config> configs = plan(quick);
-    ProgressBar progress(configs.size() + failureStudySize(context, quick));
+    auto wanted = [&](const std::string& series) {
+        return !onlySeries || std::find(onlySeries->begin(), onlySeries->end(), series) != onlySeries->end();
+    };
+    std::vector<Config> configs;
+    for (const Config& config : plan(quick)) {
+        if (wanted(config.series)) configs.push_back(config);
+    }
+    const bool failureStudy = wanted("failures");
+    ProgressBar progress(configs.size() + (failureStudy ? failureStudySize(context, quick) : 0));
     OutputFiles outputs;
     std::vector<Row> rows;
     std::vector<std::string> passes;  // the frame's pass names, from the first renderer
@@ -302,24 +363,35 @@ int runBenchCommand(const std::vector<std::string>& args) {
     std::map<std::string, nlohmann::json> shadowLights;  // validated configurations: per-light counts
     std::map<std::string, nlohmann::json> sunCascades;   // validated configurations with a sun: per cascade
     for (const Config& config : configs) {
-        Scene scene = baseScene;
+        Scene generatedLights;
+        const Scene* sceneToRender = &generatedLights;
         const reference::EmbreeScene* geometry = &embree;
         if (config.scene) {
-            auto own = ownScenes.find(config.scene);
+            const std::pair key{config.scene, config.triangles};
+            auto own = ownScenes.find(key);
             if (own == ownScenes.end()) {
-                Scene made = config.scene->value();
-                auto madeEmbree = std::make_unique<reference::EmbreeScene>(made);
-                own = ownScenes.emplace(config.scene, std::pair{std::move(made), std::move(madeEmbree)}).first;
+                if (config.triangles) {  // a new size: the previous one's memory goes first
+                    std::erase_if(ownScenes, [&](const auto& entry) { return entry.first.first == config.scene; });
+                    resetPeakResident();
+                }
+                own = ownScenes.emplace(key, OwnScene{makeBuiltinScene(*config.scene, config.triangles ? std::optional(config.triangles) : std::nullopt),
+                                               nullptr}).first;
             }
-            scene = own->second.first;
-            geometry = own->second.second.get();
+            OwnScene& made = own->second;
+            if (config.validateShadows && !made.embree) made.embree = std::make_unique<reference::EmbreeScene>(made.scene);
+            sceneToRender = &made.scene;
+            geometry = made.embree.get();
         } else {
-            replaceLights(scene, config.spot, config.point, 1);
+            generatedLights = baseScene;
+            replaceLights(generatedLights, config.spot, config.point, 1);
         }
+        const Scene& scene = *sceneToRender;
         render::RenderSettings settings = renderSettingsFrom(options);
         settings.method = config.method;
         settings.shadows = config.shadows;
-        settings.collectLightStats = !config.validateShadows;
+        // The statistics variant renders the frame once more: the triangle series, whose largest
+        // frames take seconds, goes without.
+        settings.collectLightStats = !config.validateShadows && config.series != "triangles";
         settings.collectShadowFactors = config.validateShadows;
         render::Renderer renderer(context, scene, settings);
         const render::FrameResult result = renderer.render(timedFrames, 1);
@@ -353,6 +425,21 @@ int runBenchCommand(const std::vector<std::string>& args) {
             row[pass + "_spread_ms"] = number(spread([&](const render::PassTimings& t) { return t.of(pass); }));
         }
         if (passes.empty()) passes = renderer.passNames();
+        if (config.triangles) {
+            const render::CameraDraws& camera = renderer.cameraDraws();
+            const render::ShadowDraws shadowDraws = renderer.shadowDraws();
+            row["scene_triangles"] = std::to_string(scene.triangleCount());
+            row["objects"] = std::to_string(scene.objects.size());
+            row["objects_in_view"] = std::to_string(camera.objectsInView);
+            row["camera_triangles"] = std::to_string(camera.triangles);
+            row["camera_draws"] = std::to_string(camera.depthDraws + camera.forwardDraws + camera.transparentDraws);
+            row["shadow_draws"] = std::to_string(shadowDraws.total);
+            row["shadow_draws_max"] = std::to_string(shadowDraws.maxPerView);
+            row["shadow_triangles"] = std::to_string(shadowDraws.triangles);
+            // Since this size's scene was built (resetPeakResident), or the whole run's peak.
+            row["peak_rss_bytes"] = std::to_string(peakResidentSinceReset());
+            row["device_bytes"] = std::to_string(renderer.deviceMemoryBytes());
+        }
         if (settings.collectLightStats) {
             const LightStatsImage stats = renderer.readLightStats();
             const CullingStats culling = computeCullingStats(stats);
@@ -372,7 +459,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
             }
         }
         const std::string bruteKey = config.series + std::to_string(config.spot) + "," + std::to_string(config.point) +
-                                     (config.shadows.enabled ? "s" : "");
+                                     (config.shadows.enabled ? "s" : "") + std::to_string(config.triangles);
         if (config.method == render::referenceMethod() && !config.validateShadows) {
             bruteImages[bruteKey] = result.image;
         } else if (bruteImages.count(bruteKey)) {
@@ -442,7 +529,9 @@ int runBenchCommand(const std::vector<std::string>& args) {
     }
     // Where methods fail: one scene per known failure, error against the provoking parameter.
     const std::vector<FailureRow> failures =
-        runFailureStudy(context, quick, options.width, options.height, [&](const std::string& what) { progress.step(what); });
+        failureStudy ? runFailureStudy(context, quick, options.width, options.height,
+                                       [&](const std::string& what) { progress.step(what); })
+                     : std::vector<FailureRow>{};
     if (context.validationMessageCount() > 0) {
         throw Error("vulkan", std::to_string(context.validationMessageCount()) + " validation message(s); no output written");
     }

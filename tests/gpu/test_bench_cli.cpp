@@ -44,7 +44,9 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
               "shadow_views,shadow_memory_bytes,shadow_texels_rendered,shadow_filter_taps,shadow_reduced_views,"
               "shadow_misclassified,shadow_misclassified_all,shadow_misclassified_1px,shadow_false_shadow,"
               "shadow_false_lit,cascades,sun_misclassified,sun_misclassified_1px,sun_cascade0_misclassified_1px,"
-              "sun_cascade1_misclassified_1px,sun_cascade2_misclassified_1px,sun_cascade3_misclassified_1px");
+              "sun_cascade1_misclassified_1px,sun_cascade2_misclassified_1px,sun_cascade3_misclassified_1px,"
+              "scene_triangles,objects,objects_in_view,camera_triangles,camera_draws,shadow_draws,shadow_draws_max,"
+              "shadow_triangles,peak_rss_bytes,device_bytes");
     const size_t columns = size_t(std::count(header.begin(), header.end(), ',')) + 1;
     size_t rows = 0;
     std::set<std::string> series, methods;
@@ -61,7 +63,7 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     }
     EXPECT_GE(rows, 30u);
     EXPECT_EQ(series, (std::set<std::string>{"mix", "spot-only", "point-only", "shadows", "shadow-quality", "shadow-filters",
-                                             "cascades"}));
+                                             "cascades", "triangles"}));
     EXPECT_EQ(methods, (std::set<std::string>{"brute", "per-object", "tiled", "clustered"}));
 
     const nlohmann::json json = nlohmann::json::parse(readText(dir + "/results.json"));
