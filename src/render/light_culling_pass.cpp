@@ -34,8 +34,8 @@ LightCullingPass::LightCullingPass(vk::Context& context, const LightGridLayout& 
       width_(width),
       height_(height),
       grid_(context, VkDeviceSize(culled ? layout.cellCount() * PUNCTUAL_GRID_WORDS : 1) * sizeof(uint32_t),
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::DeviceLocal,
-            "light grid"),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+            vk::MemoryUse::DeviceLocal, "light grid"),
       depthRange_(context, sizeof(gpu::GpuDepthRange),
                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -44,6 +44,11 @@ LightCullingPass::LightCullingPass(vk::Context& context, const LightGridLayout& 
       cullLights_(context, std::max<size_t>(cullLights.size(), 1) * sizeof(gpu::CullLight),
                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "cull lights") {
     if (!cullLights.empty()) cullLights_.write(cullLights.data(), cullLights.size() * sizeof(gpu::CullLight));
+    // Cells no pixel occupies are never written, and no pixel the frame shades reads one. Zeroed
+    // once all the same, so that a study that breaks that rule on purpose (culling by the opaque
+    // depth alone, RenderSettings::opaqueCullingDepth) reads "no lights", the same every run,
+    // rather than whatever the allocation held.
+    context.submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, grid_.handle(), 0, VK_WHOLE_SIZE, 0u); });
 }
 
 void LightCullingPass::addBindings(BindingTable& table) const {

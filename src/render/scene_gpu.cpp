@@ -258,12 +258,6 @@ uint64_t SceneGpu::memoryBytes() const {
     return bytes;
 }
 
-void SceneGpu::drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, bool withTextures) const {
-    std::vector<uint32_t> all(draws_.size());
-    for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
-    drawObjects(cmd, layout, all, 0, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, withTextures);
-}
-
 void SceneGpu::drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<const uint32_t> objects,
                            uint32_t pushOffset, VkShaderStageFlags stages, bool withTextures) const {
     const VkBuffer vertexBuffer = vertices_.handle();

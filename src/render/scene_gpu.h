@@ -49,12 +49,9 @@ public:
     // The objects of one kind, ascending.
     std::span<const uint32_t> objectsOfKind(DepthDrawKind kind) const { return objectsOfKind_[uint32_t(kind)]; }
 
-    // Binds the geometry and issues one indexed draw per object, in object order, passing the
-    // object index as a push constant (stage flags: vertex | fragment). `withTextures` also binds
-    // each object's material set (set 1) for pipelines that read it.
-    void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, bool withTextures) const;
-    // The listed objects only, with the index pushed at `pushOffset` for `stages`; `withTextures`
-    // as above.
+    // Binds the geometry and issues one indexed draw per listed object, in list order, passing the
+    // object index as a push constant at `pushOffset` for `stages`. `withTextures` also binds each
+    // object's material set (set 1) for pipelines that read it.
     void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<const uint32_t> objects,
                      uint32_t pushOffset, VkShaderStageFlags stages, bool withTextures = false) const;
 

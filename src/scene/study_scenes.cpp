@@ -8,6 +8,18 @@
 #include "scene/default_scene.h"
 
 namespace punctual::study {
+namespace {
+
+// The scene's camera at `eye` looking at `target` (y up), as a file's camera (cameraFromFile).
+void placeCamera(Scene& scene, const glm::vec3& eye, const glm::vec3& target, float yfov, float znear, float zfar) {
+    scene.camera.view = glm::lookAtRH(eye, target, glm::vec3(0.0f, 1.0f, 0.0f));
+    scene.camera.yfov = yfov;
+    scene.camera.znear = znear;
+    scene.camera.zfar = zfar;
+    scene.cameraFromFile = true;
+}
+
+}  // namespace
 
 Scene floorScene(const std::string& name) {
     Scene scene;
@@ -19,11 +31,7 @@ Scene floorScene(const std::string& name) {
     material.roughness = 0.6f;
     scene.materials.push_back(material);
     addBox(scene, glm::vec3(0.0f, -0.1f, 0.0f), glm::vec3(20.0f, 0.2f, 20.0f));
-    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 3.0f, 10.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
-    scene.camera.yfov = 1.0f;
-    scene.camera.znear = 0.1f;
-    scene.camera.zfar = 40.0f;
-    scene.cameraFromFile = true;
+    placeCamera(scene, glm::vec3(0.0f, 3.0f, 10.0f), glm::vec3(0.0f), 1.0f, 0.1f, 40.0f);
     scene.computeBounds();
     return scene;
 }
@@ -227,11 +235,7 @@ Scene glassPanesScene(float wallDistance) {
         scene.lights.push_back(pointLight(glm::vec3(x + 0.3f, -0.4f, -3.9f), 1.2f, 1.5f));
     }
     scene.lights.push_back(pointLight(glm::vec3(0.0f, 2.0f, wallZ + 3.0f), 8.0f, 20.0f));  // lights the wall
-    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(0.0f, 1.0f, 0.0f));
-    scene.camera.yfov = 0.8f;
-    scene.camera.znear = 0.1f;
-    scene.camera.zfar = 4.0f - 2.0f * wallZ;
-    scene.cameraFromFile = true;
+    placeCamera(scene, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), 0.8f, 0.1f, 4.0f - 2.0f * wallZ);
     scene.computeBounds();
     return scene;
 }
@@ -283,11 +287,7 @@ Scene cascadePancakingScene(float deckHeight) {
     // to the sun's side so that the slid shadow still crosses the whole view.
     addBox(scene, {-27.5f, deckHeight + 0.25f, -6.5f}, {85.0f, 0.5f, 3.0f});
     scene.lights.push_back(sunLight({0.82f, -0.57f, 0.0f}, 3.0f));
-    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 1.7f, 0.0f), glm::vec3(0.0f, 0.0f, -12.0f), glm::vec3(0.0f, 1.0f, 0.0f));
-    scene.camera.yfov = 0.6f;
-    scene.camera.znear = 0.1f;
-    scene.camera.zfar = 300.0f;
-    scene.cameraFromFile = true;
+    placeCamera(scene, glm::vec3(0.0f, 1.7f, 0.0f), glm::vec3(0.0f, 0.0f, -12.0f), 0.6f, 0.1f, 300.0f);
     scene.computeBounds();
     return scene;
 }
@@ -313,11 +313,7 @@ Scene cascadeSeamScene() {
     }
     // Behind the camera and a little to its left, 17 degrees high: long shadows.
     scene.lights.push_back(sunLight({0.2f, -0.3f, -0.93f}, 3.0f));
-    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 1.7f, 0.0f), glm::vec3(0.0f, 0.0f, -15.0f), glm::vec3(0.0f, 1.0f, 0.0f));
-    scene.camera.yfov = 0.6f;
-    scene.camera.znear = 0.1f;
-    scene.camera.zfar = 300.0f;
-    scene.cameraFromFile = true;
+    placeCamera(scene, glm::vec3(0.0f, 1.7f, 0.0f), glm::vec3(0.0f, 0.0f, -15.0f), 0.6f, 0.1f, 300.0f);
     scene.computeBounds();
     return scene;
 }
