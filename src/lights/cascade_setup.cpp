@@ -47,18 +47,19 @@ std::array<float, PUNCTUAL_MAX_CASCADES> cascadeSplits(const CascadeSettings& se
     return splits;
 }
 
-float farthestVisibleReceiver(const Scene& scene, uint32_t width, uint32_t height) {
+float farthestVisibleReceiver(const Scene& scene, uint32_t width, uint32_t height, const LazyTriangleBvh* geometry) {
     const uint32_t step = std::max({width / 160u, height / 90u, 1u});
     float farthest = 0.0f;
     forEachVisibleReceiver(scene, width, height, step, [&](uint32_t, uint32_t, const ReceiverSample& sample) {
         farthest = std::max(farthest, -(scene.camera.view * glm::vec4(sample.position, 1.0f)).z);
-    });
+    }, geometry);
     return farthest;
 }
 
-float cascadeShadowDistance(const CascadeSettings& settings, const Scene& scene, uint32_t width, uint32_t height) {
+float cascadeShadowDistance(const CascadeSettings& settings, const Scene& scene, uint32_t width, uint32_t height,
+                            const LazyTriangleBvh* geometry) {
     if (settings.shadowDistance > 0.0f) return settings.shadowDistance;
-    const float farthest = farthestVisibleReceiver(scene, width, height);
+    const float farthest = farthestVisibleReceiver(scene, width, height, geometry);
     // Up to the next quarter octave: 2^(ceil(4 log2 d) / 4).
     const float rounded = farthest > 0.0f ? std::exp2(std::ceil(4.0f * std::log2(farthest)) * 0.25f) : kMaxFittedShadowDistance;
     return std::clamp(rounded, 4.0f * scene.camera.znear, std::max(kMaxFittedShadowDistance, 4.0f * scene.camera.znear));
@@ -117,7 +118,7 @@ std::vector<uint32_t> cascadeCasters(const Scene& scene, const CascadePlan& casc
 }  // namespace
 
 void planCascades(ShadowPlan& plan, const Scene& scene, const FrameLights& lights, uint32_t width, uint32_t height,
-                  const ShadowSettings& settings) {
+                  const ShadowSettings& settings, const LazyTriangleBvh* geometry) {
     plan.cascades = CascadePlan{};
     if (!settings.enabled || lights.directionalCount == 0) return;
     const uint32_t sunIndex = firstDirectionalLight(scene);
@@ -142,7 +143,7 @@ void planCascades(ShadowPlan& plan, const Scene& scene, const FrameLights& light
     const float spread = tanX * tanX + tanY * tanY;
 
     const CascadeSettings& cascadeSettings = settings.cascades;
-    cascades.shadowDistance = cascadeShadowDistance(cascadeSettings, scene, width, height);
+    cascades.shadowDistance = cascadeShadowDistance(cascadeSettings, scene, width, height, geometry);
     cascades.distanceFitted = cascadeSettings.shadowDistance <= 0.0f;
     cascades.splits = cascadeSplits(cascadeSettings, camera.znear, cascades.shadowDistance);
     cascades.count = cascadeSettings.count;

@@ -22,6 +22,7 @@
 #include "lights/cascade_settings.h"
 #include "lights/light_setup.h"
 #include "scene/scene.h"
+#include "scene/triangle_bvh.h"
 
 namespace punctual {
 
@@ -55,18 +56,21 @@ std::array<float, PUNCTUAL_MAX_CASCADES> cascadeSplits(const CascadeSettings& se
 
 // The farthest view depth at which the frame (width x height, the scene's camera) shows a surface,
 // sampled on a grid of at most 160 x 90 rays; 0 when it shows none.
-float farthestVisibleReceiver(const Scene& scene, uint32_t width, uint32_t height);
+// `geometry`: the scene's tree (lights/shadow_resolution.h); null builds one.
+float farthestVisibleReceiver(const Scene& scene, uint32_t width, uint32_t height,
+                              const LazyTriangleBvh* geometry = nullptr);
 
 // The shadow distance the settings give: --shadow-distance, or the farthest visible receiver
 // rounded up to a quarter octave (2^(k/4) metres, so that a small camera move does not change it)
 // and kept within the camera's near plane and kMaxFittedShadowDistance.
-float cascadeShadowDistance(const CascadeSettings& settings, const Scene& scene, uint32_t width, uint32_t height);
+float cascadeShadowDistance(const CascadeSettings& settings, const Scene& scene, uint32_t width, uint32_t height,
+                            const LazyTriangleBvh* geometry = nullptr);
 
 // Appends the sun's cascade views to `plan` (after the points') and fills plan.cascades, when
 // shadows are on, the frame has a sun (lights.directionalCount) that casts shadows, and the
 // settings ask for cascades. Views have casters but no resolution yet (sizeShadowViews).
 void planCascades(ShadowPlan& plan, const Scene& scene, const FrameLights& lights, uint32_t width, uint32_t height,
-                  const ShadowSettings& settings);
+                  const ShadowSettings& settings, const LazyTriangleBvh* geometry = nullptr);
 
 // Once `view` (cascade view.face of plan.cascades) has its resolution: its orthographic
 // view-projection, snapped to whole texels unless the settings turn snapping off, and its GPU

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "cascades.h"
 #include "lights/shadow_setup.h"
@@ -12,9 +13,12 @@
 namespace punctual {
 
 void forEachVisibleReceiver(const Scene& scene, uint32_t width, uint32_t height, uint32_t step,
-                            const std::function<void(uint32_t x, uint32_t y, const ReceiverSample& sample)>& visit) {
+                            const std::function<void(uint32_t x, uint32_t y, const ReceiverSample& sample)>& visit,
+                            const LazyTriangleBvh* geometry) {
     if (width == 0 || height == 0 || step == 0) return;
-    const TriangleBvh bvh(scene);
+    std::optional<LazyTriangleBvh> own;
+    if (geometry == nullptr) geometry = &own.emplace(scene);
+    const TriangleBvh& bvh = geometry->get();
     if (bvh.empty()) return;
     const Camera& camera = scene.camera;
     const glm::mat4 cameraToWorld = glm::inverse(camera.view);
@@ -42,13 +46,15 @@ void forEachVisibleReceiver(const Scene& scene, uint32_t width, uint32_t height,
     }
 }
 
-VisibleReceivers sampleVisibleReceivers(const Scene& scene, uint32_t width, uint32_t height) {
+VisibleReceivers sampleVisibleReceivers(const Scene& scene, uint32_t width, uint32_t height,
+                                        const LazyTriangleBvh* geometry) {
     VisibleReceivers receivers;
     if (width == 0 || height == 0) return receivers;
     receivers.step = std::max({1u, (width + kMaxSampleColumns - 1) / kMaxSampleColumns,
                                (height + kMaxSampleRows - 1) / kMaxSampleRows});
     forEachVisibleReceiver(scene, width, height, receivers.step,
-                           [&](uint32_t, uint32_t, const ReceiverSample& sample) { receivers.samples.push_back(sample); });
+                           [&](uint32_t, uint32_t, const ReceiverSample& sample) { receivers.samples.push_back(sample); },
+                           geometry);
     return receivers;
 }
 

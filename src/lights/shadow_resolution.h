@@ -35,6 +35,7 @@
 
 #include "lights/light_setup.h"
 #include "scene/scene.h"
+#include "scene/triangle_bvh.h"
 
 namespace punctual {
 
@@ -54,14 +55,17 @@ struct VisibleReceivers {
 inline constexpr uint32_t kMaxSampleColumns = 320;
 inline constexpr uint32_t kMaxSampleRows = 180;
 
-// Casts the sample grid for a width x height frame seen by the scene's camera.
-VisibleReceivers sampleVisibleReceivers(const Scene& scene, uint32_t width, uint32_t height);
+// Casts the sample grid for a width x height frame seen by the scene's camera. `geometry`: the
+// scene's tree, shared with the frame's other planners; null builds one for this call.
+VisibleReceivers sampleVisibleReceivers(const Scene& scene, uint32_t width, uint32_t height,
+                                        const LazyTriangleBvh* geometry = nullptr);
 
 // Casts one primary ray through the centre of every `step`-th pixel of each `step`-th row of a
 // width x height frame (starting at step / 2) and calls visit(x, y, sample) for each that meets a
-// surface. The grid of sampleVisibleReceivers, at any step (1: every pixel).
+// surface. The grid of sampleVisibleReceivers, at any step (1: every pixel). `geometry` as there.
 void forEachVisibleReceiver(const Scene& scene, uint32_t width, uint32_t height, uint32_t step,
-                            const std::function<void(uint32_t x, uint32_t y, const ReceiverSample& sample)>& visit);
+                            const std::function<void(uint32_t x, uint32_t y, const ReceiverSample& sample)>& visit,
+                            const LazyTriangleBvh* geometry = nullptr);
 
 // Whether `view` (of `plan`, lit by packed light `light`) shades `sample`, and the resolution it
 // needs there (texels a side, see the top of this file); 0 when it does not shade it.

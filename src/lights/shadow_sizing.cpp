@@ -129,7 +129,7 @@ uint64_t shadowMapBytes(const ShadowPlan& plan, const ShadowSettings& settings, 
 
 void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& lights, const glm::vec3& cameraPosition,
                      uint32_t frameWidth, uint32_t frameHeight, const ShadowSettings& settings,
-                     const ShadowMemoryLimits& limits) {
+                     const ShadowMemoryLimits& limits, const LazyTriangleBvh* geometry) {
     if (plan.views.empty()) return;
     if (!settings.autoResolution()) {
         // The first limit the maps at `resolution` exceed, described; empty when they fit.
@@ -185,7 +185,7 @@ void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& li
     }
 
     // Auto: the tier each view's visible receivers need, then the budget.
-    const VisibleReceivers receivers = sampleVisibleReceivers(scene, frameWidth, frameHeight);
+    const VisibleReceivers receivers = sampleVisibleReceivers(scene, frameWidth, frameHeight, geometry);
     plan.receiverSamples = uint32_t(receivers.samples.size());
     plan.sampleStep = receivers.step;
     const std::vector<float> demand = shadowViewDemand(plan, lights, receivers);

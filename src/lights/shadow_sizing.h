@@ -16,6 +16,7 @@
 #include "lights/light_setup.h"
 #include "lights/shadow_setup.h"
 #include "scene/scene.h"
+#include "scene/triangle_bvh.h"
 
 namespace punctual {
 
@@ -38,7 +39,7 @@ struct ShadowMemoryLimits {
 //    frameHeight, see shadow_resolution.h), fitted to min(budget, what the device has).
 void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& lights, const glm::vec3& cameraPosition,
                      uint32_t frameWidth, uint32_t frameHeight, const ShadowSettings& settings,
-                     const ShadowMemoryLimits& limits);
+                     const ShadowMemoryLimits& limits, const LazyTriangleBvh* geometry = nullptr);
 
 // Bytes of the fixed-mode maps of `plan` at `resolution` texels a side: the atlas (spots and
 // slices) and the cube array. A lower bound of what the device allocates (it may pad).

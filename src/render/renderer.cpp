@@ -280,18 +280,23 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     projection_ = scene.camera.projection(float(settings.width) / float(settings.height));
     lights_ = setupFrameLights(scene, view_, projection_);
     shadowPlan_ = planShadows(scene, lights_, scene.camera.position(), settings.shadows);
-    if (settings.cascadeCamera) {
-        // The study's other camera: a copy of the scene seen from it (the cascades read its
-        // camera, its objects as casters and, for a fitted distance, its visible receivers).
-        Scene moved = scene;
-        moved.camera = *settings.cascadeCamera;
-        planCascades(shadowPlan_, moved, lights_, settings.width, settings.height, settings.shadows);
-    } else {
-        planCascades(shadowPlan_, scene, lights_, settings.width, settings.height, settings.shadows);
+    {
+        // Built on the first ray a planner casts, then shared (at 10^7 triangles a build takes
+        // seconds), and freed before the frame's resources are allocated (peak memory).
+        const LazyTriangleBvh geometry(scene);
+        if (settings.cascadeCamera) {
+            // The study's other camera: a copy of the scene seen from it (the cascades read its
+            // camera, its objects as casters and, for a fitted distance, its visible receivers).
+            Scene moved = scene;
+            moved.camera = *settings.cascadeCamera;
+            planCascades(shadowPlan_, moved, lights_, settings.width, settings.height, settings.shadows, &geometry);
+        } else {
+            planCascades(shadowPlan_, scene, lights_, settings.width, settings.height, settings.shadows, &geometry);
+        }
+        // Sized before anything is allocated: a request the device cannot hold fails here, in one line.
+        sizeShadowViews(shadowPlan_, scene, lights_, scene.camera.position(), settings.width, settings.height,
+                        settings.shadows, ShadowMaps::memoryLimits(context, settings.shadows), &geometry);
     }
-    // Sized before anything is allocated: a request the device cannot hold fails here, in one line.
-    sizeShadowViews(shadowPlan_, scene, lights_, scene.camera.position(), settings.width, settings.height,
-                    settings.shadows, ShadowMaps::memoryLimits(context, settings.shadows));
     if (!shadowPlan_.reductions.empty()) {
         log::warn("shadows: " + std::to_string(shadowPlan_.reductions.size()) + " view(s) got less resolution than " +
                   "their receivers need, to fit " + shadowPlan_.reducedBy + " (the stats' shadows.reduced lists them)");

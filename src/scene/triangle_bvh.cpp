@@ -33,59 +33,67 @@ TriangleBvh::TriangleBvh(const Scene& scene) {
     }
     PUNCTUAL_CHECK(triangles_.size() < size_t(std::numeric_limits<uint32_t>::max()), "too many triangles");
     if (triangles_.empty()) return;
-    order_.resize(triangles_.size());
-    std::vector<glm::vec3> centroids(triangles_.size());
-    for (uint32_t i = 0; i < order_.size(); ++i) {
-        order_[i] = i;
+    std::vector<Centroid> centroids(triangles_.size());
+    for (uint32_t i = 0; i < centroids.size(); ++i) {
         const Triangle& t = triangles_[i];
-        centroids[i] = t.v0 + (t.e1 + t.e2) * (1.0f / 3.0f);
+        centroids[i] = {t.v0 + (t.e1 + t.e2) * (1.0f / 3.0f), i};
     }
     nodes_.reserve(2 * triangles_.size() / kLeafSize + 1);
-    build(0, uint32_t(triangles_.size()), centroids);
+    glm::vec3 bounds[2];
+    build(0, uint32_t(triangles_.size()), centroids, bounds);
+    order_.resize(centroids.size());
+    for (uint32_t i = 0; i < centroids.size(); ++i) order_[i] = centroids[i].triangle;
 }
 
-uint32_t TriangleBvh::build(uint32_t first, uint32_t count, std::vector<glm::vec3>& centroids) {
+uint32_t TriangleBvh::build(uint32_t first, uint32_t count, std::vector<Centroid>& centroids, glm::vec3 bounds[2]) {
     const uint32_t index = uint32_t(nodes_.size());
     nodes_.emplace_back();
+    glm::vec3 centroidLo(std::numeric_limits<float>::max());
+    glm::vec3 centroidHi(-std::numeric_limits<float>::max());
+    for (uint32_t i = first; i < first + count; ++i) {
+        centroidLo = glm::min(centroidLo, centroids[i].position);
+        centroidHi = glm::max(centroidHi, centroids[i].position);
+    }
+    const glm::vec3 extent = centroidHi - centroidLo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
     glm::vec3 lo(std::numeric_limits<float>::max());
     glm::vec3 hi(-std::numeric_limits<float>::max());
-    glm::vec3 centroidLo = lo;
-    glm::vec3 centroidHi = hi;
-    for (uint32_t i = first; i < first + count; ++i) {
-        const Triangle& t = triangles_[order_[i]];
-        // The corners the intersection test uses (v0 + e may differ from the file's vertex in the
-        // last bit, so the box is built from these).
-        for (const glm::vec3& p : {t.v0, t.v0 + t.e1, t.v0 + t.e2}) {
-            lo = glm::min(lo, p);
-            hi = glm::max(hi, p);
+    if (count <= kLeafSize || !(extent[axis] > 0.0f)) {
+        for (uint32_t i = first; i < first + count; ++i) {
+            const Triangle& t = triangles_[centroids[i].triangle];
+            // The corners the intersection test uses (v0 + e may differ from the file's vertex in
+            // the last bit, so the box is built from these).
+            for (const glm::vec3& p : {t.v0, t.v0 + t.e1, t.v0 + t.e2}) {
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
         }
-        centroidLo = glm::min(centroidLo, centroids[order_[i]]);
-        centroidHi = glm::max(centroidHi, centroids[order_[i]]);
+        nodes_[index].first = first;
+        nodes_[index].count = count;
+    } else {
+        // Median split; ties broken by triangle index, so the partition is the same everywhere.
+        const uint32_t middle = first + count / 2;
+        std::nth_element(centroids.begin() + first, centroids.begin() + middle, centroids.begin() + first + count,
+                         [&](const Centroid& a, const Centroid& b) {
+                             const float ca = a.position[axis];
+                             const float cb = b.position[axis];
+                             return ca < cb || (ca == cb && a.triangle < b.triangle);
+                         });
+        glm::vec3 left[2];
+        glm::vec3 right[2];
+        build(first, middle - first, centroids, left);
+        const uint32_t rightChild = build(middle, first + count - middle, centroids, right);
+        lo = glm::min(left[0], right[0]);
+        hi = glm::max(left[1], right[1]);
+        nodes_[index].first = rightChild;
+        nodes_[index].count = 0;
     }
     // A relative pad keeps the box test conservative under its own rounding.
     const glm::vec3 pad = (hi - lo) * 1e-5f + glm::max(glm::abs(lo), glm::abs(hi)) * 1e-6f;
     nodes_[index].min = lo - pad;
     nodes_[index].max = hi + pad;
-
-    const glm::vec3 extent = centroidHi - centroidLo;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-    if (count <= kLeafSize || !(extent[axis] > 0.0f)) {
-        nodes_[index].first = first;
-        nodes_[index].count = count;
-        return index;
-    }
-    // Median split; ties broken by triangle index, so the partition is the same everywhere.
-    const uint32_t middle = first + count / 2;
-    std::nth_element(order_.begin() + first, order_.begin() + middle, order_.begin() + first + count,
-                     [&](uint32_t a, uint32_t b) {
-                         const float ca = centroids[a][axis];
-                         const float cb = centroids[b][axis];
-                         return ca < cb || (ca == cb && a < b);
-                     });
-    build(first, middle - first, centroids);
-    const uint32_t right = build(middle, first + count - middle, centroids);
-    nodes_[index].first = right;
-    nodes_[index].count = 0;
+    bounds[0] = lo;
+    bounds[1] = hi;
     return index;
 }
 

@@ -6,6 +6,7 @@
 // Results never depend on the tree's shape: occluded() is a yes/no over all triangles, and
 // intersect() returns the smallest distance, ties going to the lowest triangle index.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -41,7 +42,6 @@ private:
         uint32_t count = 0;  // triangles in a leaf; 0 for an inner node
     };
 
-    uint32_t build(uint32_t first, uint32_t count, std::vector<glm::vec3>& centroids);
     // Calls `visit(triangle index, distance)` for each triangle hit within (0, maxDistance],
     // pruning with the current maxDistance, which `visit` may lower; stops when it returns true.
     template <typename Visit>
@@ -49,9 +49,37 @@ private:
     bool hitTriangle(const Triangle& t, const glm::vec3& origin, const glm::vec3& direction, float maxDistance,
                      float& distance) const;
 
+    // A triangle's centroid beside its index, sorted in place while building: every pass over a
+    // node's range reads memory in order (through order_ it would jump across all triangles, which
+    // at 10^7 triangles cost more than the arithmetic).
+    struct Centroid {
+        glm::vec3 position;
+        uint32_t triangle = 0;
+    };
+    // Builds the node over centroids[first, first + count) and returns its index; `bounds` gets the
+    // node's unpadded box (the union of its children's: each triangle is read once, at its leaf).
+    uint32_t build(uint32_t first, uint32_t count, std::vector<Centroid>& centroids, glm::vec3 bounds[2]);
+
     std::vector<Triangle> triangles_;
     std::vector<uint32_t> order_;  // triangle indices, leaves' ranges
     std::vector<Node> nodes_;
+};
+
+// A scene's tree, built on first use and then kept: the frame's planners that cast rays into the
+// same geometry (the cascades' fitted distance, the shadow maps' auto resolution) share one build,
+// and a frame that needs neither builds none. Only the scene's objects and meshes shape the tree,
+// so a copy of the scene with another camera may use it too.
+class LazyTriangleBvh {
+public:
+    explicit LazyTriangleBvh(const Scene& scene) : scene_(scene) {}
+    const TriangleBvh& get() const {
+        if (!bvh_) bvh_ = std::make_unique<TriangleBvh>(scene_);
+        return *bvh_;
+    }
+
+private:
+    const Scene& scene_;
+    mutable std::unique_ptr<TriangleBvh> bvh_;
 };
 
 }  // namespace punctual

@@ -95,6 +95,18 @@ TEST(TriangleBvh, AgreesWithALinearScan) {
     EXPECT_GT(hits, 200);  // the rays test something
 }
 
+// The frame's planners share one tree: get() builds it once, and what it answers is the tree's.
+TEST(LazyTriangleBvh, BuildsOnceOnFirstUse) {
+    const Scene scene = boxes({{glm::vec3(0.0f), glm::vec3(1.0f)}});
+    const LazyTriangleBvh lazy(scene);
+    const TriangleBvh& first = lazy.get();
+    EXPECT_EQ(&first, &lazy.get());  // the same tree, not a rebuild
+    EXPECT_EQ(first.triangleCount(), 12u);
+    const auto hit = first.intersect({0.1f, 0.2f, 5.0f}, {0.0f, 0.0f, -1.0f}, 100.0f);
+    ASSERT_TRUE(hit);
+    EXPECT_FLOAT_EQ(hit->distance, 4.5f);
+}
+
 TEST(LightReach, ClosedCube) {
     const Scene scene = boxes({{glm::vec3(0.0f, 0.5f, 0.0f), glm::vec3(1.0f)}});
     const LightReach reach(scene);
