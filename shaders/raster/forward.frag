@@ -93,6 +93,17 @@ uint pixelGridCell() {
     return (tile.y * frame.lightGrid.y + tile.x) * SLICE_COUNT + slice;
 }
 
+// Statistics variant: the shadow-map lookups and texture taps this pixel has taken so far
+// (gpu_types.h, packPixelWork); the sampling functions count each filtered read they make.
+uint shadowLookups = 0u;
+uint shadowTaps = 0u;
+void countShadowLookup(uint taps) {
+    if (WRITE_LIGHT_STATS) {
+        shadowLookups += 1u;
+        shadowTaps += taps;
+    }
+}
+
 #include "shadow_sampling.glsl"
 #include "texture_sampling.glsl"
 
@@ -240,6 +251,8 @@ void main() {
     }
 
     if (WRITE_LIGHT_STATS) {
+        // The method's own lookups, before the brute-force radiance below takes its own.
+        uint work = packPixelWork(tested, shadowLookups, shadowTaps);
         uint affecting = 0u;
         vec3 bruteRadiance = shadeSun(surface);
         for (uint i = 0u; i < lightCount; ++i) {
@@ -257,7 +270,7 @@ void main() {
             // Light went missing: the statistics' own test (culling_stats.cpp), per fragment.
             if (luminance(radiance) < luminance(bruteRadiance) * (1.0 - 1e-6)) atomicAdd(lightStatWords[base + 3u], 1u);
         } else {
-            lightStatWords[index * 4u + 0u] = tested;
+            lightStatWords[index * 4u + 0u] = work;
             lightStatWords[index * 4u + 1u] = affecting | 0x80000000u;
             lightStatWords[index * 4u + 2u] = floatBitsToUint(luminance(radiance));
             lightStatWords[index * 4u + 3u] = floatBitsToUint(luminance(bruteRadiance));

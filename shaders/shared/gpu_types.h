@@ -51,6 +51,14 @@
 // is the sun's cascade there plus one (0: none).
 #define PUNCTUAL_MAX_SHADOWED_LIGHTS (PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS + PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS)
 #define PUNCTUAL_SUN_SHADOW_SLOT PUNCTUAL_MAX_SHADOWED_LIGHTS
+// Light statistics variant (PUNCTUAL_SPEC_WRITE_LIGHT_STATS), a covered pixel's first word: the
+// lights its list made it test, the shadow-map lookups those lights took (a lookup: one filtered
+// read of one view, cube face or cascade; the sun's blend zone reads two) and the texture
+// instructions those lookups issued (a tap: one compare sample or one gather). Bits 0-7, 8-15,
+// 16-31: at most 96 lights and 96 + 2 lookups of at most 64 taps each (< 2^16) fit.
+#define PUNCTUAL_STATS_TESTED_BITS 8u
+#define PUNCTUAL_STATS_LOOKUP_SHIFT 8u
+#define PUNCTUAL_STATS_TAP_SHIFT 16u
 #define PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS 8
 #define PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS ((PUNCTUAL_MAX_SHADOWED_LIGHTS + 1 + 3) / 4)
 #define PUNCTUAL_SHADOW_FACTOR_NOT_REACHED 255u
@@ -111,6 +119,13 @@
 #define PUNCTUAL_SPEC_TRANSPARENT 12
 
 PUNCTUAL_NAMESPACE_BEGIN
+
+PUNCTUAL_FN uint packPixelWork(uint tested, uint lookups, uint taps) {
+    return tested | (lookups << PUNCTUAL_STATS_LOOKUP_SHIFT) | (taps << PUNCTUAL_STATS_TAP_SHIFT);
+}
+PUNCTUAL_FN uint unpackTested(uint word) { return word & ((1u << PUNCTUAL_STATS_TESTED_BITS) - 1u); }
+PUNCTUAL_FN uint unpackShadowLookups(uint word) { return (word >> PUNCTUAL_STATS_LOOKUP_SHIFT) & 0xFFu; }
+PUNCTUAL_FN uint unpackShadowTaps(uint word) { return word >> PUNCTUAL_STATS_TAP_SHIFT; }
 
 // A spot or point light. Spots and points share one struct: a point light is a spot whose
 // angular attenuation is constant 1 (scale 0, offset 1), so one loop body serves both.

@@ -1,5 +1,6 @@
 // Shadow lookups of the forward shader (GLSL only; included by forward.frag after its bindings,
-// specialization constants and unknownVariant flag). The geometry (faces, depth mapping, bias) is
+// specialization constants, unknownVariant flag and countShadowLookup, which the statistics
+// variant counts each filtered read with). The geometry (faces, depth mapping, bias) is
 // in shadows.h, shared with the C++ shadow setup.
 
 // A per-pixel random angle for the disk filter: a hash of the position's bits (PCG), so the
@@ -90,6 +91,7 @@ float filterAtlas(GpuShadowView view, vec2 uv, float reference, float angle) {
     float texelSize = view.texel.y;
     vec2 lowest = vec2(0.5 * texelSize);
     vec2 highest = vec2(1.0 - 0.5 * texelSize);
+    countShadowLookup(filterSampleCount());
     float sum = 0.0;
     float weights = 0.0;
     [[dont_unroll]] for (uint i = 0u; i < filterSampleCount(); ++i) {
@@ -129,6 +131,7 @@ float filterAtlasReceiverPlane(GpuShadowView view, vec2 uv, float depth, vec2 sl
     vec2 slope = slopeUv / resolution;  // the plane's depth per texel
     vec2 o = tentCornerOffset(position);
     uint perAxis = tentFetchesPerAxis(n);
+    countShadowLookup(perAxis * perAxis);
     float sum = 0.0;
     [[dont_unroll]] for (uint i = 0u; i < perAxis * perAxis; ++i) {
         vec3 u = tentAxisTexelPair(o.x, n, i % perAxis);
@@ -168,6 +171,7 @@ float filterCube(vec3 direction, uint face, float cube, float reference, float a
     vec2 uv = (vec2(dot(direction, cubeFaceU(face)), dot(direction, cubeFaceV(face))) / major + 1.0) * 0.5;
     vec3 u = cubeFaceU(face) * (2.0 * major);
     vec3 v = cubeFaceV(face) * (2.0 * major);
+    countShadowLookup(filterSampleCount());
     float sum = 0.0;
     float weights = 0.0;
     [[dont_unroll]] for (uint i = 0u; i < filterSampleCount(); ++i) {

@@ -58,6 +58,9 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
         {"method", render::methodName(settings.method)},
         {"tested_per_pixel", stats.testedPerPixel},
         {"affecting_per_pixel", stats.affectingPerPixel},
+        // The shadow work of the method's lights: filtered reads and the taps they issued.
+        {"shadow_lookups_per_pixel", stats.shadowLookupsPerPixel},
+        {"shadow_taps_per_pixel", stats.shadowTapsPerPixel},
         {"efficiency", stats.efficiency},
         {"max_tested", stats.maxTested},
         {"max_affecting", stats.maxAffecting},

@@ -10,11 +10,15 @@ CullingStats computeCullingStats(const LightStatsImage& image) {
     double affecting = 0.0;
     double methodSum = 0.0;
     double bruteSum = 0.0;
+    double lookups = 0.0;
+    double taps = 0.0;
     for (size_t i = 0; i < image.covered.size(); ++i) {
         if (!image.covered[i]) continue;
         ++stats.coveredPixels;
         tested += image.tested[i];
         affecting += image.affecting[i];
+        if (i < image.shadowLookups.size()) lookups += image.shadowLookups[i];
+        if (i < image.shadowTaps.size()) taps += image.shadowTaps[i];
         stats.maxTested = std::max(stats.maxTested, image.tested[i]);
         stats.maxAffecting = std::max(stats.maxAffecting, image.affecting[i]);
         methodSum += double(image.methodLuminance[i]);
@@ -24,6 +28,8 @@ CullingStats computeCullingStats(const LightStatsImage& image) {
     if (stats.coveredPixels > 0) {
         stats.testedPerPixel = tested / double(stats.coveredPixels);
         stats.affectingPerPixel = affecting / double(stats.coveredPixels);
+        stats.shadowLookupsPerPixel = lookups / double(stats.coveredPixels);
+        stats.shadowTapsPerPixel = taps / double(stats.coveredPixels);
     }
     double transparentTested = 0.0;
     double transparentAffecting = 0.0;

@@ -12,6 +12,8 @@ struct LightStatsImage {
     uint32_t height = 0;
     std::vector<uint32_t> tested;        // lights the method made this pixel evaluate
     std::vector<uint32_t> affecting;     // lights with attenuation x cone > 0 at this pixel
+    std::vector<uint32_t> shadowLookups; // filtered shadow-map reads the method's lights took here
+    std::vector<uint32_t> shadowTaps;    // texture instructions those reads issued
     std::vector<uint8_t> covered;        // 1 where geometry is, 0 for background
     std::vector<float> methodLuminance;  // luminance of the method's radiance
     std::vector<float> bruteLuminance;   // luminance of the brute-force radiance
@@ -25,6 +27,8 @@ struct LightStatsImage {
 struct CullingStats {
     double testedPerPixel = 0.0;     // mean over covered pixels of the light-list length walked
     double affectingPerPixel = 0.0;  // mean over covered pixels of the lights that reach them
+    double shadowLookupsPerPixel = 0.0;  // mean over covered pixels
+    double shadowTapsPerPixel = 0.0;     // mean over covered pixels
     uint32_t maxTested = 0;
     uint32_t maxAffecting = 0;
     // tested / affecting: 1 is a perfect list; brute force is lights / affecting.

@@ -471,6 +471,8 @@ LightStatsImage Renderer::readLightStats() {
     stats.height = settings_.height;
     stats.tested.resize(pixels);
     stats.affecting.resize(pixels);
+    stats.shadowLookups.resize(pixels);
+    stats.shadowTaps.resize(pixels);
     stats.covered.resize(pixels);
     stats.methodLuminance.resize(pixels);
     stats.bruteLuminance.resize(pixels);
@@ -488,7 +490,9 @@ LightStatsImage Renderer::readLightStats() {
     for (size_t i = 0; i < pixels; ++i) {
         const uint32_t* w = &words[i * 4];
         stats.covered[i] = (w[1] & 0x80000000u) ? uint8_t{1} : uint8_t{0};  // the shader marks every pixel it shades
-        stats.tested[i] = w[0];
+        stats.tested[i] = gpu::unpackTested(w[0]);
+        stats.shadowLookups[i] = gpu::unpackShadowLookups(w[0]);
+        stats.shadowTaps[i] = gpu::unpackShadowTaps(w[0]);
         stats.affecting[i] = w[1] & 0x7FFFFFFFu;
         std::memcpy(&stats.methodLuminance[i], &w[2], sizeof(float));
         std::memcpy(&stats.bruteLuminance[i], &w[3], sizeof(float));
