@@ -21,6 +21,9 @@ nlohmann::json geometryStatsJson(const render::Renderer& renderer, const Scene& 
             {"camera_draws", {{"depth", camera.depthDraws},
                               {"forward", camera.forwardDraws},
                               {"transparent", camera.transparentDraws}}},
+            {"camera_pass_triangles", {{"depth", camera.depthTriangles},
+                                       {"forward", camera.forwardTriangles},
+                                       {"transparent", camera.transparentTriangles}}},
             {"shadow_draws", {{"total", shadows.total}, {"max_per_view", shadows.maxPerView}}},
             {"shadow_triangles", shadows.triangles}};
 }
@@ -48,7 +51,13 @@ nlohmann::json frameStatsJson(const render::FrameResult& result, const render::R
     stats["triangles"] = scene.triangleCount();
     stats["objects"] = scene.objects.size();
     stats["geometry"] = geometryStatsJson(renderer, scene);
-    stats["memory"] = {{"peak_rss_bytes", peakResidentBytes()}, {"device_bytes", renderer.deviceMemoryBytes()}};
+    const render::DeviceMemory memory = renderer.deviceMemory();
+    stats["memory"] = {{"peak_rss_bytes", peakResidentBytes()},
+                       {"device_bytes", memory.total()},
+                       {"scene_bytes", memory.scene},
+                       {"shadow_bytes", memory.shadows},
+                       {"light_grid_bytes", memory.lightGrid},
+                       {"frame_bytes", memory.frame}};
     return stats;
 }
 

@@ -163,11 +163,14 @@ struct Renderer::Resources {
         for (uint32_t kind = 0; kind < kPrepassDrawKinds; ++kind) {
             prepassLists[kind] = visible(scene.objectsOfKind(DepthDrawKind(kind)));
             draws.depthDraws += prepassLists[kind].size();
+            draws.depthTriangles += trianglesOf(sceneData, prepassLists[kind]);
         }
         draws.objectsInView = inView.size();
         draws.forwardDraws = unblended.size();
         draws.transparentDraws = blended.size();
         draws.triangles = trianglesOf(sceneData, inView);
+        draws.forwardTriangles = trianglesOf(sceneData, unblended);
+        draws.transparentTriangles = trianglesOf(sceneData, blended);
         depth = addPass<DepthPrepass>(context, settings.width, settings.height, std::move(prepassLists));
         transparentDepth = addPass<TransparentDepthPass>(context, depth->depth(), blended,
                                                          usesLightGrid(settings.method) && !settings.opaqueCullingDepth,
@@ -539,15 +542,26 @@ ShadowFactorImage Renderer::readShadowFactors() {
 
 uint64_t Renderer::shadowMemoryBytes() const { return resources_->shadows->memoryBytes(); }
 
-uint64_t Renderer::deviceMemoryBytes() const {
+DeviceMemory Renderer::deviceMemory() const {
     const Resources& r = *resources_;
-    uint64_t bytes = r.scene.memoryBytes() + r.radiance.allocatedBytes();
+    DeviceMemory memory;
+    memory.scene = r.scene.memoryBytes();
+    memory.frame = r.radiance.allocatedBytes();
     for (const vk::Buffer* buffer :
          {&r.frameUniform, &r.lights, &r.objectLights, &r.lightStats, &r.shadowDebug, &r.readback}) {
-        bytes += buffer->size();
+        memory.frame += buffer->size();
     }
-    for (const auto& pass : r.passes) bytes += pass->memoryBytes();
-    return bytes;
+    for (const auto& pass : r.passes) {
+        const Pass* p = pass.get();
+        if (p == r.shadows) {
+            memory.shadows += p->memoryBytes();
+        } else if (p == r.culling) {
+            memory.lightGrid += p->memoryBytes();
+        } else {
+            memory.frame += p->memoryBytes();
+        }
+    }
+    return memory;
 }
 
 ShadowDraws Renderer::shadowDraws() const {

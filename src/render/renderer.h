@@ -50,6 +50,19 @@ struct CameraDraws {
     uint64_t forwardDraws = 0;      // the forward pass: the same objects
     uint64_t transparentDraws = 0;  // the transparent pass (and the transparent depth pass)
     uint64_t triangles = 0;         // the triangles of the objects in view, each object's mesh once
+    // The triangles each pass submits (each drawn object's mesh once).
+    uint64_t depthTriangles = 0;
+    uint64_t forwardTriangles = 0;
+    uint64_t transparentTriangles = 0;
+};
+
+// The device memory the renderer allocated, by what it holds (docs/BENCH_RESULTS.md).
+struct DeviceMemory {
+    uint64_t scene = 0;      // vertex, index, object and material buffers, textures
+    uint64_t shadows = 0;    // shadow maps (atlas, cube array)
+    uint64_t lightGrid = 0;  // the culling pass's grid and depth bounds
+    uint64_t frame = 0;      // everything else: depth, radiance, uniforms, lights, statistics, readback
+    uint64_t total() const { return scene + shadows + lightGrid + frame; }
 };
 
 // What the shadow passes draw: each rendered view's casters, one draw each.
@@ -94,7 +107,8 @@ public:
     uint64_t shadowMemoryBytes() const;
     // Device memory the renderer allocated: the scene's buffers and textures, every pass's images
     // and buffers, the frame's own buffers (debug outputs and readback included).
-    uint64_t deviceMemoryBytes() const;
+    uint64_t deviceMemoryBytes() const { return deviceMemory().total(); }
+    DeviceMemory deviceMemory() const;
     const CameraDraws& cameraDraws() const { return cameraDraws_; }
     ShadowDraws shadowDraws() const;
     const FrameLights& lights() const { return lights_; }

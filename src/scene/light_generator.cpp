@@ -197,4 +197,26 @@ LightCounts parseLightCounts(const std::string& text) {
     return counts;
 }
 
+void setLightRanges(Scene& scene, float fraction) {
+    const float diagonal = glm::length(scene.bounds.max - scene.bounds.min);
+    if (!(fraction > 0.0f) || !(diagonal > 0.0f)) throw Error("light range", "needs a positive fraction and scene bounds");
+    for (Light& light : scene.lights) {
+        if (light.type == LightType::Directional) continue;
+        const float range = fraction * diagonal;
+        const float scale = light.range > 0.0f ? range / light.range : 1.0f;  // an infinite range keeps its intensity
+        light.intensity *= scale * scale;
+        light.range = range;
+    }
+}
+
+void keepFirstLights(Scene& scene, uint32_t spotCount, uint32_t pointCount) {
+    uint32_t spots = 0;
+    uint32_t points = 0;
+    std::erase_if(scene.lights, [&](const Light& light) {
+        if (light.type == LightType::Spot) return ++spots > spotCount;
+        if (light.type == LightType::Point) return ++points > pointCount;
+        return false;
+    });
+}
+
 }  // namespace punctual

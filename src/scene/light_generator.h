@@ -60,6 +60,17 @@ glm::vec3 randomLightColor(PortableRandom& random);
 // the scene has no geometry to take bounds from. Call Scene::computeBounds() first.
 void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed);
 
+// Sets every spot and point light's range to `fraction` x the scene's bounds diagonal and scales
+// its intensity by the square of the change, as replaceLights ties them: each light keeps its
+// illuminance at a given share of its range. The bench holds the overlap fixed this way while it
+// varies the light count, and varies it alone in the range series. Call computeBounds() first.
+void setLightRanges(Scene& scene, float fraction);
+
+// Keeps the first `spotCount` spots and the first `pointCount` points, in their order, and every
+// directional light. Subsets of one generated set are nested: a sweep over counts only ever adds
+// lights, so "more lights" never also means "other lights".
+void keepFirstLights(Scene& scene, uint32_t spotCount, uint32_t pointCount);
+
 struct LightCounts {
     uint32_t spot = 0;
     uint32_t point = 0;

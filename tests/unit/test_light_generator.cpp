@@ -81,6 +81,50 @@ TEST(LightGen, DifferentSeedGivesDifferentLights) {
     EXPECT_EQ(differing, a.lights.size());
 }
 
+// The bench's fixed-range sets: every range the same share of the diagonal, the intensity scaled
+// by the square of the change (so illuminance at half the range is unchanged), and nested subsets.
+TEST(LightGen, FixedRangesKeepIlluminanceAtAShareOfTheRange) {
+    Scene scene = hall();
+    replaceLights(scene, 6, 3, 1);
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.intensity = 3.0f;
+    scene.lights.push_back(sun);
+    const Scene before = scene;
+    const float diagonal = glm::length(scene.bounds.max - scene.bounds.min);
+    setLightRanges(scene, 0.5f);
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& old = before.lights[i];
+        const Light& now = scene.lights[i];
+        if (now.type == LightType::Directional) {
+            EXPECT_TRUE(identical(now, old));  // a sun has no range
+            continue;
+        }
+        EXPECT_FLOAT_EQ(now.range, 0.5f * diagonal) << i;
+        // I / r^2 is what replaceLights drew (the brightness factor): unchanged.
+        EXPECT_NEAR(now.intensity / (now.range * now.range), old.intensity / (old.range * old.range),
+                    1e-6f * old.intensity / (old.range * old.range)) << i;
+        EXPECT_EQ(now.position, old.position) << i;
+    }
+    EXPECT_THROW(setLightRanges(scene, 0.0f), Error);
+}
+
+TEST(LightGen, FirstLightsAreNestedSubsets) {
+    Scene all = hall();
+    replaceLights(all, 10, 5, 3);
+    Light sun;
+    sun.type = LightType::Directional;
+    all.lights.push_back(sun);
+    Scene some = all;
+    keepFirstLights(some, 4, 2);
+    ASSERT_EQ(some.lights.size(), 7u);  // 4 spots, 2 points, the sun
+    for (size_t i = 0; i < 4; ++i) EXPECT_TRUE(identical(some.lights[i], all.lights[i])) << i;
+    for (size_t i = 0; i < 2; ++i) EXPECT_TRUE(identical(some.lights[4 + i], all.lights[10 + i])) << i;
+    EXPECT_EQ(some.lights[6].type, LightType::Directional);
+    keepFirstLights(some, 0, 0);
+    ASSERT_EQ(some.lights.size(), 1u);
+}
+
 TEST(LightGen, CountsAndTypes) {
     Scene scene = hall();
     Light sun;
