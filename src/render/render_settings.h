@@ -37,6 +37,10 @@ struct RenderSettings {
     // forward, transparent) instead of only those whose bounds meet the camera's frustum. The
     // image is the same either way; only the work differs.
     bool cullObjectsToView = true;
+    // Whether the renderer warns when the shadow budget gave views less resolution than their
+    // receivers need. The bench turns it off: it sweeps small budgets on purpose and records the
+    // reduced views in its own column (shadow_reduced_views).
+    bool warnReducedShadows = true;
 };
 
 

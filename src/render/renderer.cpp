@@ -300,7 +300,7 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
         sizeShadowViews(shadowPlan_, scene, lights_, scene.camera.position(), settings.width, settings.height,
                         settings.shadows, ShadowMaps::memoryLimits(context, settings.shadows), &geometry);
     }
-    if (!shadowPlan_.reductions.empty()) {
+    if (!shadowPlan_.reductions.empty() && settings.warnReducedShadows) {
         log::warn("shadows: " + std::to_string(shadowPlan_.reductions.size()) + " view(s) got less resolution than " +
                   "their receivers need, to fit " + shadowPlan_.reducedBy + " (the stats' shadows.reduced lists them)");
     }

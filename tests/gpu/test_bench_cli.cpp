@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -37,16 +38,20 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     std::string header;
     std::getline(csv, header);
     EXPECT_EQ(header,
-              "config,series,method,spot,point,shadows,shadow_res,shadow_format,shadow_filter,point_layout,"
-              "shadowed_spots,shadowed_points,frames,depth_ms,transparent_depth_ms,culling_ms,shadows_ms,forward_ms,"
-              "transparent_ms,tonemap_ms,total_ms,depth_spread_ms,transparent_depth_spread_ms,culling_spread_ms,"
-              "shadows_spread_ms,forward_spread_ms,transparent_spread_ms,tonemap_spread_ms,total_spread_ms,tested_per_pixel,affecting_per_pixel,efficiency,missed_energy,image_error,pixels_off,"
-              "shadow_views,shadow_memory_bytes,shadow_texels_rendered,shadow_filter_taps,shadow_reduced_views,"
-              "shadow_misclassified,shadow_misclassified_all,shadow_misclassified_1px,shadow_false_shadow,"
-              "shadow_false_lit,cascades,sun_misclassified,sun_misclassified_1px,sun_cascade0_misclassified_1px,"
-              "sun_cascade1_misclassified_1px,sun_cascade2_misclassified_1px,sun_cascade3_misclassified_1px,"
-              "scene_triangles,objects,objects_in_view,camera_triangles,camera_draws,shadow_draws,shadow_draws_max,"
-              "shadow_triangles,peak_rss_bytes,device_bytes");
+              "config,series,method,spot,point,light_range,width,height,pixels,scene,scene_triangles,objects,shadows,"
+              "shadow_res,shadow_budget_mib,shadow_format,shadow_filter,point_layout,cascades,shadowed_spots,"
+              "shadowed_points,rounds,depth_ms,transparent_depth_ms,culling_ms,shadows_ms,forward_ms,transparent_ms,"
+              "tonemap_ms,total_ms,depth_iqr_ms,transparent_depth_iqr_ms,culling_iqr_ms,shadows_iqr_ms,forward_iqr_ms,"
+              "transparent_iqr_ms,tonemap_iqr_ms,total_iqr_ms,depth_cv,transparent_depth_cv,culling_cv,shadows_cv,"
+              "forward_cv,transparent_cv,tonemap_cv,total_cv,flagged,flag_reason,tested_per_pixel,affecting_per_pixel,"
+              "shadow_lookups_per_pixel,filter_taps_per_pixel,shadow_views,shadow_texels_rendered,shadow_filter_taps,"
+              "objects_in_view,camera_triangles,depth_triangles,forward_triangles,transparent_triangles,"
+              "shadow_triangles,depth_draws,forward_draws,transparent_draws,shadow_draws,shadow_draws_max,"
+              "shadow_memory_bytes,light_grid_bytes,scene_bytes,frame_bytes,device_bytes,peak_rss_bytes,efficiency,"
+              "missed_energy,image_error,pixels_off,shadow_reduced_views,shadow_misclassified,"
+              "shadow_misclassified_all,shadow_misclassified_1px,shadow_false_shadow,shadow_false_lit,"
+              "sun_misclassified,sun_misclassified_1px,sun_cascade0_misclassified_1px,sun_cascade1_misclassified_1px,"
+              "sun_cascade2_misclassified_1px,sun_cascade3_misclassified_1px");
     const size_t columns = size_t(std::count(header.begin(), header.end(), ',')) + 1;
     size_t rows = 0;
     std::set<std::string> series, methods;
@@ -62,13 +67,51 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
         methods.insert(method);
     }
     EXPECT_GE(rows, 30u);
-    EXPECT_EQ(series, (std::set<std::string>{"mix", "spot-only", "point-only", "shadows", "shadow-quality", "shadow-filters",
-                                             "cascades", "triangles"}));
+    EXPECT_EQ(series, (std::set<std::string>{"mix", "spot-only", "point-only", "range", "pixels", "shadows",
+                                             "shadow-quality", "shadow-budget", "shadow-filters", "cascades", "triangles"}));
     EXPECT_EQ(methods, (std::set<std::string>{"brute", "per-object", "tiled", "clustered"}));
 
     const nlohmann::json json = nlohmann::json::parse(readText(dir + "/results.json"));
     EXPECT_EQ(json["configurations"].size(), rows);
     EXPECT_TRUE(json["quick"].get<bool>());
+    // Where the numbers come from, and how noisy the run was (docs/BENCH_RESULTS.md).
+    const nlohmann::json& provenance = json["provenance"];
+    for (const char* key : {"name", "type", "driver_name", "driver_info", "api_version"}) {
+        EXPECT_FALSE(provenance["device"][key].dump().empty()) << key;
+    }
+    EXPECT_EQ(provenance["device"]["name"], json["device"]);
+    EXPECT_GE(provenance["cpu"]["logical_cores"].get<int>(), 1);
+    EXPECT_EQ(provenance["git_commit"].get<std::string>().size(), 40u);  // built from a clone
+    EXPECT_NE(provenance["command_line"].get<std::string>().find("punctual bench --quick --validate --out-dir"),
+              std::string::npos);
+    EXPECT_EQ(provenance["date"].get<std::string>().size(), 20u);  // 2026-12-02T11:29:12Z
+    EXPECT_EQ(provenance["scene"]["triangles"], 348);
+    EXPECT_EQ(json["noise"]["rounds"], 3);
+    EXPECT_EQ(json["noise"]["flag_limit"], 0.15);
+    EXPECT_GE(json["noise"]["median_cv"].get<double>(), 0.0);
+    uint32_t flaggedRows = 0;
+    for (const auto& row : json["configurations"]) {
+        const std::string config = row["config"];
+        EXPECT_EQ(row["rounds"], "3") << config;
+        EXPECT_TRUE(row["flagged"] == "0" || row["flagged"] == "1") << config;
+        EXPECT_EQ(row["flag_reason"].get<std::string>().empty(), row["flagged"] == "0") << config;
+        flaggedRows += row["flagged"] == "1" ? 1u : 0u;
+        // The counters every configuration has, whatever the device.
+        for (const char* column : {"tested_per_pixel", "affecting_per_pixel", "shadow_lookups_per_pixel",
+                                   "filter_taps_per_pixel", "depth_triangles", "forward_draws", "device_bytes",
+                                   "scene_bytes", "frame_bytes", "total_iqr_ms", "total_cv"}) {
+            EXPECT_NE(row[column].get<std::string>(), "") << config << ": " << column;
+        }
+        const bool shadows = row["shadows"] == "1";
+        EXPECT_EQ(std::stod(row["shadow_lookups_per_pixel"].get<std::string>()) > 0.0, shadows) << config;
+        // Brute force tests every light at every pixel: the nested generated sets' counts.
+        if (row["method"] == "brute" && row["series"] != "cascades" && row["series"] != "triangles") {
+            EXPECT_DOUBLE_EQ(std::stod(row["tested_per_pixel"].get<std::string>()),
+                             std::stod(row["spot"].get<std::string>()) + std::stod(row["point"].get<std::string>()))
+                << config;
+        }
+    }
+    EXPECT_EQ(json["noise"]["flagged"], flaggedRows);
     // The shadow sweep: auto against fixed resolutions at 16 and 32 bits, and the former default;
     // every row with its memory, texels and accuracy, and per-light counts for the target's
     // comparison on the lights two settings both shadow.
@@ -117,9 +160,24 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     EXPECT_EQ(json["point_layouts"], nlohmann::json({"cube", "slices"}));
     for (const auto& pass : json["passes"]) {
         EXPECT_NE(header.find(pass.get<std::string>() + "_ms,"), std::string::npos) << pass;
-        EXPECT_NE(header.find(pass.get<std::string>() + "_spread_ms,"), std::string::npos) << pass;
+        EXPECT_NE(header.find(pass.get<std::string>() + "_iqr_ms,"), std::string::npos) << pass;
+        EXPECT_NE(header.find(pass.get<std::string>() + "_cv,"), std::string::npos) << pass;
     }
     EXPECT_TRUE(std::filesystem::exists(dir + "/images/heatmap-tiled.png"));
+    // The bench drew its own report (CI has python3-matplotlib).
+    EXPECT_TRUE(std::filesystem::exists(dir + "/index.html"));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/failures.html"));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/charts/forward_time.png"));
+    // The budget series: the auto resolution fitted to 8 and 64 MiB, the smaller never larger.
+    std::map<std::string, uint64_t> budgetMemory;
+    for (const auto& row : json["configurations"]) {
+        if (row["series"] != "shadow-budget") continue;
+        budgetMemory[row["shadow_budget_mib"]] = std::stoull(row["shadow_memory_bytes"].get<std::string>());
+        EXPECT_NE(row["shadow_misclassified_1px"].get<std::string>(), "") << row["config"];
+    }
+    ASSERT_EQ(budgetMemory.size(), 2u);
+    EXPECT_LE(budgetMemory["8"], 8ull << 20);
+    EXPECT_LE(budgetMemory["8"], budgetMemory["64"]);
     // results.json lists every file of the run (and only those), so the next run can tell its own.
     ASSERT_TRUE(json.contains("files"));
     std::set<std::string> listed;
@@ -146,8 +204,16 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
 
 TEST(BenchCli, BadOptionsFailCleanly) {
     testing::TempFolder folder;
-    for (const std::string& args : std::vector<std::string>{"bench", "bench --out-dir", "bench --out-dir '" + folder.file("a/b") + "'",
-                                   "bench --culling tiled --out-dir '" + folder.file("x") + "'"}) {
+    for (const std::string& args : std::vector<std::string>{
+             "bench", "bench --out-dir", "bench --out-dir '" + folder.file("a/b") + "'",
+             "bench --culling tiled --out-dir '" + folder.file("x") + "'",
+             "bench --frames 3 --out-dir '" + folder.file("x") + "'",
+             "bench --rounds 0 --out-dir '" + folder.file("x") + "'",
+             "bench --rounds many --out-dir '" + folder.file("x") + "'",
+             "bench --seed -1 --out-dir '" + folder.file("x") + "'",
+             "bench --series mix,nothing --out-dir '" + folder.file("x") + "'",
+             "bench --compare '" + folder.file("none-a") + "' '" + folder.file("none-b") + "' --out-dir '" +
+                 folder.file("x") + "'"}) {
         const RunResult run = runPunctual(folder, args);
         EXPECT_NE(run.exitCode, 0) << args;
         EXPECT_EQ(testing::lineCount(run.err), 1u) << args << ": " << run.err;

@@ -1,0 +1,272 @@
+#include "app/bench_plan.h"
+
+#include <algorithm>
+#include <sstream>
+#include <tuple>
+
+#include "core/error.h"
+#include "lights/shadow_filters.h"
+
+namespace punctual::app {
+namespace {
+
+// Methods in table order; --quick keeps the entries marked for it.
+std::vector<render::LightListMethod> benchMethods(bool quick) {
+    std::vector<render::LightListMethod> methods;
+    for (const render::LightListMethodInfo& method : render::kLightListMethods) {
+        if (!quick || method.quickBench) methods.push_back(method.value);
+    }
+    return methods;
+}
+
+ShadowSettings shadowsOff() {
+    ShadowSettings off;
+    off.enabled = false;
+    return off;
+}
+
+// Light counts, with a fixed range per light: the mix (2 spots to a point), spots alone, points
+// alone. Each count's lights are the first of the largest set, so a larger count only adds
+// lights.
+void addLightCountSeries(std::vector<BenchConfig>& configs, bool quick) {
+    const std::vector<uint32_t> counts = quick ? std::vector<uint32_t>{0, 16, 64} : std::vector<uint32_t>{0, 8, 16, 32, 48, 64};
+    for (const auto& [series, spotShare, pointShare] :
+         {std::tuple<const char*, uint32_t, uint32_t>{"mix", 2, 1}, {"spot-only", 2, 0}, {"point-only", 0, 1}}) {
+        for (uint32_t count : counts) {
+            if (std::string(series) != "mix" && count == 0) continue;  // the same empty frame as mix
+            for (render::LightListMethod method : benchMethods(quick)) {
+                BenchConfig config;
+                config.series = series;
+                config.method = method;
+                config.spot = spotShare ? count : 0;
+                config.point = pointShare ? count / 2 : 0;
+                config.shadows = shadowsOff();
+                configs.push_back(config);
+            }
+        }
+    }
+}
+
+BenchConfig fullLightSet(const char* series, render::LightListMethod method) {
+    BenchConfig config;
+    config.series = series;
+    config.method = method;
+    config.spot = kBenchSpots;
+    config.point = kBenchPoints;
+    config.shadows = shadowsOff();
+    return config;
+}
+
+// Overlap alone: 64 + 32 lights, every range the same share of the diagonal.
+void addRangeSeries(std::vector<BenchConfig>& configs, bool quick) {
+    const std::vector<float> ranges = quick ? std::vector<float>{0.1f, 0.35f} : std::vector<float>{0.1f, 0.2f, 0.35f, 0.5f, 0.7f};
+    for (float range : ranges) {
+        for (render::LightListMethod method : benchMethods(quick)) {
+            BenchConfig config = fullLightSet("range", method);
+            config.lightRange = range;
+            configs.push_back(config);
+        }
+    }
+}
+
+// Pixels alone: the same lights and scene from 320x180 to 2560x1440.
+void addPixelSeries(std::vector<BenchConfig>& configs, bool quick) {
+    const std::vector<std::pair<uint32_t, uint32_t>> sizes =
+        quick ? std::vector<std::pair<uint32_t, uint32_t>>{{320, 180}, {640, 360}}
+              : std::vector<std::pair<uint32_t, uint32_t>>{{320, 180}, {640, 360}, {1280, 720}, {1920, 1080}, {2560, 1440}};
+    for (const auto& [width, height] : sizes) {
+        for (render::LightListMethod method : benchMethods(quick)) {
+            BenchConfig config = fullLightSet("pixels", method);
+            config.width = width;
+            config.height = height;
+            configs.push_back(config);
+        }
+    }
+}
+
+void addShadowSeries(std::vector<BenchConfig>& configs, bool quick) {
+    for (render::LightListMethod method : benchMethods(quick)) {
+        configs.push_back(fullLightSet("shadows", method));
+        BenchConfig on = fullLightSet("shadows", method);
+        on.shadows = ShadowSettings{};
+        configs.push_back(on);
+    }
+    // Shadow quality against memory: auto (every light, each view at its tier) and fixed
+    // resolutions, at 16 and 32 bits, validated against Embree; and the former default, 1024 at
+    // 32 bits for the 32 spots and 8 points that matter most (issue 11's "A").
+    const std::vector<uint32_t> resolutions = quick ? std::vector<uint32_t>{ShadowSettings::kAutoResolution, 256, 1024}
+                                                    : std::vector<uint32_t>{ShadowSettings::kAutoResolution, 256, 512,
+                                                                            1024, 2048};
+    for (uint32_t resolution : resolutions) {
+        for (ShadowFormat format : {ShadowFormat::D16, ShadowFormat::D32}) {
+            BenchConfig config = fullLightSet("shadow-quality", render::LightListMethod::Tiled);
+            config.shadows.enabled = true;
+            config.shadows.resolution = resolution;
+            config.shadows.format = format;
+            // A 16384^2 atlas holds 64 views of 2048^2: not 256, nor the 80 of 32 spots and 8
+            // points (each point six slices); the fixed 2048 sweep shadows the 32 spots and 5
+            // points that matter most (62 views).
+            if (resolution == 2048) {
+                config.shadows.maxShadowedSpots = 32;
+                config.shadows.maxShadowedPoints = 5;
+            }
+            config.validateShadows = true;
+            configs.push_back(config);
+        }
+    }
+    BenchConfig former = fullLightSet("shadow-quality", render::LightListMethod::Tiled);
+    former.shadows = ShadowSettings{};
+    former.shadows.resolution = 1024;
+    former.shadows.format = ShadowFormat::D32;
+    former.shadows.maxShadowedSpots = 32;
+    former.shadows.maxShadowedPoints = 8;
+    former.validateShadows = true;
+    configs.push_back(former);
+    // The auto resolution's budget: the storage the views are fitted to, against their accuracy.
+    const std::vector<uint64_t> budgetsMib = quick ? std::vector<uint64_t>{8, 64} : std::vector<uint64_t>{8, 16, 32, 64, 128};
+    for (uint64_t mib : budgetsMib) {
+        BenchConfig config = fullLightSet("shadow-budget", render::LightListMethod::Tiled);
+        config.shadows = ShadowSettings{};
+        config.shadows.budgetBytes = mib << 20;
+        config.validateShadows = true;
+        configs.push_back(config);
+    }
+    // The filters at the default (auto) resolution.
+    for (const ShadowFilterInfo& filter : kShadowFilters) {
+        if (quick && !filter.quickBench) continue;
+        BenchConfig config = fullLightSet("shadow-filters", render::LightListMethod::Tiled);
+        config.shadows = ShadowSettings{};
+        config.shadows.filter = filter.value;
+        config.validateShadows = true;
+        configs.push_back(config);
+    }
+}
+
+// The sun's cascades on the outdoor scene: count x fixed resolution x filter. Its lamps keep
+// lighting the street but cast no shadow, so that the shadow stage and its memory are the
+// cascades' alone. The filters are those whose reach is counted in texels (the disk's radius is a
+// share of the map, the same for every cascade); --quick keeps the ones marked for it.
+void addCascadeSeries(std::vector<BenchConfig>& configs, bool quick) {
+    const BuiltinScene& outdoor = parseBuiltinScene("outdoor");
+    const std::vector<uint32_t> counts = quick ? std::vector<uint32_t>{1, 4} : std::vector<uint32_t>{1, 2, 3, 4};
+    const std::vector<uint32_t> resolutions = quick ? std::vector<uint32_t>{512} : std::vector<uint32_t>{512, 1024, 2048};
+    for (uint32_t count : counts) {
+        for (uint32_t resolution : resolutions) {
+            for (const ShadowFilterInfo& filter : kShadowFilters) {
+                if (filter.footprint.fromDiskSettings || (quick && !filter.quickBench)) continue;
+                BenchConfig config;
+                config.series = "cascades";
+                config.scene = &outdoor;
+                config.shadows.resolution = resolution;
+                config.shadows.filter = filter.value;
+                config.shadows.maxShadowedSpots = 0;
+                config.shadows.maxShadowedPoints = 0;
+                config.shadows.cascades.count = count;
+                config.validateShadows = true;
+                configs.push_back(config);
+            }
+        }
+    }
+}
+
+// Cost against triangles: the rooms scene (its own 64 spots, 32 points and sun, every one
+// shadowed at auto resolution) at each size, every method. Sizes ascending, so each size's peak
+// memory is its own (the bench frees a size's scene before building the next).
+void addTriangleSeries(std::vector<BenchConfig>& configs, bool quick) {
+    const BuiltinScene& rooms = parseBuiltinScene("rooms");
+    const std::vector<uint64_t> sizes = quick ? std::vector<uint64_t>{10'000, 100'000}
+                                              : std::vector<uint64_t>{10'000, 100'000, 1'000'000, 10'000'000};
+    for (uint64_t triangles : sizes) {
+        for (render::LightListMethod method : benchMethods(quick)) {
+            BenchConfig config;
+            config.series = "triangles";
+            config.scene = &rooms;
+            config.triangles = triangles;
+            config.method = method;
+            configs.push_back(config);
+        }
+    }
+}
+
+}  // namespace
+
+const std::vector<BenchSeries>& benchSeries() {
+    static const std::vector<BenchSeries> series = {
+        {"mix", "lights 0-96, 2 spots to a point, at a fixed range per light, x every method (shadows off)"},
+        {"spot-only", "spot lights 8-64 alone, as mix"},
+        {"point-only", "point lights 4-32 alone, as mix"},
+        {"range", "64 + 32 lights at ranges 0.1-0.7 x the scene's diagonal (overlap alone), x every method"},
+        {"pixels", "64 + 32 lights at 320x180 to 2560x1440 (pixels alone), x every method"},
+        {"shadows", "64 + 32 lights, shadows off and on, per method"},
+        {"shadow-quality", "auto and fixed 256..2048 shadow resolutions x 16 and 32 bits, validated against Embree"},
+        {"shadow-budget", "the auto resolution's budget, 8..128 MiB, validated against Embree"},
+        {"shadow-filters", "every shadow filter at auto resolution, validated against Embree"},
+        {"cascades", "the outdoor scene's sun: 1-4 cascades x 512, 1024, 2048 x the texel filters, validated"},
+        {"triangles", "the rooms scene at 10^4..10^7 triangles x every method, with peak memory"},
+        {"failures", "the failure study (failures.csv)"},
+    };
+    return series;
+}
+
+std::vector<BenchConfig> benchPlan(bool quick) {
+    // In benchSeries() order, each series (and each group) consecutive.
+    std::vector<BenchConfig> configs;
+    addLightCountSeries(configs, quick);
+    addRangeSeries(configs, quick);
+    addPixelSeries(configs, quick);
+    addShadowSeries(configs, quick);
+    addCascadeSeries(configs, quick);
+    addTriangleSeries(configs, quick);
+    return configs;
+}
+
+std::string benchGroupKey(const BenchConfig& config) {
+    std::string key = config.series;
+    if (config.scene) key += std::string("/") + config.scene->name + "/" + std::to_string(config.triangles);
+    return key;
+}
+
+std::string benchConfigName(const BenchConfig& c) {
+    std::ostringstream s;
+    s << c.series << "-" << render::methodName(c.method) << "-";
+    if (c.scene) {
+        s << c.scene->name;
+        if (c.triangles) s << "-" << c.triangles << "t";
+    } else {
+        s << c.spot << "s" << c.point << "p";
+        if (c.lightRange != kBenchLightRange) s << "-range" << c.lightRange;
+    }
+    if (c.width) s << "-" << c.width << "x" << c.height;
+    if (c.shadows.enabled) {
+        s << "-shadows-" << shadowResolutionName(c.shadows) << "-" << shadowFormatName(c.shadows.format) << "-"
+          << shadowFilterName(c.shadows.filter) << "-" << pointShadowLayoutName(c.shadows.pointLayout);
+        const ShadowSettings defaults;
+        if (c.shadows.maxShadowedSpots != defaults.maxShadowedSpots ||
+            c.shadows.maxShadowedPoints != defaults.maxShadowedPoints) {
+            s << "-shadowed-" << c.shadows.maxShadowedSpots << "s" << c.shadows.maxShadowedPoints << "p";
+        }
+        if (c.shadows.budgetBytes != defaults.budgetBytes) s << "-budget" << (c.shadows.budgetBytes >> 20) << "m";
+        if (c.scene) s << "-" << c.shadows.cascades.count << "c";
+    }
+    return s.str();
+}
+
+std::vector<std::string> parseBenchSeries(const std::string& text) {
+    std::vector<std::string> series;
+    size_t start = 0;
+    while (start <= text.size()) {
+        const size_t comma = std::min(text.find(',', start), text.size());
+        const std::string name = text.substr(start, comma - start);
+        const auto& known = benchSeries();
+        if (std::none_of(known.begin(), known.end(), [&](const BenchSeries& s) { return name == s.name; })) {
+            std::string list;
+            for (const BenchSeries& k : known) list += (list.empty() ? "" : ", ") + std::string(k.name);
+            throw Error("--series", "expected names from " + list + ", got '" + name + "'");
+        }
+        series.push_back(name);
+        start = comma + 1;
+    }
+    return series;
+}
+
+}  // namespace punctual::app

@@ -1,0 +1,58 @@
+#pragma once
+// What `punctual bench` measures: its series and their configurations, in the order they run
+// (docs/BENCH_RESULTS.md "Series"). Each configuration belongs to a group, the configurations
+// measured together in interleaved rounds (bench_command.cpp).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "lights/shadow_setup.h"
+#include "render/light_list_method.h"
+#include "scene/builtin_scenes.h"
+
+namespace punctual::app {
+
+// The range every generated light gets in the series that hold the overlap fixed, as a share of
+// the scene's bounds diagonal: the middle of the generator's 0.25-0.45.
+inline constexpr float kBenchLightRange = 0.35f;
+// The largest generated set (the per-frame caps); smaller counts take its first lights.
+inline constexpr uint32_t kBenchSpots = 64;
+inline constexpr uint32_t kBenchPoints = 32;
+
+struct BenchConfig {
+    std::string series;
+    // A built-in scene of the series' own, lit by its own lights (spot and point are then 0);
+    // nullptr: the bench's scene with the first `spot` + `point` generated lights at `lightRange`.
+    const BuiltinScene* scene = nullptr;
+    uint64_t triangles = 0;  // a sized built-in scene's size (BuiltinScene::sized); 0: its default
+    render::LightListMethod method = render::LightListMethod::Tiled;
+    uint32_t spot = 0;
+    uint32_t point = 0;
+    float lightRange = kBenchLightRange;  // generated lights only
+    uint32_t width = 0;                    // 0: the run's --size
+    uint32_t height = 0;
+    ShadowSettings shadows;
+    bool validateShadows = false;
+};
+
+struct BenchSeries {
+    const char* name;
+    const char* description;
+};
+// Every series, in run order, and the failure study's pseudo-series "failures" last.
+const std::vector<BenchSeries>& benchSeries();
+
+// Every configuration of every series (quick: fewer values per series), in run order; the
+// configurations of one group are consecutive.
+std::vector<BenchConfig> benchPlan(bool quick);
+
+// The group a configuration is measured with: its series and scene (a sized scene's each size).
+std::string benchGroupKey(const BenchConfig& config);
+
+// A unique, readable name (results.csv's `config`).
+std::string benchConfigName(const BenchConfig& config);
+
+// The series --series names, comma-separated; throws Error("--series", ...) naming the known ones.
+std::vector<std::string> parseBenchSeries(const std::string& text);
+
+}  // namespace punctual::app
