@@ -47,12 +47,15 @@ FLAGS = [
     "--remote-debugging-pipe",
 ]
 
-# Runs in the page once it has loaded: waits for every image to finish (loaded or failed, lazy
+# Runs in the page once it has loaded (and waits for that too, should the load event have been
+# another document's): waits for every image to finish (loaded or failed, lazy
 # ones made eager so none waits for a scroll that never comes, 20 s at most), then lists the
 # images and every element that names another file, with the attribute as written and the URL
 # the browser resolved it to.
 PAGE_SCRIPT = r"""
 (async () => {
+  if (document.readyState !== "complete")
+    await new Promise(done => addEventListener("load", done, {once: true}));
   const images = Array.from(document.images);
   for (const img of images) if (img.loading === "lazy") img.loading = "eager";
   const settled = images.map(img => img.complete ? null : new Promise(done => {
@@ -67,6 +70,7 @@ PAGE_SCRIPT = r"""
       "img[src], script[src], iframe[src], source[src], video[src], audio[src], embed[src]"))
     links.push({tag: el.localName, attr: el.getAttribute("src"), url: el.src});
   return {
+    url: location.href,
     images: images.map(img => ({attr: img.getAttribute("src"), url: img.currentSrc || img.src,
                                 complete: img.complete, width: img.naturalWidth})),
     links: links,
@@ -228,10 +232,13 @@ class Browser:
             if "exceptionDetails" in found:
                 problems.append("the checking script failed: "
                                 + found["exceptionDetails"].get("text", "?"))
-                found = {"result": {"value": {"images": [], "links": []}}}
+                found = {"result": {"value": {"url": page.as_uri(), "images": [], "links": []}}}
             self.drain(0.3)
             problems += self._console_errors(session)
             value = found["result"]["value"]
+            shown = urllib.parse.unquote(urllib.parse.urlsplit(value["url"]).path)
+            if shown != str(page):  # compared decoded: Chromium and Python escape differently
+                problems.append(f"checked {value['url']} instead (the page did not load)")
             local = [link for link in value["links"] if link["url"].startswith("file:")]
             self.last_counts = (len(value["images"]), len(local))
             for img in value["images"]:
@@ -257,15 +264,16 @@ class Browser:
             if event.get("sessionId") != session:
                 continue
             p = event.get("params", {})
-            if event["method"] == "Runtime.consoleAPICalled" and p.get("type") in ("error", "assert"):
+            method = event["method"]
+            if method == "Runtime.consoleAPICalled" and p.get("type") in ("error", "assert"):
                 text = " ".join(str(a.get("value", a.get("description", a.get("type", ""))))
                                 for a in p.get("args", []))
                 errors.append(f"console.{p['type']}: {text}")
-            elif event["method"] == "Runtime.exceptionThrown":
+            elif method == "Runtime.exceptionThrown":
                 d = p.get("exceptionDetails", {})
                 text = d.get("exception", {}).get("description") or d.get("text", "?")
                 errors.append(f"uncaught exception: {text}")
-            elif event["method"] == "Log.entryAdded" and p.get("entry", {}).get("level") == "error":
+            elif method == "Log.entryAdded" and p.get("entry", {}).get("level") == "error":
                 entry = p["entry"]
                 errors.append(f"console error ({entry.get('source', '?')}): {entry.get('text', '')}"
                               + (f" {entry['url']}" if entry.get("url") else ""))

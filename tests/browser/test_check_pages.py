@@ -24,7 +24,8 @@ BROWSER = None  # one Chromium for every test, started by main()
 def tiny_png():
     """A valid 2x1 PNG, written here so the test needs no file of its own."""
     def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+        crc = zlib.crc32(kind + data)
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", crc)
     pixels = b"\x00" + b"\xff\x00\x00" * 2
     return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 2, 1, 8, 2, 0, 0, 0))
             + chunk(b"IDAT", zlib.compress(pixels)) + chunk(b"IEND", b""))
@@ -87,7 +88,8 @@ class CheckPagesTest(unittest.TestCase):
     def test_local_file_missing_ignores_other_links(self):
         here = "file://" + self.dir.name
         self.assertIsNone(check_pages.local_file_missing("#x", here + "/page.html#x"))
-        self.assertIsNone(check_pages.local_file_missing("https://a.invalid/", "https://a.invalid/"))
+        web = "https://a.invalid/"
+        self.assertIsNone(check_pages.local_file_missing(web, web))
         self.assertIsNone(check_pages.local_file_missing("data.csv?x=1", here + "/data.csv?x=1"))
         self.assertEqual(check_pages.local_file_missing("a%20b.png", here + "/a%20b.png"),
                          os.path.join(self.dir.name, "a b.png"))

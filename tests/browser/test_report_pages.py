@@ -6,9 +6,9 @@ index.html and failures.html, and validate's report.html (two scenes).
 
 Writes the pages into a temporary folder (or DIR, kept) with a small bench: the 2:1 mix series
 (charts, images) and the failure study (failures.html's charts) at --quick and a tiny size, then
-validate runs of the hall and the outdoor scene. Exits 0 when every page is clean, 1 with every problem
-listed otherwise, and 77 (skipped) with one line saying why where Chromium is missing or does
-not start; Chromium is tried first, so a skip costs no bench.
+validate runs of the hall and the outdoor scene. Exits 0 when every page is clean, 1 with every
+problem listed otherwise, and 77 (skipped) with one line saying why where Chromium is missing or
+does not start; Chromium is tried first, so a skip costs no bench.
 """
 
 import argparse
