@@ -14,6 +14,7 @@ packages=(
   libdraco-dev                                               # glTF geometry compressed with KHR_draco_mesh_compression
   libmeshoptimizer-dev                                       # glTF buffer views compressed with EXT_meshopt_compression
   python3-matplotlib                                         # charts in bench/
+  chromium                                                   # the browser test opens the HTML reports (tests/browser)
 )
 # The sanitizer build (scripts/test-sanitized.sh) needs nothing more: GCC's ASan and UBSan
 # runtimes come with build-essential.
