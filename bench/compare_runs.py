@@ -22,7 +22,7 @@ import io
 import os
 import sys
 
-from bench_data import COUNTERS, fmt, number, passes_in_header, read_document, read_names
+from bench_data import COUNTERS, fmt, number, read_document, read_names
 
 PROGRAM = "compare_runs.py"
 COUNTER_TOLERANCE = 1e-4  # relative: counters printed to six digits, rasterised on two devices

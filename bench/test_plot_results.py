@@ -216,7 +216,8 @@ def run(folder):
 
 def snapshot(folder):
     """{relative path: bytes} of every file the script wrote."""
-    names = ["index.html"] + ["charts/" + n for n in os.listdir(os.path.join(folder, "charts"))]
+    names = ["index.html", "laws.json", "cost_model.json"] + [
+        "charts/" + n for n in os.listdir(os.path.join(folder, "charts"))]
     files = {}
     for name in names:
         with open(os.path.join(folder, name), "rb") as f:
