@@ -78,6 +78,14 @@ def timed_columns(rows, passes):
     return [c for c in columns if any((number(r, c) or 0) > 0 for r in rows)]
 
 
+def short(x):
+    """A tick label: 57.6k, 3.6864M, 0.05."""
+    for scale, suffix in ((1e9, "G"), (1e6, "M"), (1e3, "k")):
+        if abs(x) >= scale:
+            return f"{x / scale:g}{suffix}"
+    return f"{x:g}"
+
+
 def set_sweep_axis(ax, xs, label):
     """x: log (ticks at the measured values) when the values span a wide range, else linear."""
     xs = sorted({x for x in xs if x is not None})
@@ -85,7 +93,7 @@ def set_sweep_axis(ax, xs, label):
         ax.set_xscale("log")
         ax.xaxis.set_major_locator(FixedLocator(xs))
         ax.xaxis.set_minor_locator(NullLocator())
-        ax.set_xticklabels([f"{x:g}" for x in xs], rotation=30 if len(xs) > 5 else 0)
+        ax.set_xticklabels([short(x) for x in xs], rotation=30 if len(xs) > 5 else 0)
     ax.set_xlabel(label)
 
 
