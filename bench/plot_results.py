@@ -3,54 +3,47 @@
 
     /usr/bin/python3 bench/plot_results.py DIR
 
-reads DIR/results.csv and writes DIR/charts/<name>.png and .svg for every chart the data allows,
-then DIR/index.html with every chart, every DIR/images/*.png and the CSV as a table. A chart whose
-series or columns are missing or empty is skipped with a note in index.html, so the few rows of
-`--quick` work too. Output is deterministic: rerunning on the same CSV gives identical files.
+reads DIR/results.csv (and results.json) and writes DIR/charts/<name>.png and .svg for every
+chart the data allows, DIR/laws.json (every sweep's fitted log-log slopes), DIR/cost_model.json
+(each pass's fitted cost per unit of its counters) and DIR/index.html: the run's provenance and
+noise, every chart with its fitted laws and flagged configurations, the laws and the cost model
+as tables, every DIR/images/*.png and the CSV as a table. A chart whose series or columns are
+missing or empty is skipped with a note in index.html, so the few rows of `--quick` work too.
+Output is deterministic: rerunning on the same CSV gives identical files.
 
 Nothing here names the methods, shadow filters or passes: DIR/results.json says them
 ("methods" and "shadow_filters" in table order, "passes" in frame order), and the script draws
 whatever it lists, a method's colour and marker taken from a fixed palette by its position. The
-per-pass columns of results.csv are P_ms and P_spread_ms for every pass P. Without those keys (a
-folder from an older bench) the names come from the CSV itself, sorted.
+columns are docs/BENCH_RESULTS.md's (bench_data.py reads them): every time chart draws the
+interquartile range over the rounds (P_iqr_ms; an older folder's P_spread_ms) as error bars, and
+a flagged configuration (its spread over results.json's noise.flag_limit) hollow, named under
+its chart. Without results.json's keys (a folder from an older bench) the names come from the
+CSV itself, sorted.
 
-Needs Debian's /usr/bin/python3 with python3-matplotlib (no other packages).
+The modules: bench_data.py (reading, columns), chart_style.py (what every chart shares),
+sweep_charts.py (the sweeps and their laws), cost_model.py (the fit), bench_report.py
+(index.html). Needs Debian's /usr/bin/python3 with python3-matplotlib (no other packages).
 """
 
 import argparse
-import csv
-import html
 import json
 import math
 import os
 import sys
-import urllib.parse
 
-import matplotlib
+from bench_data import (METHOD_COLOURS, METHOD_MARKERS, OTHER_STYLE, flag_limit,  # noqa: F401
+                        is_flagged, is_wide, known_columns, light_count, mark_flags, method_order,
+                        method_style, number, ordered, pareto_front, read_document, read_names,
+                        read_results, series_rows, varying_label)
+from chart_style import (FLAGGED_LEGEND, SkipChart, add_flagged_legend, configure_matplotlib,
+                         draw_front, flagged_handle, plot_per_method, plt, save_chart,
+                         set_count_axis, time_point_errors)
+from matplotlib.lines import Line2D
+from matplotlib.ticker import MaxNLocator, PercentFormatter
+import bench_report
+import cost_model
+import sweep_charts
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402  (after selecting the backend)
-from matplotlib.lines import Line2D  # noqa: E402
-from matplotlib.ticker import FixedLocator, MaxNLocator, NullLocator, PercentFormatter  # noqa: E402
-
-# The columns every row has besides the per-pass times (see pass_columns).
-LEADING_COLUMNS = """config series method spot point shadows shadow_res shadow_format shadow_filter
-    point_layout shadowed_spots shadowed_points frames""".split()
-TRAILING_COLUMNS = """total_ms total_spread_ms tested_per_pixel affecting_per_pixel efficiency
-    missed_energy image_error pixels_off shadow_views shadow_memory_bytes shadow_texels_rendered
-    shadow_filter_taps shadow_reduced_views shadow_misclassified shadow_misclassified_all
-    shadow_misclassified_1px shadow_false_shadow shadow_false_lit cascades sun_misclassified
-    sun_misclassified_1px sun_cascade0_misclassified_1px sun_cascade1_misclassified_1px
-    sun_cascade2_misclassified_1px sun_cascade3_misclassified_1px scene_triangles objects
-    objects_in_view camera_triangles camera_draws shadow_draws shadow_draws_max shadow_triangles
-    peak_rss_bytes device_bytes""".split()
-# Method styles by position in results.json's "methods": the first four keep the colours the
-# charts have always had (brute, per-object, tiled, clustered). Grey and "x" are left out: they
-# mark a method that results.json does not list.
-METHOD_COLOURS = ["tab:red", "tab:orange", "tab:blue", "tab:green", "tab:purple", "tab:brown",
-                  "tab:pink", "tab:olive", "tab:cyan"]
-METHOD_MARKERS = ["o", "s", "^", "D", "v", "P", "*", "h"]  # 8 against 9 colours: 72 pairs
-OTHER_STYLE = ("tab:gray", "x")  # a method in the rows that results.json does not list
 # Pass colours by position in "passes" (a palette apart from the methods').
 PASS_COLOURS = ["#66c2a5", "#fc8d62", "#8da0cb", "#e78ac3", "#a6d854", "#ffd92f", "#e5c494",
                 "#b3b3b3"]
@@ -59,195 +52,15 @@ PASS_HATCHES = [None, "//", "xx", ".."]  # beyond the palette, the colours repea
 REFERENCE_METHOD = "brute"
 LIGHT_SERIES = [("mix", "mix (spot:point = 2:1)"), ("spot-only", "spot lights only"),
                 ("point-only", "point lights only")]
-WIDE_RATIO = 10.0  # a log axis once the largest value is this many times the smallest
-
-
-class SkipChart(Exception):
-    """Raised by a chart function when the data cannot support its chart; the message says why."""
-
-
-# ----------------------------------------------------------------------------------- data access
-
-NAME_KEYS = ("methods", "shadow_filters", "passes")
-
-
-def pass_columns(passes):
-    """The per-pass columns of results.csv: P_ms then P_spread_ms, for every pass in order."""
-    return [f"{p}_ms" for p in passes] + [f"{p}_spread_ms" for p in passes]
-
-
-def known_columns(passes):
-    """Every column a row of results.csv should have, for these passes."""
-    return LEADING_COLUMNS + pass_columns(passes) + TRAILING_COLUMNS
-
-
-def passes_in_header(header):
-    """Pass names of the P_ms columns in `header` (not total_ms, not the spreads), sorted."""
-    return sorted(c[:-len("_ms")] for c in header
-                  if c.endswith("_ms") and not c.endswith("_spread_ms") and c != "total_ms")
-
-
-def read_names(path, header, rows):
-    """{"methods", "shadow_filters", "passes": names in order} from results.json, and notes.
-
-    A key that results.json lacks (an older bench), or the whole file when it is absent or
-    unreadable, falls back to what results.csv holds, sorted: the methods and filters of the rows,
-    the passes of the P_ms columns. The notes say which keys fell back and why."""
-    document, notes = {}, []
-    try:
-        with open(path, encoding="utf-8") as f:
-            document = json.load(f)
-    except FileNotFoundError:
-        pass
-    except (OSError, ValueError) as err:
-        notes.append(f"results.json could not be read ({err}); names come from results.csv.")
-    if not isinstance(document, dict):
-        document = {}
-    fallback = {"methods": sorted({r.get("method", "") for r in rows} - {""}),
-                "shadow_filters": sorted({r.get("shadow_filter", "") for r in rows} - {""}),
-                "passes": passes_in_header(header)}
-    names, fell_back = {}, []
-    for key in NAME_KEYS:
-        listed = document.get(key)
-        if isinstance(listed, list) and all(isinstance(n, str) for n in listed):
-            names[key] = list(listed)
-        else:
-            names[key] = fallback[key]
-            fell_back.append(key)
-    if document and fell_back:
-        notes.append(f"results.json lacks {', '.join(fell_back)}; taken from results.csv, sorted.")
-    return names, notes
-
-
-def read_results(path):
-    """Returns (header, rows) of the CSV; rows are dicts of strings, missing cells are ''."""
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.DictReader(f)
-        header = list(reader.fieldnames or [])
-        rows = [{k: (v or "").strip() for k, v in row.items() if k is not None} for row in reader]
-    return header, rows
-
-
-def number(row, column):
-    """The cell as a finite float, or None when it is empty, missing or not a number."""
-    try:
-        value = float(row.get(column) or "")
-    except ValueError:
-        return None
-    return value if math.isfinite(value) else None
-
-
-def light_count(row):
-    """Spot plus point lights of a row (0 for missing counts)."""
-    return int((number(row, "spot") or 0) + (number(row, "point") or 0))
-
-
-def series_rows(rows, series):
-    """The rows of one series, in file order."""
-    return [r for r in rows if r.get("series") == series]
-
-
-def method_order(rows, methods):
-    """The methods present in `rows`: those of `methods` in its order, then any others sorted."""
-    return ordered((r.get("method", "") for r in rows), methods)
-
-
-def method_style(method, methods):
-    """(colour, marker) of a method: by its position in `methods`, OTHER_STYLE when absent."""
-    if method not in methods:
-        return OTHER_STYLE
-    i = methods.index(method)
-    return METHOD_COLOURS[i % len(METHOD_COLOURS)], METHOD_MARKERS[i % len(METHOD_MARKERS)]
-
-
-def ordered(present, names):
-    """`present` values in the order of `names`, then any others sorted."""
-    present = set(present)
-    return [n for n in names if n in present] + sorted(present - set(names))
-
-
-def is_wide(values):
-    """True when the positive values span more than WIDE_RATIO (and none is <= 0)."""
-    values = [v for v in values if v is not None]
-    return bool(values) and min(values) > 0 and max(values) / min(values) > WIDE_RATIO
-
-
-def varying_label(row, rows, fields):
-    """A label made of those `fields` whose values differ between `rows`."""
-    varying = [f for f in fields if len({r.get(f, "") for r in rows}) > 1] or fields[:1]
-    return " ".join(row.get(f, "") for f in varying)
-
-
-def pareto_front(points):
-    """Indices of the non-dominated (x, y) points, both lower-is-better, sorted by x then y: no
-    other point is at least as good in both and better in one. Equal points are all kept."""
-    order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
-    front, best_y = [], math.inf
-    for i in order:
-        x, y = points[i]
-        if y < best_y or (front and points[front[-1]] == (x, y)):
-            front.append(i)
-            best_y = min(best_y, y)
-    return front
-
-
-# ------------------------------------------------------------------------------- chart helpers
-
-def configure_matplotlib():
-    """Fixed style and a fixed SVG id salt, so that reruns write identical files."""
-    matplotlib.rcParams.update({
-        "svg.hashsalt": "punctual-bench", "svg.fonttype": "path", "figure.dpi": 100,
-        "savefig.dpi": 100, "font.size": 9, "axes.grid": True, "grid.alpha": 0.3,
-        "axes.titlesize": 10, "legend.fontsize": 8,
-    })
-
-
-def save_chart(fig, charts_dir, name):
-    """Writes charts_dir/name.png and .svg without timestamps, and closes the figure."""
-    fig.savefig(os.path.join(charts_dir, name + ".png"), metadata={"Software": None})
-    fig.savefig(os.path.join(charts_dir, name + ".svg"), metadata={"Date": None, "Creator": None})
-    plt.close(fig)
-
-
-def set_count_axis(ax, counts):
-    """Light counts on x: log 2 when they span a wide range, ticks at the measured counts."""
-    counts = sorted(set(counts))
-    if counts and counts[0] > 0 and counts[-1] / counts[0] >= 8:
-        ax.set_xscale("log", base=2)
-    ax.xaxis.set_major_locator(FixedLocator(counts))
-    ax.xaxis.set_minor_locator(NullLocator())
-    ax.set_xticklabels([str(c) for c in counts])
-    ax.set_xlabel("lights (spot + point)")
-
-
-def plot_per_method(ax, rows, column, methods):
-    """One line per method of `column` against light count; returns the values drawn."""
-    drawn = []
-    for method in method_order(rows, methods):
-        pts = sorted((light_count(r), number(r, column)) for r in rows
-                     if r.get("method") == method and number(r, column) is not None)
-        if pts:
-            colour, marker = method_style(method, methods)
-            ax.plot([p[0] for p in pts], [p[1] for p in pts], color=colour, marker=marker,
-                    label=method)
-            drawn += [p[1] for p in pts]
-    return drawn
-
-
-def draw_front(ax, points, front):
-    """The Pareto front of `points` as a step line with its points ringed."""
-    xs, ys = [points[i][0] for i in front], [points[i][1] for i in front]
-    ax.plot(xs, ys, drawstyle="steps-post", color="black", linewidth=1.2, zorder=1,
-            label="Pareto front")
-    ax.scatter(xs, ys, s=150, facecolors="none", edgecolors="black", linewidths=1.5, zorder=3)
 
 
 # ---------------------------------------------------------------------------------------- charts
 
 def chart_pass_time(rows, names, column, what):
     """Median GPU time (forward pass, or whole frame) against light count, one line per method,
-    one panel per light series (mix, spot-only, point-only). It shows how each method scales with
-    the number of lights: brute force grows linearly, culled lists with the lights that actually
+    one panel per light series (mix, spot-only, point-only), error bars the interquartile range
+    over the rounds, flagged configurations hollow. It shows how each method scales with the
+    number of lights: brute force grows linearly, culled lists with the lights that actually
     reach pixels."""
     panels = [(s, t, series_rows(rows, s)) for s, t in LIGHT_SERIES]
     panels = [(s, t, rs) for s, t, rs in panels if any(number(r, column) is not None for r in rs)]
@@ -263,7 +76,7 @@ def chart_pass_time(rows, names, column, what):
     if is_wide(values):
         axes[0][0].set_yscale("log")
     axes[0][0].set_ylabel(f"{what}: median GPU ms")
-    axes[0][0].legend()
+    add_flagged_legend(axes[0][0])
     fig.suptitle(f"{what} time against light count")
     fig.tight_layout()
     return fig
@@ -315,7 +128,7 @@ def finish_shadow_pareto(fig, ax, points, front, error, cost, title, legend):
     ax.set_xlabel(f"{error} (lower is better)")
     ax.set_ylabel(f"{cost} (lower is better)")
     ax.set_title(title)
-    ax.legend(title=legend)
+    add_flagged_legend(ax, title=legend)
     fig.tight_layout()
     return fig
 
@@ -323,7 +136,8 @@ def finish_shadow_pareto(fig, ax, points, front, error, cost, title, legend):
 def chart_shadow_pareto(rows, names):
     """Whole-frame time against the fraction of shadow tests misclassified (outside the edge
     band, against the Embree reference), one point per shadow resolution and filter. The Pareto
-    front marks the settings no other setting beats in both speed and accuracy."""
+    front marks the settings no other setting beats in both speed and accuracy. Error bars: the
+    interquartile range over the rounds; flagged configurations hollow."""
     rs = [r for r in series_rows(rows, "shadow-quality")
           if number(r, "total_ms") is not None and number(r, "shadow_misclassified") is not None]
     if not rs:
@@ -337,6 +151,7 @@ def chart_shadow_pareto(rows, names):
         pts = [p for p, r in zip(points, rs) if r.get("shadow_filter", "") == flt]
         ax.scatter([p[0] for p in pts], [p[1] for p in pts], color=cmap(k % 10), zorder=2,
                    label=flt or "(no filter)")
+    time_point_errors(ax, rs, points, "total_ms")
     fields = ["shadow_res", "shadow_filter", "point_layout", "method", "spot", "point"]
     for (x, y), r in zip(points, rs):
         ax.annotate(varying_label(r, rs, fields), (x, y), xytext=(5, 4),
@@ -382,7 +197,8 @@ def chart_cascade_pareto(rows, names):
     time (left) and the shadow memory (right) against the share of the sun's shadow tests
     misclassified outside an edge band one screen pixel wide (against Embree), one point per
     cascade count (colour), filter (marker) and resolution per cascade (label). The Pareto front
-    of each panel marks the settings that no other beats in both cost and accuracy."""
+    of each panel marks the settings that no other beats in both cost and accuracy. Error bars:
+    the interquartile range over the rounds; flagged configurations hollow."""
     rs = [r for r in series_rows(rows, "cascades")
           if all(number(r, c) is not None for c in ("sun_misclassified_1px", "shadows_ms",
                                                    "shadow_memory_bytes", "cascades"))]
@@ -404,6 +220,8 @@ def chart_cascade_pareto(rows, names):
                        marker=marker[r.get("shadow_filter", "")], s=40, zorder=2)
             ax.annotate(r.get("shadow_res", ""), (x, y), xytext=(5, 4), textcoords="offset points",
                         fontsize=7)
+        if column == "shadows_ms":
+            time_point_errors(ax, rs, points, column)
         draw_front(ax, points, pareto_front(points))
         if is_wide([p[1] for p in points]):
             ax.set_yscale("log")
@@ -417,6 +235,8 @@ def chart_cascade_pareto(rows, names):
     handles += [Line2D([], [], linestyle="", marker=marker[f], color="black", label=f or "(no filter)")
                 for f in filters]
     handles += [Line2D([], [], color="black", linewidth=1.2, label="Pareto front")]
+    if getattr(fig, "flagged", None):
+        handles.append(flagged_handle())
     fig.legend(handles=handles, loc="center right", title="count, filter")
     fig.suptitle("the sun's cascades: cost against accuracy (count x resolution x filter; labels: "
                  "texels a side per cascade)")
@@ -436,7 +256,8 @@ def chart_assignment_pareto(rows, names):
     """Whole-frame time against image error versus brute force, one panel per light count of the
     mix series, one point per method. Brute force is the reference (error 0 when its cell is
     empty); tiled and clustered should sit on 0 as well, and per-object's capped lists show as
-    error. The Pareto front marks the methods nothing beats in both speed and accuracy."""
+    error. The Pareto front marks the methods nothing beats in both speed and accuracy. Error
+    bars: the interquartile range over the rounds; flagged configurations hollow."""
     mix = series_rows(rows, "mix")
     column = assignment_error_column(mix)
     if column is None:
@@ -461,6 +282,7 @@ def chart_assignment_pareto(rows, names):
             colour, marker = method_style(r.get("method"), names["methods"])
             ax.scatter([x], [y], color=colour, marker=marker, s=45, zorder=2,
                        label=r.get("method", ""))
+        time_point_errors(ax, group, points, "total_ms")
         draw_front(ax, points, pareto_front(points))
         if is_wide([p[1] for p in points]):
             ax.set_yscale("log")
@@ -473,6 +295,8 @@ def chart_assignment_pareto(rows, names):
     legend = {}
     for ax in axes.flat[:len(counts)]:
         legend.update(zip(*reversed(ax.get_legend_handles_labels())))
+    if getattr(fig, "flagged", None):
+        legend[FLAGGED_LEGEND] = flagged_handle()
     fig.legend(legend.values(), legend.keys(), loc="lower center", ncol=len(legend))
     fig.suptitle("light assignment: speed against accuracy (lower is better on both axes)")
     margin = 0.4 / fig.get_figheight()  # room for the title above and the legend below
@@ -499,6 +323,9 @@ def pass_stack(ax, bars, passes, total_label):
             tick = ax.scatter([x], [total], marker="_", s=500, color="black", zorder=3,
                               label=total_label)
             handles.setdefault(total_label, tick)
+            time_point_errors(ax, [r], [(x, total)], "total_ms")
+            if is_flagged(r):
+                handles.setdefault(FLAGGED_LEGEND, flagged_handle())
     ax.set_xticks(range(len(bars)))
     ax.set_xticklabels([label for label, _ in bars], rotation=30, ha="right")
     return handles
@@ -508,7 +335,8 @@ def chart_pass_breakdown(rows, names):
     """Median GPU time of every pass, stacked in frame order, one bar per method: at the largest
     light count of the mix series, and in the shadows series with shadows off and on. It shows
     where each method spends the frame, and what the shadow pass adds; the black tick is the
-    whole frame (first to last timestamp), so the gap above a bar is time between passes."""
+    whole frame (first to last timestamp), so the gap above a bar is time between passes; its
+    error bar is the interquartile range over the rounds, a flagged configuration's ringed."""
     passes = names["passes"]
     if not any(number(r, f"{p}_ms") is not None for p in passes for r in rows):
         raise SkipChart("no per-pass time columns (results.json \"passes\" and P_ms columns)")
@@ -558,6 +386,7 @@ CHARTS = [
      ("total_ms", "whole frame")),
     ("pass_time", "GPU time per pass", chart_pass_breakdown, ()),
     ("culling_efficiency", "Culling efficiency against light count", chart_culling_efficiency, ()),
+] + sweep_charts.sweep_chart_list() + [
     ("pareto_shadows", "Shadows: speed against accuracy", chart_shadow_pareto, ()),
     ("pareto_shadow_memory", "Shadows: memory against accuracy", chart_shadow_memory, ()),
     ("pareto_light_assignment", "Light assignment: speed against accuracy",
@@ -567,78 +396,41 @@ CHARTS = [
 
 
 def draw_charts(rows, names, charts_dir):
-    """Draws every chart; returns [(name, title, caption, skip reason or None)]."""
+    """Draws every chart; returns ([{name, title, caption, skipped (the reason or None), flagged
+    (configurations drawn hollow), laws}], every law fitted)."""
     os.makedirs(charts_dir, exist_ok=True)
-    done = []
+    done, laws = [], []
     for name, title, function, args in CHARTS:
         caption = " ".join((function.__doc__ or "").split())
+        entry = {"name": name, "title": title, "caption": caption, "skipped": None,
+                 "flagged": [], "laws": []}
+        own = []
         try:
-            fig = function(rows, names, *args)
+            if function is sweep_charts.chart_sweep:
+                fig = function(rows, names, *args, laws=own)
+            else:
+                fig = function(rows, names, *args)
         except SkipChart as reason:
             for ext in (".png", ".svg"):  # never leave a stale chart from an earlier run
                 stale = os.path.join(charts_dir, name + ext)
                 if os.path.exists(stale):
                     os.remove(stale)
-            done.append((name, title, caption, str(reason)))
+            entry["skipped"] = str(reason)
+            done.append(entry)
             continue
+        entry["flagged"] = list(getattr(fig, "flagged", []))
+        entry["laws"] = own
+        laws += own
         save_chart(fig, charts_dir, name)
-        done.append((name, title, caption, None))
-    return done
+        done.append(entry)
+    return done, laws
 
 
-# ------------------------------------------------------------------------------------ index.html
-
-STYLE = """body { font-family: sans-serif; margin: 1.5em; max-width: 1400px; }
-figure { display: inline-block; margin: 0.6em; vertical-align: top; } .skipped { color: #a33; }
-figure img { max-width: 100%; border: 1px solid #ccc; } figcaption { max-width: 60em; }
-table { border-collapse: collapse; font-size: 0.75em; } th { background: #eee; }
-th, td { border: 1px solid #bbb; padding: 2px 5px; text-align: right; }
-td:first-child, th:first-child { text-align: left; }"""
-
-
-def href(path):
-    """A relative URL for an attribute: percent-encoded, then HTML-escaped."""
-    return html.escape(urllib.parse.quote(path), quote=True)
-
-
-def list_images(out_dir):
-    """Sorted file names of DIR/images/*.png (empty when the folder is absent)."""
-    folder = os.path.join(out_dir, "images")
-    names = os.listdir(folder) if os.path.isdir(folder) else []
-    return sorted(f for f in names
-                  if f.lower().endswith(".png") and os.path.isfile(os.path.join(folder, f)))
-
-
-def render_index(header, rows, charts, images, notes):
-    """The text of index.html: charts (or why each was skipped), images, the CSV as a table."""
-    e = html.escape
-    out = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
-           "<title>punctual bench results</title>", f"<style>\n{STYLE}\n</style></head><body>",
-           "<h1>punctual bench results</h1>",
-           f"<p>{len(rows)} configurations from <a href=\"results.csv\">results.csv</a>. "
-           "Times are median GPU ms over the timed frames.</p>"]
-    out += [f'<p class="skipped">{e(n)}</p>' for n in notes]
-    out.append("<h2>Charts</h2>")
-    for name, title, caption, skipped in charts:
-        if skipped:
-            out.append(f'<p class="skipped"><b>{e(title)}</b>: not drawn: {e(skipped)}.</p>')
-            continue
-        out += [f'<figure id="{e(name)}"><img src="{href("charts/" + name + ".png")}" '
-                f'alt="{e(title)}">',
-                f"<figcaption><b>{e(title)}</b>. {e(caption)} "
-                f'(<a href="{href("charts/" + name + ".svg")}">SVG</a>)</figcaption></figure>']
-    out.append("<h2>Images</h2>")
-    if not images:
-        out.append('<p class="skipped">No images in images/.</p>')
-    for name in images:
-        out.append(f'<figure><img src="{href("images/" + name)}" alt="{e(name)}">'
-                   f"<figcaption>{e(name)}</figcaption></figure>")
-    out += ["<h2>Results</h2>", "<table>",
-            "<tr>" + "".join(f"<th>{e(c)}</th>" for c in header) + "</tr>"]
-    for row in rows:
-        out.append("<tr>" + "".join(f"<td>{e(row.get(c, ''))}</td>" for c in header) + "</tr>")
-    out += ["</table>", "</body></html>", ""]
-    return "\n".join(out)
+def write_json(path, document):
+    """Writes `document` as indented JSON with a final newline."""
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(document, f, indent=1, ensure_ascii=False)
+        f.write("\n")
 
 
 def main(argv=None):
@@ -653,18 +445,32 @@ def main(argv=None):
     except OSError as err:
         print(f"plot_results: error: {csv_path}: {err.strerror or err}", file=sys.stderr)
         return 1
-    names, notes = read_names(os.path.join(args.out_dir, "results.json"), header, rows)
+    document, notes = read_document(os.path.join(args.out_dir, "results.json"))
+    names, more = read_names(None, header, rows, document)
+    notes += more
     missing = [c for c in known_columns(names["passes"]) if c not in header]
+    old_spreads = [f"{p}_iqr_ms" for p in names["passes"] + ["total"]
+                   if f"{p}_iqr_ms" in missing and f"{p}_spread_ms" in header]
+    if old_spreads:
+        notes.append("results.csv is from an older bench: the error bars are its P_spread_ms "
+                     "columns, not interquartile ranges.")
     if missing:
         notes.append(f"results.csv lacks the columns {', '.join(missing)}; they count as empty.")
+    limit = flag_limit(document)
+    mark_flags(rows, limit)
     configure_matplotlib()
-    charts = draw_charts(rows, names, os.path.join(args.out_dir, "charts"))
-    index = render_index(header, rows, charts, list_images(args.out_dir), notes)
+    charts, laws = draw_charts(rows, names, os.path.join(args.out_dir, "charts"))
+    model = cost_model.fit_cost_model(rows, names["passes"])
+    write_json(os.path.join(args.out_dir, "laws.json"), sweep_charts.laws_document(laws))
+    write_json(os.path.join(args.out_dir, "cost_model.json"), cost_model.model_document(model))
+    index = bench_report.render_index(header, rows, charts, bench_report.list_images(args.out_dir),
+                                      notes, document, limit, laws, cost_model.model_document(model))
     with open(os.path.join(args.out_dir, "index.html"), "w", encoding="utf-8") as f:
         f.write(index)
-    for name, title, _, skipped in charts:
-        print(f"{'skipped' if skipped else 'wrote'} charts/{name}: {skipped or title}")
-    print(f"wrote {os.path.join(args.out_dir, 'index.html')}")
+    for chart in charts:
+        print(f"{'skipped' if chart['skipped'] else 'wrote'} charts/{chart['name']}: "
+              f"{chart['skipped'] or chart['title']}")
+    print(f"wrote {os.path.join(args.out_dir, 'index.html')}, laws.json, cost_model.json")
     return 0
 
 

@@ -25,6 +25,12 @@ PASSES = ["depth", "culling", "shadows", "forward", "tonemap"]
 COLUMNS = plot_results.known_columns(PASSES)
 COST = {"brute": 12.0, "per-object": 1.6, "tiled": 1.8, "clustered": 1.7, "hybrid": 1.5,
         "mystery": 2.5}
+# The series the new sweeps add (docs/BENCH_RESULTS.md), and the columns of an older bench.
+SWEEP_SERIES = ["range", "pixels", "triangles", "shadow-budget"]
+OLD_COLUMNS = """config series method spot point shadows shadow_res shadow_filter point_layout frames
+    depth_ms culling_ms shadows_ms forward_ms total_ms forward_spread_ms total_spread_ms
+    tested_per_pixel affecting_per_pixel efficiency missed_energy image_error pixels_off
+    shadow_misclassified shadow_false_shadow shadow_false_lit""".split()
 # Charts with a line, point or bar per method.
 PER_METHOD_CHARTS = ["forward_time", "total_time", "pass_time", "culling_efficiency",
                      "pareto_light_assignment"]
@@ -39,7 +45,7 @@ def row(config, series, method, spot, point, **cells):
         "shadows": 0, "shadow_res": 1024, "shadow_filter": "tent5", "point_layout": "cube",
         "frames": 5, "depth_ms": 4.0, "culling_ms": 0.0 if method in ("brute", "per-object")
         else 0.4 * lights, "shadows_ms": 0.0, "forward_ms": forward, "tonemap_ms": 1.5,
-        "total_ms": forward + 15.0, "total_spread_ms": 0.1 * forward,
+        "total_ms": forward + 15.0, "total_iqr_ms": 0.1 * forward, "flagged": 0, "flag_reason": "",
         "tested_per_pixel": {"brute": lights, "per-object": min(lights, 8)}.get(
             method, 0.07 * lights + 1), "affecting_per_pixel": 0.05 * lights + 0.2,
         "missed_energy": 0.006 * lights if method == "per-object" else 0.0,
@@ -51,12 +57,41 @@ def row(config, series, method, spot, point, **cells):
         "shadow_misclassified_all": "", "shadow_misclassified_1px": "", "shadow_memory_bytes": "",
         "shadow_views": "", "shadow_texels_rendered": "", "shadow_filter_taps": "",
         "shadow_reduced_views": "", "shadow_format": "", "shadowed_spots": "", "shadowed_points": "",
+        "width": 640, "height": 360, "pixels": 640 * 360, "scene": "synthetic",
+        "scene_triangles": 20000, "light_range": 0.1, "rounds": 5, "depth_triangles": 20000,
+        "forward_triangles": 20000, "depth_draws": 40, "forward_draws": 40,
     }
     values["efficiency"] = values["tested_per_pixel"] / values["affecting_per_pixel"]
     values.update(cells)
     for name in PASSES:
-        values[f"{name}_spread_ms"] = 0.1 * values[f"{name}_ms"]
+        values[f"{name}_iqr_ms"] = 0.1 * values[f"{name}_ms"]
+    values["total_iqr_ms"] = cells.get("total_iqr_ms", 0.1 * values["forward_ms"])
+    if "total_ms" not in cells:
+        values["total_ms"] = sum(values[f"{p}_ms"] for p in PASSES)
+    values["total_cv"] = 0.02
     return values
+
+
+def sweep_rows(methods=METHODS):
+    """The range, pixels, triangles and shadow-budget series: forward grows with the square of
+    the range and with the pixels, depth with the triangles, shadows with the budget."""
+    rows = []
+    for rng in (0.05, 0.1, 0.2, 0.4):
+        for m in methods:
+            rows.append(row(f"range-{m}-{rng}", "range", m, 64, 32, light_range=rng,
+                            forward_ms=COST[m] * 96 * (rng / 0.1) ** 2))
+    for w, h in ((320, 180), (640, 360), (1280, 720), (2560, 1440)):
+        for m in methods:
+            rows.append(row(f"pixels-{m}-{w}", "pixels", m, 64, 32, width=w, height=h,
+                            pixels=w * h, forward_ms=3e-4 * w * h * COST[m],
+                            depth_ms=1e-5 * w * h, tonemap_ms=2e-6 * w * h))
+    for t in (10**4, 10**5, 10**6, 10**7):
+        rows.append(row(f"triangles-{t}", "triangles", "tiled", 8, 8, scene_triangles=t,
+                        depth_triangles=t, forward_triangles=t, depth_ms=2e-5 * t + 0.1))
+    for mib in (16, 64, 256):
+        rows.append(row(f"budget-{mib}", "shadow-budget", "tiled", 64, 32, shadows=1,
+                        shadow_res="auto", shadow_budget_mib=mib, shadows_ms=0.5 * mib))
+    return rows
 
 
 def full_rows(methods=METHODS):
@@ -86,6 +121,7 @@ def full_rows(methods=METHODS):
                             shadow_misclassified_1px=0.03 / (i + 1) + 0.001 * j,
                             shadow_misclassified_all=0.05 / (i + 1) + 0.001 * j))
     rows += cascade_rows()
+    rows += sweep_rows(methods)
     rows[0]["config"] = "mix <b>&amp;\"quoted\""  # must be escaped in the table
     return rows
 
@@ -122,7 +158,14 @@ def write_csv(folder, rows, columns=COLUMNS):
 
 def write_json(folder, methods=METHODS, filters=FILTERS, passes=PASSES):
     """results.json's names, as the bench writes them (None leaves a key out, as older runs do)."""
-    document = {"scene": "synthetic", "configurations": []}
+    document = {"configurations": [],
+                "provenance": {"device": {"name": "Synthetic GPU", "driver_info": "test 1.0"},
+                               "cpu": {"model": "Synthetic CPU", "logical_cores": 2},
+                               "git_commit": "0123abc", "command_line": "punctual bench",
+                               "date": "2025-01-01T00:00:00Z",
+                               "scene": {"source": "synthetic", "triangles": 20000}},
+                "noise": {"rounds": 5, "seed": 1, "median_cv": 0.02, "flag_limit": 0.15,
+                          "flagged": 0}}
     for key, names in (("methods", methods), ("shadow_filters", filters),
                        ("point_layouts", ["cube", "slices"]), ("passes", passes)):
         if names is not None:
@@ -173,7 +216,8 @@ def run(folder):
 
 def snapshot(folder):
     """{relative path: bytes} of every file the script wrote."""
-    names = ["index.html"] + ["charts/" + n for n in os.listdir(os.path.join(folder, "charts"))]
+    names = ["index.html", "laws.json", "cost_model.json"] + [
+        "charts/" + n for n in os.listdir(os.path.join(folder, "charts"))]
     files = {}
     for name in names:
         with open(os.path.join(folder, name), "rb") as f:
@@ -219,7 +263,7 @@ class PlotResultsTest(unittest.TestCase):
         self.assertIn("<figcaption>shadow mismatch #1.png</figcaption>", index)
         self.assertIn("mix &lt;b&gt;&amp;amp;&quot;quoted&quot;", index)
         self.assertNotIn("<b>&amp;", index)
-        self.assertEqual(index.count("<tr>"), len(full_rows()) + 1)
+        self.assertEqual(index.split("<h2>Results</h2>")[1].count("<tr>"), len(full_rows()) + 1)
 
     def test_reruns_are_identical(self):
         write_csv(self.dir, full_rows())
@@ -235,11 +279,14 @@ class PlotResultsTest(unittest.TestCase):
         self.assertEqual(run(self.dir), 0)
         self.assert_charts(["forward_time", "total_time"])
         index = self.index()
-        for name in ("culling_efficiency", "pareto_shadows", "pareto_shadow_memory",
-                     "pareto_light_assignment", "pareto_cascades"):
+        self.assert_charts(["sweep_mix"])  # two light counts are enough for a slope
+        skipped = ["culling_efficiency", "pareto_shadows", "pareto_shadow_memory",
+                   "pareto_light_assignment", "pareto_cascades", "lights_reaching"]
+        skipped += [f"sweep_{s}" for s in ["spot-only", "point-only"] + SWEEP_SERIES]
+        for name in skipped:
             self.assertFalse(os.path.exists(os.path.join(self.dir, "charts", name + ".png")))
             self.assertNotIn(f"charts/{name}.png", index)
-        self.assertEqual(index.count("not drawn"), 5)
+        self.assertEqual(index.count("not drawn"), len(skipped))
         self.assertIn("No images in images/.", index)
 
     def test_skipped_chart_removes_stale_files(self):
@@ -281,8 +328,11 @@ class NamesFromResultsJsonTest(unittest.TestCase):
             return f.read()
 
     def line_colours(self, fig):
-        """{label: colour} of the lines of the figure's first axes."""
-        return {line.get_label(): line.get_color() for line in fig.axes[0].lines}
+        """{label: colour} of the lines of the figure's first axes (error-bar lines too)."""
+        colours = {line.get_label(): line.get_color() for line in fig.axes[0].lines}
+        colours.update({c.get_label(): c.lines[0].get_color() for c in fig.axes[0].containers
+                        if c.lines and c.lines[0] is not None})
+        return colours
 
     def test_a_bench_folder_with_results_json_draws_everything_without_notes(self):
         write_csv(self.dir, full_rows())
@@ -336,7 +386,7 @@ class NamesFromResultsJsonTest(unittest.TestCase):
         passes = ["depth", "ssao", "culling", "shadows", "forward", "tonemap"]
         rows = full_rows()
         for r in rows:
-            r["ssao_ms"], r["ssao_spread_ms"] = 3.0, 0.3
+            r["ssao_ms"], r["ssao_iqr_ms"] = 3.0, 0.3
         fig = chart("pass_time", rows, names(passes=passes))
         # The legend reads as the stack does, top (last pass) to bottom, then the whole frame.
         self.assertEqual(legend_texts(fig), list(reversed(passes)) + ["whole frame"])
@@ -353,15 +403,15 @@ class NamesFromResultsJsonTest(unittest.TestCase):
         self.assertAlmostEqual(top, sum(brute[f"{p}_ms"] for p in passes))
         # Its columns are known ones: none is reported missing, and a missing one is named.
         self.assertIn("ssao_ms", plot_results.known_columns(passes))
-        self.assertIn("ssao_spread_ms", plot_results.known_columns(passes))
+        self.assertIn("ssao_iqr_ms", plot_results.known_columns(passes))
         write_json(self.dir, passes=passes)
         write_csv(self.dir, rows, columns=plot_results.known_columns(passes))
         self.assertEqual(run(self.dir), 0)
         self.assertNotIn("lacks", self.index())
         write_csv(self.dir, rows,
-                  columns=[c for c in plot_results.known_columns(passes) if c != "ssao_spread_ms"])
+                  columns=[c for c in plot_results.known_columns(passes) if c != "ssao_iqr_ms"])
         run(self.dir)
-        self.assertIn("results.csv lacks the columns ssao_spread_ms;", self.index())
+        self.assertIn("results.csv lacks the columns ssao_iqr_ms;", self.index())
 
     def test_shadow_memory_chart_marks_the_pareto_front(self):
         rows = [row(f"sq-{res}-{fmt}", "shadow-quality", "tiled", 64, 32, shadows=1, shadow_res=res,
@@ -414,9 +464,10 @@ class NamesFromResultsJsonTest(unittest.TestCase):
 
     def test_an_older_folder_falls_back_to_the_csv_sorted(self):
         # The columns of an older bench: no tonemap time, spreads of forward and total only.
-        old = [c for c in COLUMNS if c == "forward_spread_ms" or
-               not (c == "tonemap_ms" or c.endswith("_spread_ms") and not c.startswith("total"))]
-        write_csv(self.dir, full_rows(), columns=old)
+        old_rows = [r for r in full_rows() if r["series"] not in SWEEP_SERIES]
+        for r in old_rows:
+            r["forward_spread_ms"], r["total_spread_ms"] = r["forward_iqr_ms"], r["total_iqr_ms"]
+        write_csv(self.dir, old_rows, columns=OLD_COLUMNS)
         expected = {"methods": sorted(METHODS), "shadow_filters": sorted(FILTERS),
                     "passes": ["culling", "depth", "forward", "shadows"]}
         header, rows = plot_results.read_results(os.path.join(self.dir, "results.csv"))
@@ -431,9 +482,22 @@ class NamesFromResultsJsonTest(unittest.TestCase):
                                  "results.csv, sorted."])
         self.assertEqual(run(self.dir), 0)
         index = self.index()
-        self.assertNotIn("not drawn", index)
-        self.assertIn("results.csv lacks the columns culling_spread_ms, depth_spread_ms, "
-                      "shadows_spread_ms;", index)
+        for name in ("forward_time", "total_time", "pass_time", "culling_efficiency", "sweep_mix",
+                     "lights_reaching", "pareto_shadows", "pareto_light_assignment"):
+            self.assertIn(f'<img src="charts/{name}.png"', index)
+        for series in SWEEP_SERIES:
+            self.assertIn(f"the {series} series needs times", index)
+        self.assertIn("results.csv is from an older bench: the error bars are its P_spread_ms", index)
+        self.assertIn("results.csv lacks the columns light_range, width, height, pixels,", index)
+        # Its spreads are still drawn: the forward chart's error bars span forward_spread_ms.
+        fig = chart("forward_time", plot_results.read_results(
+            os.path.join(self.dir, "results.csv"))[1], names)
+        bars = [c for c in fig.axes[0].containers if c.get_label() == "brute"][0]
+        segments = bars.lines[2][0].get_segments()
+        brute96 = next(r for r in old_rows if r["series"] == "mix" and r["method"] == "brute"
+                       and r["spot"] + r["point"] == 96)
+        self.assertAlmostEqual(segments[-1][1][1] - segments[-1][0][1],
+                               brute96["forward_spread_ms"])
 
     def test_an_unreadable_results_json_is_a_note(self):
         write_csv(self.dir, full_rows())
