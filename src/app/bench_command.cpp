@@ -63,7 +63,9 @@ DIR/failures.html (bench/plot_results.py and plot_failures.py; they need python3
 without it the bench says so and keeps the CSV and JSON). docs/BENCH_RESULTS.md says what every
 column means.
 --series: only the named series (failures: the failure study).
---quick: 320x180, fewer values per series, 3 rounds (under 3 minutes on 2 CPU cores).
+--quick: 320x180, 3 rounds, fewer values per series: the light counts as the mix alone, brute
+force and tiled alone where frames cost seconds (shadows, triangles), auto and 256 shadow maps
+(under 3 minutes on 2 CPU cores).
 --compare: a side-by-side page of two runs, DIR/compare.html and DIR/compare.csv: per
 configuration each pass's time in both and the ratio, and the counters, which should match.
 Default size: 1280x720 (quick: 320x180).

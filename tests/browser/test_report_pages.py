@@ -41,11 +41,8 @@ def write_pages(punctual, folder):
     """Writes the three pages under FOLDER; their paths."""
     bench = os.path.join(folder, "bench")
     run([punctual, "bench", "--quick", "--series", "mix,failures", "--size", SIZE,
-         "--frames", "1", "--out-dir", bench])
-    # The bench may come to write its charts itself; the scripts run only where it did not.
-    if not os.path.exists(os.path.join(bench, "index.html")):
-        run([PYTHON, os.path.join(ROOT, "bench", "plot_results.py"), bench])
-        run([PYTHON, os.path.join(ROOT, "bench", "plot_failures.py"), bench])
+         "--rounds", "1", "--out-dir", bench])
+    # The bench draws its own report (bench/plot_results.py and plot_failures.py).
     pages = [os.path.join(bench, "index.html"), os.path.join(bench, "failures.html")]
     # The hall (spots and points) and the outdoor scene, whose report adds the sun's mismatch
     # map and cascade picture.
