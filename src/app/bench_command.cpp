@@ -23,6 +23,7 @@
 #include "core/memory_usage.h"
 #include "core/output_files.h"
 #include "core/output_folder.h"
+#include "lights/shadow_filters.h"
 #include "metrics/heatmap.h"
 #include "metrics/image_diff.h"
 #include "reference/embree_scene.h"
@@ -41,6 +42,10 @@ const OutputFolderLayout kFolderLayout = {
     {"images"}};
 
 std::string usage() {
+    std::vector<std::string> quickFilters;
+    for (const ShadowFilterInfo& filter : kShadowFilters) {
+        if (filter.quickBench) quickFilters.emplace_back(filter.name);
+    }
     std::string series;
     for (const BenchSeries& s : benchSeries()) series += "  " + std::string(s.name) + ": " + s.description + "\n";
     return R"(usage: punctual bench [SCENE|--scene NAME] [--quick] --out-dir DIR [--size WxH] [--rounds R]
@@ -64,8 +69,8 @@ without it the bench says so and keeps the CSV and JSON). docs/BENCH_RESULTS.md 
 column means.
 --series: only the named series (failures: the failure study).
 --quick: 320x180, 3 rounds, fewer values per series: the light counts as the mix alone, brute
-force and tiled alone where frames cost seconds (shadows, triangles), auto and 256 shadow maps
-(under 3 minutes on 2 CPU cores).
+force and tiled alone where frames cost seconds (shadows, triangles), auto and 256 shadow maps,
+filters )" + joinNames(quickFilters, " and ") + R"( (under 3 minutes on 2 CPU cores).
 --compare: a side-by-side page of two runs, DIR/compare.html and DIR/compare.csv: per
 configuration each pass's time in both and the ratio, and the counters, which should match.
 Default size: 1280x720 (quick: 320x180).

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "core/variant_table.h"
 #include "lights/shadow_filters.h"
 
 namespace punctual::app {
@@ -200,7 +201,8 @@ void addTriangleSeries(std::vector<BenchConfig>& configs, bool quick) {
 
 const std::vector<BenchSeries>& benchSeries() {
     static const std::vector<BenchSeries> series = {
-        {"mix", "lights 0-96, 2 spots to a point, at a fixed range per light, x every method (shadows off)"},
+        {"mix", "lights 0-96, 2 spots to a point, at a fixed range per light, x the methods " +
+                    joinNames(render::methodNames(), ", ") + " (shadows off)"},
         {"spot-only", "spot lights 8-64 alone, as mix"},
         {"point-only", "point lights 4-32 alone, as mix"},
         {"range", "64 + 32 lights at ranges 0.1-0.7 x the scene's diagonal (overlap alone), x every method"},
@@ -208,7 +210,8 @@ const std::vector<BenchSeries>& benchSeries() {
         {"shadows", "64 + 32 lights, shadows off and on, per method"},
         {"shadow-quality", "auto and fixed 256..2048 shadow resolutions x 16 and 32 bits, validated against Embree"},
         {"shadow-budget", "the auto resolution's budget, 8..128 MiB, validated against Embree"},
-        {"shadow-filters", "every shadow filter at auto resolution, validated against Embree"},
+        {"shadow-filters", "the filters " + joinNames(shadowFilterNames(), ", ") +
+                               " at auto resolution, validated against Embree"},
         {"cascades", "the outdoor scene's sun: 1-4 cascades x 512, 1024, 2048 x the texel filters, validated"},
         {"triangles", "the rooms scene at 10^4..10^7 triangles x every method, with peak memory"},
         {"failures", "the failure study (failures.csv)"},

@@ -37,7 +37,7 @@ struct BenchConfig {
 
 struct BenchSeries {
     const char* name;
-    const char* description;
+    std::string description;  // one line of --help; the methods and filters named from their tables
 };
 // Every series, in run order, and the failure study's pseudo-series "failures" last.
 const std::vector<BenchSeries>& benchSeries();
