@@ -34,12 +34,13 @@ for entry in "${scenes[@]}"; do
   for method in brute per-object tiled clustered; do
     hash_render "$scene_name $method shadows-off" "$scene_path" --culling "$method" --shadows off \
       --heatmap "$work/heat.png"
-    hash_render "$scene_name $method tent5-cube" "$scene_path" --culling "$method"
+    hash_render "$scene_name $method shadows-auto" "$scene_path" --culling "$method"
   done
+  # Point shadows in a cube array need one fixed resolution for every face; slices take auto too.
   for filter in hw tent3 tent5 tent7 disk; do
-    for layout in cube slices; do
-      hash_render "$scene_name tiled $filter-$layout" "$scene_path" --shadow-filter "$filter" \
-        --point-shadow-layout "$layout"
-    done
+    hash_render "$scene_name tiled $filter-cube-512" "$scene_path" --shadow-filter "$filter" \
+      --point-shadow-layout cube --shadow-res 512
+    hash_render "$scene_name tiled $filter-slices" "$scene_path" --shadow-filter "$filter" \
+      --point-shadow-layout slices
   done
 done
