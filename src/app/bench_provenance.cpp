@@ -12,16 +12,6 @@
 namespace punctual::app {
 namespace {
 
-std::string deviceTypeName(VkPhysicalDeviceType type) {
-    switch (type) {
-        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
-        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
-        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
-        case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
-        default: return "other";
-    }
-}
-
 std::string versionText(uint32_t version) {
     return std::to_string(VK_API_VERSION_MAJOR(version)) + "." + std::to_string(VK_API_VERSION_MINOR(version)) + "." +
            std::to_string(VK_API_VERSION_PATCH(version));
@@ -80,7 +70,7 @@ nlohmann::json benchProvenance(const vk::Context& context, const std::vector<std
     const VkPhysicalDeviceProperties& p = properties.properties;
     return {{"device",
              {{"name", p.deviceName},
-              {"type", deviceTypeName(p.deviceType)},
+              {"type", vk::deviceTypeName(p.deviceType)},
               {"vendor_id", p.vendorID},
               {"device_id", p.deviceID},
               {"api_version", versionText(p.apiVersion)},

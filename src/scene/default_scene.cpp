@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gpu_types.h"
+#include "scene/box_faces.h"
 #include "scene/box_layout.h"
 #include "scene/light_generator.h"
 
@@ -249,20 +250,7 @@ void addPointLights(Scene& scene, LightPlacer& placer, int count) {
 }  // namespace
 
 uint32_t appendBoxMesh(Scene& scene, const std::string& name, const glm::vec3& size, uint32_t material) {
-    // Each face: outward normal n and in-plane axes u, v with cross(u, v) = n, so the corners
-    // (-u-v), (+u-v), (+u+v), (-u+v) run counter-clockwise seen from outside (glTF front faces).
-    struct Face {
-        glm::vec3 n, u, v;
-    };
-    static constexpr std::array<Face, 6> kFaces = {{
-        {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}},
-        {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
-        {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},
-        {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
-        {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},
-        {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}},
-    }};
-    static constexpr std::array<glm::vec2, 4> kCorners = {{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}};
+    // The faces and their corners: scene/box_faces.h.
 
     Mesh mesh;
     mesh.name = name;
@@ -270,9 +258,9 @@ uint32_t appendBoxMesh(Scene& scene, const std::string& name, const glm::vec3& s
     mesh.firstIndex = static_cast<uint32_t>(scene.indices.size());
     mesh.vertexOffset = static_cast<uint32_t>(scene.vertices.size());
     const glm::vec3 half = size * 0.5f;
-    for (const Face& face : kFaces) {
+    for (const BoxFace& face : kBoxFaces) {
         const uint32_t base = static_cast<uint32_t>(scene.vertices.size()) - mesh.vertexOffset;
-        for (const glm::vec2& corner : kCorners) {
+        for (const glm::vec2& corner : kBoxFaceCorners) {
             Vertex vertex;
             vertex.position = (face.n + face.u * corner.x + face.v * corner.y) * half;
             vertex.normal = face.n;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "scene/box_faces.h"
 #include "scene/light_generator.h"
 #include "scene/texture_mips.h"
 
@@ -37,25 +38,12 @@ uint32_t MeshBuilder::addVertex(const glm::vec3& position, const glm::vec3& norm
 }
 
 void MeshBuilder::addBox(const glm::vec3& min, const glm::vec3& max) {
-    // Each face: outward normal n and in-plane axes u, v with cross(u, v) = n, so the corners
-    // (-u-v), (+u-v), (+u+v), (-u+v) run counter-clockwise seen from outside (as appendBoxMesh).
-    struct Face {
-        glm::vec3 n, u, v;
-    };
-    static constexpr std::array<Face, 6> kFaces = {{
-        {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}},
-        {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
-        {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},
-        {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
-        {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},
-        {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}},
-    }};
-    static constexpr std::array<glm::vec2, 4> kCorners = {{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}};
+    // The faces and their corners: scene/box_faces.h.
     const glm::vec3 center = (min + max) * 0.5f;
     const glm::vec3 half = (max - min) * 0.5f;
-    for (const Face& face : kFaces) {
+    for (const BoxFace& face : kBoxFaces) {
         const uint32_t base = uint32_t(vertices_.size());
-        for (const glm::vec2& corner : kCorners) {
+        for (const glm::vec2& corner : kBoxFaceCorners) {
             addVertex(center + (face.n + face.u * corner.x + face.v * corner.y) * half, face.n,
                       glm::vec2((corner.x + 1.0f) * 0.5f, 1.0f - (corner.y + 1.0f) * 0.5f));
         }
@@ -117,8 +105,8 @@ void MeshBuilder::addLathe(std::span<const glm::vec2> profile, uint32_t segments
 void MeshBuilder::addCard(const glm::vec3& center, const glm::vec3& u, const glm::vec3& v, float halfU, float halfV) {
     const glm::vec3 normal = glm::cross(u, v);
     const uint32_t base = uint32_t(vertices_.size());
-    static constexpr std::array<glm::vec2, 4> kCorners = {{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}};
-    for (const glm::vec2& corner : kCorners) {
+    // A card is one face of a box, seen from +n: the same corners (scene/box_faces.h).
+    for (const glm::vec2& corner : kBoxFaceCorners) {
         addVertex(center + u * (corner.x * halfU) + v * (corner.y * halfV), normal,
                   glm::vec2((corner.x + 1.0f) * 0.5f, 1.0f - (corner.y + 1.0f) * 0.5f));
     }

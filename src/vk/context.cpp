@@ -64,7 +64,9 @@ VkInstance createInstance(bool validation, bool withPortability) {
     return instance;
 }
 
-const char* typeName(VkPhysicalDeviceType type) {
+}  // namespace
+
+const char* deviceTypeName(VkPhysicalDeviceType type) {
     switch (type) {
         case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
         case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
@@ -73,6 +75,8 @@ const char* typeName(VkPhysicalDeviceType type) {
         default: return "other";
     }
 }
+
+namespace {
 
 // Higher is better. A CPU device (lavapipe) is a valid last choice, never skipped.
 int typeScore(VkPhysicalDeviceType type) {
@@ -119,7 +123,7 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
     DeviceInfo info;
     info.index = index;
     info.name = props.deviceName;
-    info.type = typeName(props.deviceType);
+    info.type = deviceTypeName(props.deviceType);
     info.apiVersion = props.apiVersion;
     if (props.apiVersion < VK_API_VERSION_1_2) {
         info.whyNotUsable = "needs Vulkan 1.2";

@@ -21,6 +21,9 @@ struct ContextOptions {
     bool printValidationMessages = true;
 };
 
+// "discrete", "integrated", "virtual", "cpu" or "other".
+const char* deviceTypeName(VkPhysicalDeviceType type);
+
 struct DeviceInfo {
     uint32_t index = 0;
     std::string name;
