@@ -166,10 +166,11 @@ int runCompare(const BenchArgs& args) {
             throw Error(dir, "not a bench folder (no results.json)");
         }
     }
-    std::string why;
     if (access("/usr/bin/python3", X_OK) != 0) throw Error("--compare", "needs /usr/bin/python3 (apt-get install python3)");
     const std::string script = benchScriptDir() + "/compare_runs.py";
     const int status = runProgram("/usr/bin/python3", {script, args.compare->first, args.compare->second, *args.outDir});
+    // Status 1: bad input, which the script has named in its one line (file and problem).
+    if (status == 1) return 1;
     if (status != 0) throw Error("--compare", script + " exited with status " + std::to_string(status));
     std::printf("bench: compared %s with %s; wrote %s/compare.html\n", args.compare->first.c_str(),
                 args.compare->second.c_str(), args.outDir->c_str());

@@ -203,6 +203,31 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
                                               "cascade-pancaking", "transparency-tiled-depth-bounds"}));
 }
 
+// --compare hands two folders to bench/compare_runs.py: ratios per configuration both runs have,
+// a counter that differs marked.
+TEST(BenchCli, CompareWritesTheSideBySidePage) {
+    testing::TempFolder folder;
+    auto writeRun = [&](const std::string& name, const std::string& forwardMs, const std::string& tested) {
+        const std::string dir = folder.file(name);
+        std::filesystem::create_directories(dir);
+        std::ofstream(dir + "/results.csv") << "config,series,method,forward_ms,total_ms,tested_per_pixel\n"
+                                            << "mix-tiled-64s32p,mix,tiled," << forwardMs << ",20," << tested << "\n";
+        std::ofstream(dir + "/results.json")
+            << R"({"passes": ["forward"], "configurations": [], "provenance": {"device": {"name": ")" << name << R"("}}})";
+        return dir;
+    };
+    const std::string a = writeRun("lavapipe", "10", "7.5");
+    const std::string b = writeRun("gpu", "2.5", "7.5");
+    const std::string out = folder.file("compared");
+    std::filesystem::create_directories(out);
+    const RunResult run = runPunctual(folder, "bench --compare '" + a + "' '" + b + "' --out-dir '" + out + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const std::string csv = readText(out + "/compare.csv");
+    EXPECT_NE(csv.find("mix-tiled-64s32p"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("0.25"), std::string::npos) << csv;  // forward: 2.5 / 10
+    EXPECT_TRUE(std::filesystem::exists(out + "/compare.html"));
+}
+
 TEST(BenchCli, BadOptionsFailCleanly) {
     testing::TempFolder folder;
     for (const std::string& args : std::vector<std::string>{
