@@ -9,6 +9,7 @@ its configuration is added to the figure's `flagged` list, which index.html prin
 chart.
 """
 
+import math
 import os
 
 import matplotlib
@@ -35,6 +36,17 @@ def configure_matplotlib():
         "savefig.dpi": 100, "font.size": 9, "axes.grid": True, "grid.alpha": 0.3,
         "axes.titlesize": 10, "legend.fontsize": 8,
     })
+
+
+def panel_grid(count, width, height):
+    """A figure of `count` panels of width x height inches, at most three a row (the spare cells
+    hidden); returns the figure and the `count` axes in reading order."""
+    ncols = min(3, count)
+    nrows = math.ceil(count / ncols)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(width * ncols, height * nrows), squeeze=False)
+    for ax in axes.flat[count:]:
+        ax.set_visible(False)
+    return fig, list(axes.flat[:count])
 
 
 def save_chart(fig, charts_dir, name):

@@ -27,7 +27,6 @@ sweep_charts.py (the sweeps and their laws), cost_model.py (the fit), bench_repo
 
 import argparse
 import json
-import math
 import os
 import sys
 
@@ -36,7 +35,7 @@ from bench_data import (METHOD_COLOURS, METHOD_MARKERS, OTHER_STYLE, flag_limit,
                         method_style, number, ordered, pareto_front, read_document, read_names,
                         read_results, series_rows, varying_label)
 from chart_style import (FLAGGED_LEGEND, SkipChart, add_flagged_legend, configure_matplotlib,
-                         draw_front, flagged_handle, plot_per_method, plt, save_chart,
+                         draw_front, flagged_handle, panel_grid, plot_per_method, plt, save_chart,
                          set_count_axis, time_point_errors)
 from matplotlib.lines import Line2D
 from matplotlib.ticker import MaxNLocator, PercentFormatter
@@ -269,12 +268,8 @@ def chart_assignment_pareto(rows, names):
 
     rs = [r for r in mix if number(r, "total_ms") is not None and error(r) is not None]
     counts = sorted({light_count(r) for r in rs})
-    ncols = min(3, len(counts))
-    nrows = math.ceil(len(counts) / ncols)
-    fig, axes = plt.subplots(nrows, ncols, figsize=(4.3 * ncols, 3.8 * nrows), squeeze=False)
-    for ax in axes.flat[len(counts):]:
-        ax.set_visible(False)
-    for ax, count in zip(axes.flat, counts):
+    fig, axes = panel_grid(len(counts), 4.3, 3.8)
+    for ax, count in zip(axes, counts):
         group = [r for m in method_order(rs, names["methods"]) for r in rs
                  if light_count(r) == count and r.get("method") == m]
         points = [(error(r), number(r, "total_ms")) for r in group]
@@ -293,7 +288,7 @@ def chart_assignment_pareto(rows, names):
                        else "fraction of pixels off by > 2/255") + " vs brute")
         ax.set_ylabel("whole frame: median GPU ms")
     legend = {}
-    for ax in axes.flat[:len(counts)]:
+    for ax in axes:
         legend.update(zip(*reversed(ax.get_legend_handles_labels())))
     if getattr(fig, "flagged", None):
         legend[FLAGGED_LEGEND] = flagged_handle()

@@ -10,8 +10,8 @@ import math
 
 from bench_data import (is_flagged, is_wide, light_count, method_order, method_style, number,
                         pixels, series_rows, varying_label)
-from chart_style import (SkipChart, add_flagged_legend, plot_per_method, plt, set_count_axis,
-                         time_line)
+from chart_style import (SkipChart, add_flagged_legend, panel_grid, plot_per_method, plt,
+                         set_count_axis, time_line)
 from matplotlib.ticker import FixedLocator, NullLocator
 
 # (series, what x is on the axis, x in a law, x of a row). The light-count series use
@@ -113,12 +113,8 @@ def chart_sweep(rows, names, series, axis_label, variable, x_of, laws=None):
     columns = timed_columns(rs, names["passes"])
     if len({x_of(r) for r in rs}) < 2 or not columns:
         raise SkipChart(f"the {series} series needs times at two or more values of {variable}")
-    ncols = min(3, len(columns))
-    nrows = math.ceil(len(columns) / ncols)
-    fig, axes = plt.subplots(nrows, ncols, figsize=(4.6 * ncols, 3.9 * nrows), squeeze=False)
-    for ax in axes.flat[len(columns):]:
-        ax.set_visible(False)
-    for ax, column in zip(axes.flat, columns):
+    fig, axes = panel_grid(len(columns), 4.6, 3.9)
+    for ax, column in zip(axes, columns):
         what = column[:-len("_ms")] if column != "total_ms" else "frame"
         values = []
         for label, method, own, variant in lines_of(rs, names["methods"]):
