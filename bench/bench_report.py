@@ -78,9 +78,12 @@ def noise_section(document, rows, limit):
            f"<b>{e(fmt(limit))}</b> x its median; <b>{len(flagged)}</b> flagged"]
     if isinstance(noise.get("flagged"), int) and noise["flagged"] != len(flagged):
         out[-1] += f" (results.json says {noise['flagged']})"
-    for key in ("rounds", "seed"):
+    for key in ("rounds", "best_of", "seed"):
         if key in noise:
             out[-1] += f"; {key} {e(str(noise[key]))}"
+    if isinstance(noise.get("frame_median_cv"), (int, float)):
+        out[-1] += (f"; frame to frame (every single timed frame) "
+                    f"{e(fmt(noise['frame_median_cv']))}")
     out[-1] += ".</p>"
     if flagged:
         out += ['<ul class="flagged">'] + [

@@ -196,6 +196,8 @@ class FlaggedTest(unittest.TestCase):
         noise = index.split("<h2>Noise</h2>")[1].split("<h2>")[0]
         self.assertIn("<b>1</b> flagged", noise)
         self.assertIn("<li>noisy-tiled-24: total", noise)
+        self.assertIn("best_of 3", noise)
+        self.assertIn("frame to frame (every single timed frame) 0.081", noise)
         forward = index.split('<figure id="forward_time">')[1].split("</figure>")[0]
         self.assertIn("Flagged (drawn hollow, spread over the limit): noisy-tiled-24", forward)
         self.assertIn("Synthetic GPU", index.split("<h2>Provenance</h2>")[1])

@@ -164,8 +164,8 @@ def write_json(folder, methods=METHODS, filters=FILTERS, passes=PASSES):
                                "git_commit": "0123abc", "command_line": "punctual bench",
                                "date": "2025-01-01T00:00:00Z",
                                "scene": {"source": "synthetic", "triangles": 20000}},
-                "noise": {"rounds": 5, "seed": 1, "median_cv": 0.02, "flag_limit": 0.15,
-                          "flagged": 0}}
+                "noise": {"rounds": 5, "best_of": 3, "seed": 1, "median_cv": 0.02,
+                          "frame_median_cv": 0.081, "flag_limit": 0.15, "flagged": 0}}
     for key, names in (("methods", methods), ("shadow_filters", filters),
                        ("point_layouts", ["cube", "slices"]), ("passes", passes)):
         if names is not None:

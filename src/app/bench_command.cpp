@@ -49,17 +49,17 @@ std::string usage() {
     std::string series;
     for (const BenchSeries& s : benchSeries()) series += "  " + std::string(s.name) + ": " + s.description + "\n";
     return R"(usage: punctual bench [SCENE|--scene NAME] [--quick] --out-dir DIR [--size WxH] [--rounds R]
-                     [--seed N] [--series NAME[,NAME...]]
+                     [--best-of K] [--seed N] [--series NAME[,NAME...]]
        punctual bench --compare DIR_A DIR_B --out-dir DIR
 
 Measures, on SCENE or the built-in scene NAME (default: )" + std::string(kDefaultBuiltinScene.name) +
            R"() with generated lights, the series:
 )" + series + R"(
 Every configuration renders one warm-up frame, then R rounds (default 5): in each round every
-configuration of a group (a series on one scene) renders one timed frame, in a random order drawn
-per round from --seed (default 1). Each pass gets its median, interquartile range and coefficient
-of variation over the rounds; a configuration whose frame IQR exceeds 15% of its median is
-flagged. Beside the times: lights tested and reaching per pixel, shadow lookups and filter taps
+configuration of a group (a series on one scene) renders K frames back to back (--best-of,
+default 3) and keeps each pass's fastest, in a random order drawn per round from --seed
+(default 1). Each pass gets its median, interquartile range and coefficient of variation over the
+rounds; a configuration whose frame IQR exceeds 15% of its median is flagged. Beside the times: lights tested and reaching per pixel, shadow lookups and filter taps
 per pixel, triangles and draws per pass, shadow texels, memory by kind. Shadow configurations are
 validated against Embree (edge band one texel, and one pixel).
 Writes DIR/results.csv, DIR/results.json (with provenance and the run's noise), DIR/images/,
@@ -68,7 +68,7 @@ DIR/failures.html (bench/plot_results.py and plot_failures.py; they need python3
 without it the bench says so and keeps the CSV and JSON). docs/BENCH_RESULTS.md says what every
 column means.
 --series: only the named series (failures: the failure study).
---quick: 320x180, 3 rounds, fewer values per series: the light counts as the mix alone, brute
+--quick: 320x180, 3 rounds of one frame, fewer values per series: the light counts as the mix alone, brute
 force and tiled alone where frames cost seconds (shadows, triangles), auto and 256 shadow maps,
 filters )" + joinNames(quickFilters, " and ") + R"( (under 3 minutes on 2 CPU cores).
 --compare: a side-by-side page of two runs, DIR/compare.html and DIR/compare.csv: per
@@ -101,6 +101,7 @@ struct BenchArgs {
     std::optional<std::string> outDir;
     bool quick = false;
     uint32_t rounds = 0;  // 0: the default (5, quick 3)
+    uint32_t bestOf = 0;  // 0: the default (kDefaultBestOf, quick 1)
     uint64_t seed = 1;
     std::optional<std::vector<std::string>> series;
     std::optional<std::pair<std::string, std::string>> compare;
@@ -140,6 +141,8 @@ BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
             parsed.series = parseBenchSeries(value(i));
         } else if (arg == "--rounds") {
             parsed.rounds = uint32_t(parseCount(arg, value(i), 1, 1000));
+        } else if (arg == "--best-of") {
+            parsed.bestOf = uint32_t(parseCount(arg, value(i), 1, 100));
         } else if (arg == "--seed") {
             parsed.seed = parseCount(arg, value(i), 0, UINT64_MAX);
         } else if (arg == "--compare") {
@@ -184,7 +187,8 @@ struct Measurement {
     const Scene* scene = nullptr;
     const reference::EmbreeScene* geometry = nullptr;
     std::unique_ptr<render::Renderer> renderer;
-    std::vector<render::PassTimings> rounds;
+    std::vector<render::PassTimings> rounds;  // one sample a round: the fastest of its frames
+    std::vector<double> frameTotals;          // every timed frame, for the run's frame noise
     ImageRgba8 image;
 };
 
@@ -207,6 +211,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
         options.height = 180;
     }
     const uint32_t rounds = bench.rounds ? bench.rounds : (bench.quick ? 3u : 5u);
+    const uint32_t bestOf = bench.bestOf ? bench.bestOf : (bench.quick ? kQuickBestOf : kDefaultBestOf);
     Scene baseScene = loadSceneForOptions(options);
     vk::Context context(contextOptionsFrom(options));
     const reference::EmbreeScene embree(baseScene);  // geometry only: shared by every configuration
@@ -234,7 +239,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
     ProgressBar progress(configs.size() + (failureStudy ? failureStudySize(context, bench.quick) : 0));
     OutputFiles outputs;
     std::vector<BenchRow> rows;
-    std::vector<double> frameCvs;
+    std::vector<double> frameCvs;        // each configuration's CV over its rounds
+    std::vector<double> singleFrameCvs;  // each configuration's CV over every timed frame
     uint32_t flagged = 0;
     std::vector<std::string> passes;  // the frame's pass names, from the first renderer
     std::map<std::string, ImageRgba8> bruteImages;  // by what brute force's image is compared on
@@ -293,9 +299,15 @@ int runBenchCommand(const std::vector<std::string>& args) {
         }
         for (uint32_t round = 0; round < rounds; ++round) {
             for (uint32_t i : roundOrder(uint32_t(group.size()), bench.seed, groupIndex, round)) {
-                render::FrameResult result = group[i].renderer->render(1, 0);
-                group[i].rounds.push_back(result.framesMs.front());
-                group[i].image = std::move(result.image);
+                // The round's visit: bestOf frames back to back, the fastest per pass kept.
+                std::vector<render::PassTimings> frames;
+                for (uint32_t frame = 0; frame < bestOf; ++frame) {
+                    render::FrameResult result = group[i].renderer->render(1, 0);
+                    frames.push_back(result.framesMs.front());
+                    group[i].frameTotals.push_back(result.framesMs.front().total);
+                    group[i].image = std::move(result.image);
+                }
+                group[i].rounds.push_back(fastestPerPass(frames));
             }
         }
         for (Measurement& m : group) {
@@ -303,9 +315,10 @@ int runBenchCommand(const std::vector<std::string>& args) {
             render::Renderer& renderer = *m.renderer;
             if (passes.empty()) passes = renderer.passNames();
             BenchRow row;
-            addConfiguration(row, config, *m.scene, renderer, rounds);
+            addConfiguration(row, config, *m.scene, renderer, rounds, bestOf);
             const RoundSummary frame = addTimings(row, m.rounds);
             frameCvs.push_back(frame.cv);
+            singleFrameCvs.push_back(summarizeRounds(m.frameTotals).cv);
             flagged += row["flagged"] == "1" ? 1u : 0u;
             const LightStatsImage pixelWork = renderer.readLightStats();
             addCounters(row, renderer, &pixelWork);
@@ -392,8 +405,10 @@ int runBenchCommand(const std::vector<std::string>& args) {
                                        options.height)},
         {"noise",
          {{"rounds", rounds},
+          {"best_of", bestOf},
           {"seed", bench.seed},
           {"median_cv", medianOf(frameCvs)},
+          {"frame_median_cv", medianOf(singleFrameCvs)},
           {"flag_limit", kSpreadFlagLimit},
           {"flagged", flagged}}},
         {"configurations", json}};
@@ -406,8 +421,10 @@ int runBenchCommand(const std::vector<std::string>& args) {
     outputs.add(*bench.outDir + "/results.json", document.dump(2) + "\n");
     prepareOutputFolder(outputs, *bench.outDir, kFolderLayout, files);
     outputs.commit();
-    std::printf("bench: %zu configurations on %s, %u rounds each (noise: median CV %.1f%%, %u flagged); wrote %s/results.csv\n",
-                rows.size(), baseScene.source.c_str(), rounds, 100.0 * medianOf(frameCvs), flagged, bench.outDir->c_str());
+    std::printf("bench: %zu configurations on %s, %u rounds of the fastest of %u frames (noise: median CV %.1f%%, "
+                "%.1f%% frame to frame; %u flagged); wrote %s/results.csv\n",
+                rows.size(), baseScene.source.c_str(), rounds, bestOf, 100.0 * medianOf(frameCvs),
+                100.0 * medianOf(singleFrameCvs), flagged, bench.outDir->c_str());
     std::string why;
     if (!chartsAvailable(why)) {
         std::printf("bench: no charts: %s\n", why.c_str());

@@ -18,6 +18,11 @@ inline constexpr float kBenchLightRange = 0.35f;
 // The largest generated set (the per-frame caps); smaller counts take its first lights.
 inline constexpr uint32_t kBenchSpots = 64;
 inline constexpr uint32_t kBenchPoints = 32;
+// Frames per round visit; the round keeps each pass's fastest (fastestPerPass, bench_rows.h).
+// Three is where a light sweep at 640x360 stopped having flagged configurations here
+// (bench/RESULTS.md); --quick keeps one frame, to stay a quick look.
+inline constexpr uint32_t kDefaultBestOf = 3;
+inline constexpr uint32_t kQuickBestOf = 1;
 
 struct BenchConfig {
     std::string series;

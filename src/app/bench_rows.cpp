@@ -35,7 +35,7 @@ std::vector<std::string> benchColumns(const std::vector<std::string>& passes) {
                                         "pixels",        "scene",           "scene_triangles", "objects",
                                         "shadows",       "shadow_res",      "shadow_budget_mib", "shadow_format",
                                         "shadow_filter", "point_layout",    "cascades",       "shadowed_spots",
-                                        "shadowed_points", "rounds"};
+                                        "shadowed_points", "rounds",        "best_of"};
     std::vector<std::string> timed = passes;
     timed.emplace_back("total");
     for (const char* statistic : {"_ms", "_iqr_ms", "_cv"}) {
@@ -58,7 +58,7 @@ std::vector<std::string> benchColumns(const std::vector<std::string>& passes) {
 }
 
 void addConfiguration(BenchRow& row, const BenchConfig& config, const Scene& scene, const render::Renderer& renderer,
-                      uint32_t rounds) {
+                      uint32_t rounds, uint32_t bestOf) {
     const render::RenderSettings& settings = renderer.settings();
     const ShadowPlan& plan = renderer.shadowPlan();
     row["config"] = benchConfigName(config);
@@ -83,6 +83,17 @@ void addConfiguration(BenchRow& row, const BenchConfig& config, const Scene& sce
     row["shadowed_spots"] = std::to_string(plan.shadowedSpots);
     row["shadowed_points"] = std::to_string(plan.shadowedPoints);
     row["rounds"] = std::to_string(rounds);
+    row["best_of"] = std::to_string(bestOf);
+}
+
+render::PassTimings fastestPerPass(const std::vector<render::PassTimings>& frames) {
+    if (frames.empty()) return {};
+    render::PassTimings fastest = frames.front();
+    for (const render::PassTimings& frame : frames) {
+        for (auto& [pass, ms] : fastest.passes) ms = std::min(ms, frame.of(pass));
+        fastest.total = std::min(fastest.total, frame.total);
+    }
+    return fastest;
 }
 
 RoundSummary addTimings(BenchRow& row, const std::vector<render::PassTimings>& rounds) {

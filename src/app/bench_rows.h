@@ -31,7 +31,14 @@ std::vector<std::string> benchColumns(const std::vector<std::string>& passes);
 
 // The configuration's columns (what was rendered).
 void addConfiguration(BenchRow& row, const BenchConfig& config, const Scene& scene, const render::Renderer& renderer,
-                      uint32_t rounds);
+                      uint32_t rounds, uint32_t bestOf);
+
+// A round's sample from K frames rendered back to back: each pass's fastest time, and the
+// fastest frame total (taken apart, so the total can be below the sum of the passes' times).
+// Interference (other threads, the host) only ever adds time to a frame, so the fastest of a
+// few frames is the least disturbed estimate of what the pass costs (Chen and Revels, "Robust
+// benchmarking in noisy environments", 2016); docs/BENCH_RESULTS.md. Empty input: empty output.
+render::PassTimings fastestPerPass(const std::vector<render::PassTimings>& frames);
 
 // The median, IQR and CV of every pass and of the frame over `rounds`, and the flag. Returns the
 // frame's summary.

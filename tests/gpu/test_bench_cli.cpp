@@ -40,7 +40,7 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     EXPECT_EQ(header,
               "config,series,method,spot,point,light_range,width,height,pixels,scene,scene_triangles,objects,shadows,"
               "shadow_res,shadow_budget_mib,shadow_format,shadow_filter,point_layout,cascades,shadowed_spots,"
-              "shadowed_points,rounds,depth_ms,transparent_depth_ms,culling_ms,shadows_ms,forward_ms,transparent_ms,"
+              "shadowed_points,rounds,best_of,depth_ms,transparent_depth_ms,culling_ms,shadows_ms,forward_ms,transparent_ms,"
               "tonemap_ms,total_ms,depth_iqr_ms,transparent_depth_iqr_ms,culling_iqr_ms,shadows_iqr_ms,forward_iqr_ms,"
               "transparent_iqr_ms,tonemap_iqr_ms,total_iqr_ms,depth_cv,transparent_depth_cv,culling_cv,shadows_cv,"
               "forward_cv,transparent_cv,tonemap_cv,total_cv,flagged,flag_reason,tested_per_pixel,affecting_per_pixel,"
@@ -88,12 +88,15 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     EXPECT_EQ(provenance["date"].get<std::string>().size(), 20u);  // 2026-12-02T11:29:12Z
     EXPECT_EQ(provenance["scene"]["triangles"], 348);
     EXPECT_EQ(json["noise"]["rounds"], 3);
+    EXPECT_EQ(json["noise"]["best_of"], 1);  // --quick: one frame a round
+    EXPECT_GE(json["noise"]["frame_median_cv"].get<double>(), 0.0);
     EXPECT_EQ(json["noise"]["flag_limit"], 0.15);
     EXPECT_GE(json["noise"]["median_cv"].get<double>(), 0.0);
     uint32_t flaggedRows = 0;
     for (const auto& row : json["configurations"]) {
         const std::string config = row["config"];
         EXPECT_EQ(row["rounds"], "3") << config;
+        EXPECT_EQ(row["best_of"], "1") << config;
         EXPECT_TRUE(row["flagged"] == "0" || row["flagged"] == "1") << config;
         EXPECT_EQ(row["flag_reason"].get<std::string>().empty(), row["flagged"] == "0") << config;
         flaggedRows += row["flagged"] == "1" ? 1u : 0u;
@@ -236,6 +239,8 @@ TEST(BenchCli, BadOptionsFailCleanly) {
              "bench --frames 3 --out-dir '" + folder.file("x") + "'",
              "bench --rounds 0 --out-dir '" + folder.file("x") + "'",
              "bench --rounds many --out-dir '" + folder.file("x") + "'",
+             "bench --best-of 0 --out-dir '" + folder.file("x") + "'",
+             "bench --best-of 101 --out-dir '" + folder.file("x") + "'",
              "bench --seed -1 --out-dir '" + folder.file("x") + "'",
              "bench --series mix,nothing --out-dir '" + folder.file("x") + "'",
              "bench --compare '" + folder.file("none-a") + "' '" + folder.file("none-b") + "' --out-dir '" +
