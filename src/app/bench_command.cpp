@@ -246,6 +246,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
     std::map<std::string, ImageRgba8> bruteImages;  // by what brute force's image is compared on
     std::map<std::string, nlohmann::json> shadowLights;  // validated configurations: per-light counts
     std::map<std::string, nlohmann::json> sunCascades;   // validated configurations with a sun: per cascade
+    std::map<std::string, nlohmann::json> frameSamples;  // every configuration: its timed frames' totals
 
     uint32_t groupIndex = 0;
     for (size_t first = 0; first < configs.size(); ++groupIndex) {
@@ -323,6 +324,9 @@ int runBenchCommand(const std::vector<std::string>& args) {
             const LightStatsImage pixelWork = renderer.readLightStats();
             addCounters(row, renderer, &pixelWork);
             const std::string name = row["config"];
+            // The raw samples, in the order they were taken (round by round, bestOf frames each),
+            // so that a reader can look at the spread behind a flag.
+            frameSamples[name] = m.frameTotals;
             // Sample heat maps: every method at the largest mixed count.
             if (config.series == "mix" && config.spot == kBenchSpots) {
                 std::vector<uint8_t> background(pixelWork.covered.size());
@@ -387,6 +391,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
         if (lightsIt != shadowLights.end()) entry["shadow_lights"] = lightsIt->second;
         const auto cascadesIt = sunCascades.find(row.at("config"));
         if (cascadesIt != sunCascades.end()) entry["sun_cascades"] = cascadesIt->second;
+        entry["frame_total_ms"] = frameSamples.at(row.at("config"));
         csv += "\n";
         json.push_back(entry);
     }
