@@ -10,6 +10,12 @@
 //     segment. Empty slices test nothing, and a light reaching only the foreground of a tile
 //     never lands in a slice that holds only background.
 //  4. the masks (64-bit spot, 32-bit point) of every occupied slice are written out.
+// Tiled with DEPTH_MASK (--culling tiled-2.5d) adds Harada's 2.5D test to step 3: the tile's
+// 32-cell depth mask (culling.h) is built from its pixels once their min..max extent is known,
+// and a light that passed the tile test is kept only if its depth cells meet an occupied one.
+// ZBINS (--culling zbin): the tile's mask is two-dimensional, every light that meets the tile's
+// side planes anywhere between the near and far planes, and no depth is read at all: the z-bins
+// (lights/z_bins.h, built on the CPU) hold depth, and forward.frag ANDs the two masks.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_types.h"
 #include "culling.h"
@@ -20,6 +26,8 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
+layout(constant_id = PUNCTUAL_SPEC_DEPTH_MASK) const bool DEPTH_MASK = false;  // tiled only
+layout(constant_id = PUNCTUAL_SPEC_ZBINS) const bool ZBINS = false;            // tiled only
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 // The lights' view-space culling shapes, made once per frame on the CPU (makeCullLight in
@@ -51,6 +59,7 @@ shared uint tileMinDistance;  // float bits: the extent of all the tile's pixels
 shared uint tileMaxDistance;
 shared uint occupiedSlices[SLICE_COUNT];
 shared TileVolume occupiedVolumes[SLICE_COUNT];
+shared uint tileDepthMask;  // DEPTH_MASK: the occupied cells of the tile's depth extent
 
 // Marks packed light `light` in the masks of `slice` (spots in words 0-1, points in word 2; see
 // lightGridWord in culling.h).
@@ -75,6 +84,7 @@ void main() {
         tileLightCount = 0u;
         tileMinDistance = 0x7F7FFFFFu;
         tileMaxDistance = 0u;
+        tileDepthMask = 0u;
     }
     barrier();
 
@@ -86,7 +96,7 @@ void main() {
     uint threadMax = 0u;
     uint runMin = 0xFFFFFFFFu;
     uint runMax = 0u;
-    for (uint y = gl_LocalInvocationID.y; y < TILE_SIZE; y += kSide) {
+    for (uint y = gl_LocalInvocationID.y; !ZBINS && y < TILE_SIZE; y += kSide) {
         for (uint x = gl_LocalInvocationID.x; x < TILE_SIZE; x += kSide) {
             uvec2 pixel = tile * TILE_SIZE + uvec2(x, y);
             if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
@@ -146,11 +156,52 @@ void main() {
     }
     barrier();
 
+    // 1b. DEPTH_MASK: the cells of the tile's extent that its pixels occupy, each pixel (or a
+    //     transparent span, every cell from its near to its far end) read again now that the
+    //     extent is known. The same distances as step 1, so every pixel lies inside the extent.
+    float maskNear = uintBitsToFloat(sliceMinDistance[0]);
+    float maskScale = depthMaskScale(maskNear, uintBitsToFloat(sliceMaxDistance[0]));
+    if (DEPTH_MASK && SLICE_COUNT == 1u && sliceMaxDistance[0] != 0u) {
+        uint threadMask = 0u;
+        for (uint y = gl_LocalInvocationID.y; y < TILE_SIZE; y += kSide) {
+            for (uint x = gl_LocalInvocationID.x; x < TILE_SIZE; x += kSide) {
+                uvec2 pixel = tile * TILE_SIZE + uvec2(x, y);
+                if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
+                float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
+                if (frame.lightCounts.w != 0u) {
+                    uint index = pixel.y * viewport.x + pixel.x;
+                    uint nearestBits = transparentDepth[index];
+                    if (nearestBits != 0u) {
+                        float farthest = isBackgroundDepth(depth) ? uintBitsToFloat(transparentDepth[viewport.x * viewport.y + index])
+                                                                  : depth;
+                        float top = viewDistanceFromDepth(uintBitsToFloat(nearestBits), frame.depthToView.xy);
+                        float bottom = viewDistanceFromDepth(farthest, frame.depthToView.xy);
+                        threadMask |= depthMaskBits(depthMaskCell(top, maskNear, maskScale),
+                                                    depthMaskCell(bottom, maskNear, maskScale));
+                        continue;
+                    }
+                }
+                if (isBackgroundDepth(depth)) continue;
+                threadMask |= 1u << depthMaskCell(viewDistanceFromDepth(depth, frame.depthToView.xy), maskNear, maskScale);
+            }
+        }
+        if (threadMask != 0u) atomicOr(tileDepthMask, threadMask);
+    }
+    barrier();
+
     // 2. List the occupied slices with their frustum segments.
     vec2 pixelToNdc = 2.0 * frame.viewport.zw;
     vec2 ndcA = vec2(tile * TILE_SIZE) * pixelToNdc - 1.0;
     vec2 ndcB = min(vec2((tile + 1u) * TILE_SIZE), frame.viewport.xy) * pixelToNdc - 1.0;
-    for (uint slice = thread; slice < SLICE_COUNT; slice += kThreads) {
+    if (ZBINS && thread == 0u) {
+        // The whole view depth, near plane to far plane: D = a / (depth + b) at depths 1 and 0.
+        float nearPlane = frame.depthToView.x / (1.0 + frame.depthToView.y);
+        float farPlane = frame.depthToView.x / max(frame.depthToView.y, 1e-30);
+        occupiedCount = 1u;
+        occupiedSlices[0] = 0u;
+        occupiedVolumes[0] = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), nearPlane, farPlane, frame.ndcToView);
+    }
+    for (uint slice = thread; !ZBINS && slice < SLICE_COUNT; slice += kThreads) {
         if (sliceMaxDistance[slice] == 0u) continue;  // no pixel in this slice
         uint index = atomicAdd(occupiedCount, 1u);
         occupiedSlices[index] = slice;
@@ -170,6 +221,9 @@ void main() {
     barrier();
     for (uint light = thread; occupiedCount > 0u && light < lightCount; light += kThreads) {
         if (!lightMayTouchTile(cullLights[light], tileVolume)) continue;
+        if (DEPTH_MASK && SLICE_COUNT == 1u && (lightDepthMask(cullLights[light], maskNear, maskScale) & tileDepthMask) == 0u) {
+            continue;
+        }
         if (SLICE_COUNT == 1u) {
             setLightBit(0u, light);
         } else {

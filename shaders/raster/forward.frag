@@ -4,6 +4,8 @@
 //   brute       every spot, then every point light, in packed order;
 //   per-object  the object's (at most 8) lights, ascending;
 //   tiled       the set bits of the pixel's tile masks, ascending;
+//   tiled-2.5d  the same, the masks also pruned by the tile's depth cells (light_culling.comp);
+//   zbin        the set bits of the tile's two-dimensional masks AND its z-bin's, ascending;
 //   clustered   the set bits of the pixel's cluster masks, ascending.
 // All walk lights in the same ascending order and a light beyond its range adds exactly 0, so
 // tiled and clustered images are bit-identical to brute force. Every variant value (light list,
@@ -57,6 +59,7 @@ layout(set = 1, binding = 1) uniform sampler2D emissiveTexture;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) readonly buffer GridBlock { uint lightGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_OBJECT_LIGHTS) readonly buffer ObjectLightBlock { uint objectLights[]; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_ZBINS) readonly buffer ZBinBlock { GpuZBins zBins; };
 // Four words per pixel for the opaque surface, then four per pixel for its transparent fragments
 // (gpu_types.h): several of those may land on one pixel, so they add up atomically.
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_STATS) buffer LightStatsBlock { uint lightStatWords[]; };
@@ -190,6 +193,8 @@ void main() {
     uint spotCount = frame.lightCounts.x;
     uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
     uint tested = 0u;
+    uvec3 gridWords = uvec3(0u);  // the light-grid methods: the pixel's three mask words
+    bool walkGridWords = false;
     switch (LIGHT_LIST) {
         case PUNCTUAL_LIGHT_LIST_BRUTE:
             for (uint i = 0u; i < lightCount; ++i) {
@@ -207,26 +212,40 @@ void main() {
             break;
         }
         case PUNCTUAL_LIGHT_LIST_TILED:
+        case PUNCTUAL_LIGHT_LIST_TILED_25D:  // the same tile grid, fewer bits set
         case PUNCTUAL_LIGHT_LIST_CLUSTERED: {
             // The set bits of this pixel's cell. (Clustered: walking the tile's union of its
             // clusters instead, testing membership per pixel, keeps SIMD lanes uniform but
             // measured 10% slower on lavapipe; see bench/RESULTS.md.)
             uint base = pixelGridCell() * PUNCTUAL_GRID_WORDS;
-            for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) {
-                uint bits = lightGrid[base + word];
-                uint firstLight = lightGridFirstLight(word, spotCount);
-                while (bits != 0u) {
-                    uint bit = uint(findLSB(bits));
-                    bits &= bits - 1u;  // clear the lowest set bit: ascending order
-                    radiance += shadeLight(surface, lights[firstLight + bit]);
-                    ++tested;
-                }
-            }
+            gridWords = uvec3(lightGrid[base], lightGrid[base + 1u], lightGrid[base + 2u]);
+            walkGridWords = true;
+            break;
+        }
+        case PUNCTUAL_LIGHT_LIST_ZBIN: {
+            // URP Forward+ / Drobot: the tile's two-dimensional mask AND the mask of the pixel's
+            // z-bin (lights/z_bins.h), found by the stored-start search the CPU binned with.
+            uint base = pixelGridCell() * PUNCTUAL_GRID_WORDS;
+            uint bin;
+            PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(bin, gl_FragCoord.z, zBins.binStartDepth, PUNCTUAL_ZBIN_COUNT);
+            gridWords = uvec3(lightGrid[base], lightGrid[base + 1u], lightGrid[base + 2u]) & zBins.binMask[bin].xyz;
+            walkGridWords = true;
             break;
         }
         default:
             unknownVariant = true;
             break;
+    }
+    // The grid methods' lights: the set bits of the three words, ascending (spots, then points).
+    for (uint word = 0u; walkGridWords && word < PUNCTUAL_GRID_WORDS; ++word) {
+        uint bits = gridWords[word];
+        uint firstLight = lightGridFirstLight(word, spotCount);
+        while (bits != 0u) {
+            uint bit = uint(findLSB(bits));
+            bits &= bits - 1u;  // clear the lowest set bit: ascending order
+            radiance += shadeLight(surface, lights[firstLight + bit]);
+            ++tested;
+        }
     }
     // Emission last, after every light, in the reference's order. It lights nothing else.
     radiance += emission;

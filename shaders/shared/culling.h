@@ -270,6 +270,45 @@ PUNCTUAL_FN bool lightMayTouchTile(CullLight light, TileVolume v) {
                               v.sphereRadius);
 }
 
+// Harada's 2.5D culling (Harada, McKee and Yang, "Forward+: A step toward film-style shading in
+// real time", GPU Pro 4, 2013; "2.5D culling for Forward+", SIGGRAPH Asia 2012): a tile's depth
+// extent [nearDistance, farDistance] is cut into 32 equal cells, one bit each; the tile's mask has
+// the bit of every cell a pixel of the tile lies in, a light's mask the bits of the cells its depth
+// extent spans. The light is kept when the two masks share a bit: a light that only reaches the
+// empty gap between a foreground and a background surface is dropped, which a min/max depth test
+// cannot do.
+//
+// The cell of a view distance D: floor(32 (D - near) / (far - near)), clamped to 0..31. Lossless by
+// monotony: the subtraction, the product with the positive scale and the clamp never decrease as
+// D grows (IEEE round-to-nearest is monotone), so a light whose extent [lo, hi] contains a pixel's
+// distance D gets cells cell(lo) <= cell(D) <= cell(hi), and its mask holds the pixel's bit. The
+// kernel and the CPU reference compute cells with this one function on the same stored distances.
+// A tile whose pixels all lie at one distance (far = near) has the scale 0: every pixel and every
+// light overlapping it is in cell 0.
+#define PUNCTUAL_DEPTH_MASK_CELLS 32u
+
+PUNCTUAL_FN float depthMaskScale(float nearDistance, float farDistance) {
+    return farDistance > nearDistance ? float(PUNCTUAL_DEPTH_MASK_CELLS) / (farDistance - nearDistance) : 0.0f;
+}
+
+PUNCTUAL_FN uint depthMaskCell(float distance, float nearDistance, float scale) {
+    return uint(clamp((distance - nearDistance) * scale, 0.0f, float(PUNCTUAL_DEPTH_MASK_CELLS - 1u)));
+}
+
+// The bits of cells first .. last (first <= last <= 31): ones shifted up to `first`, cut above
+// `last`. (A shift by 32 is undefined in both languages, hence the two-step form.)
+PUNCTUAL_FN uint depthMaskBits(uint first, uint last) {
+    uint upToLast = last >= 31u ? 0xFFFFFFFFu : (1u << (last + 1u)) - 1u;
+    return upToLast & ~((1u << first) - 1u);
+}
+
+// A light's mask in a tile: the cells of its bounding sphere's view-distance extent.
+PUNCTUAL_FN uint lightDepthMask(CullLight light, float nearDistance, float scale) {
+    float centre = -light.sphereCenter.z;
+    return depthMaskBits(depthMaskCell(centre - light.sphereRadius, nearDistance, scale),
+                         depthMaskCell(centre + light.sphereRadius, nearDistance, scale));
+}
+
 PUNCTUAL_NAMESPACE_END
 
 #endif

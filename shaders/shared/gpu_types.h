@@ -42,6 +42,7 @@
 // width x height) depth of the alphaMode BLEND surfaces in front of the opaque ones; 0 and
 // 0xFFFFFFFF where there are none. Written by transparent_depth.frag, read by the culling kernels.
 #define PUNCTUAL_BINDING_TRANSPARENT_DEPTH 16
+#define PUNCTUAL_BINDING_ZBINS 17             // GpuZBins: the z-bin method's bins (lights/z_bins.h)
 
 // Shadow validation buffer (forward shader's WRITE_SHADOW_FACTORS variant), in 32-bit words:
 // per pixel PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS words (world position xyz, 1 if covered, shading
@@ -102,7 +103,9 @@
 #define PUNCTUAL_LIGHT_LIST_PER_OBJECT 1u
 #define PUNCTUAL_LIGHT_LIST_TILED 2u
 #define PUNCTUAL_LIGHT_LIST_CLUSTERED 3u
-#define PUNCTUAL_LIGHT_LIST_COUNT 4u
+#define PUNCTUAL_LIGHT_LIST_TILED_25D 4u
+#define PUNCTUAL_LIGHT_LIST_ZBIN 5u
+#define PUNCTUAL_LIGHT_LIST_COUNT 6u
 
 // Specialization constant ids.
 #define PUNCTUAL_SPEC_LIGHT_LIST 1
@@ -117,6 +120,8 @@
 #define PUNCTUAL_SPEC_SHADOW_RECEIVER_PLANE 10
 #define PUNCTUAL_SPEC_CASCADE_BLEND 11
 #define PUNCTUAL_SPEC_TRANSPARENT 12
+#define PUNCTUAL_SPEC_DEPTH_MASK 13
+#define PUNCTUAL_SPEC_ZBINS 14
 
 PUNCTUAL_NAMESPACE_BEGIN
 
@@ -191,6 +196,19 @@ struct GpuDepthRange {
     uint reserved;
     // Depth where slice s begins; slice 0 = nearest (depth 1), starts falling with s.
     float sliceStartDepth[PUNCTUAL_MAX_CLUSTER_SLICES];
+};
+
+// The z-bin method's bins (URP Forward+ after Drobot 2017; lights/z_bins.h builds them on the
+// CPU each frame). Bin b covers the depths from binStartDepth[b] down to binStartDepth[b + 1]
+// (reversed depth: bin 0 starts at the near plane, depth 1; the last runs to the far plane), the
+// same stored-start search as the cluster slices (culling.h), so the CPU and the forward pass
+// put a depth in the same bin. binMask[b]: xyz the packed-order mask (spot words, point word;
+// lightGridWord) of every light whose depth-sorted index lies in the bin's range; w the range
+// itself, first | last << 16 (first > last: an empty bin).
+#define PUNCTUAL_ZBIN_COUNT 64u
+struct GpuZBins {
+    float binStartDepth[PUNCTUAL_ZBIN_COUNT];
+    uvec4 binMask[PUNCTUAL_ZBIN_COUNT];
 };
 
 struct GpuObject {

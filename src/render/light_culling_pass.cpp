@@ -18,17 +18,20 @@ namespace {
 constexpr uint32_t kDepthRangeGroup = 32;  // pixels a side covered by one depth_range.comp group
 }
 
-LightGridLayout LightGridLayout::forFrame(uint32_t width, uint32_t height, uint32_t tileSize, uint32_t slices) {
+LightGridLayout LightGridLayout::forMethod(const LightListMethodInfo& method, uint32_t width, uint32_t height,
+                                           uint32_t tileSize, uint32_t clusterSlices) {
     LightGridLayout layout;
     layout.tileSize = tileSize;
     layout.tilesX = (width + tileSize - 1) / tileSize;
     layout.tilesY = (height + tileSize - 1) / tileSize;
-    layout.slices = slices;
+    layout.slices = method.depthSlices ? clusterSlices : 1u;
+    layout.depthMask = method.depthMask;
+    layout.zBins = method.zBins;
     return layout;
 }
 
 LightCullingPass::LightCullingPass(vk::Context& context, const LightGridLayout& layout, bool culled, uint32_t width,
-                                   uint32_t height, const std::vector<gpu::CullLight>& cullLights)
+                                   uint32_t height, const std::vector<gpu::CullLight>& cullLights, const ZBins* zBins)
     : layout_(layout),
       culled_(culled),
       width_(width),
@@ -42,8 +45,11 @@ LightCullingPass::LightCullingPass(vk::Context& context, const LightGridLayout& 
                   vk::MemoryUse::DeviceLocal, "depth range"),
       // Sized to the lights this frame really uses; one slot when there are none.
       cullLights_(context, std::max<size_t>(cullLights.size(), 1) * sizeof(gpu::CullLight),
-                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "cull lights") {
+                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "cull lights"),
+      zBins_(context, zBins ? sizeof(gpu::GpuZBins) : sizeof(uint32_t),
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload, "z-bins") {
     if (!cullLights.empty()) cullLights_.write(cullLights.data(), cullLights.size() * sizeof(gpu::CullLight));
+    if (zBins) zBins_.write(&zBins->gpu, sizeof(gpu::GpuZBins));
     // Cells no pixel occupies are never written, and no pixel the frame shades reads one. Zeroed
     // once all the same, so that a study that breaks that rule on purpose (culling by the opaque
     // depth alone, RenderSettings::opaqueCullingDepth) reads "no lights", the same every run,
@@ -56,16 +62,23 @@ void LightCullingPass::addBindings(BindingTable& table) const {
     table.addBuffer(PUNCTUAL_BINDING_DEPTH_RANGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages, depthRange_);
     table.addBuffer(PUNCTUAL_BINDING_CULL_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT,
                     cullLights_);
+    table.addBuffer(PUNCTUAL_BINDING_ZBINS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages, zBins_);
 }
 
-uint64_t LightCullingPass::memoryBytes() const { return grid_.size() + depthRange_.size() + cullLights_.size(); }
+uint64_t LightCullingPass::memoryBytes() const {
+    return grid_.size() + depthRange_.size() + cullLights_.size() + zBins_.size();
+}
 
 void LightCullingPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
     if (!culled_) return;
-    const std::array<uint32_t, 2> values = {layout_.tileSize, layout_.slices};
-    const std::array<VkSpecializationMapEntry, 2> entries = {{
+    // VkBool32 for the bool constant, as the specification asks.
+    const std::array<uint32_t, 4> values = {layout_.tileSize, layout_.slices, VkBool32(layout_.depthMask),
+                                            VkBool32(layout_.zBins)};
+    const std::array<VkSpecializationMapEntry, 4> entries = {{
         {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, sizeof(uint32_t), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_DEPTH_MASK, 2 * sizeof(uint32_t), sizeof(VkBool32)},
+        {PUNCTUAL_SPEC_ZBINS, 3 * sizeof(uint32_t), sizeof(VkBool32)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};
     cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),

@@ -1,6 +1,7 @@
 #pragma once
 // Tiled and clustered light culling (compute). Tiled: one workgroup per tile tests every light
-// against the tile's depth extent. Clustered: a depth-range pass first finds the frame's nearest
+// against the tile's depth extent (tiled-2.5d: and against its depth mask; zbin: against the tile
+// at every depth, the z-bins uploaded here holding depth). Clustered: a depth-range pass first finds the frame's nearest
 // and farthest geometry, then the same kernel splits each tile into logarithmic depth slices
 // fitted to that range. The light grid holds PUNCTUAL_GRID_WORDS words per cell and is sized to
 // the frame's real tile count (times the slices for clustered).
@@ -10,6 +11,8 @@
 #include <vulkan/vulkan.h>
 
 #include "culling.h"
+#include "lights/z_bins.h"
+#include "render/light_list_method.h"
 #include "render/pass.h"
 #include "vk/buffer.h"
 #include "vk/handle.h"
@@ -21,9 +24,14 @@ struct LightGridLayout {
     uint32_t tilesX = 0;
     uint32_t tilesY = 0;
     uint32_t slices = 1;  // 1: tiled
+    bool depthMask = false;  // tiled-2.5d: lights also tested against the tile's depth mask
+    bool zBins = false;      // zbin: two-dimensional tile masks (no depth read), the bins hold depth
 
     uint32_t cellCount() const { return tilesX * tilesY * slices; }
-    static LightGridLayout forFrame(uint32_t width, uint32_t height, uint32_t tileSize, uint32_t slices);
+    // The grid `method` culls to: `clusterSlices` depth slices where it has them (clustered), one
+    // otherwise; its depth mask and z-bins flags (the culling kernel's specialization constants).
+    static LightGridLayout forMethod(const LightListMethodInfo& method, uint32_t width, uint32_t height,
+                                     uint32_t tileSize, uint32_t clusterSlices);
 };
 
 class LightCullingPass final : public Pass {
@@ -32,8 +40,9 @@ public:
     // pass records nothing and its buffers are one-word placeholders (a descriptor cannot point at
     // nothing). `cullLights` are the frame's lights in view space (gpu::makeCullLight), made once
     // on the CPU rather than by every workgroup.
+    // `zBins`: the z-bin method's bins (uploaded for the forward pass), null for other methods.
     LightCullingPass(vk::Context& context, const LightGridLayout& layout, bool culled, uint32_t width, uint32_t height,
-                     const std::vector<gpu::CullLight>& cullLights);
+                     const std::vector<gpu::CullLight>& cullLights, const ZBins* zBins);
 
     const char* name() const override { return "culling"; }
     void addBindings(BindingTable& table) const override;
@@ -55,6 +64,7 @@ private:
     vk::Buffer grid_;
     vk::Buffer depthRange_;
     vk::Buffer cullLights_;
+    vk::Buffer zBins_;  // gpu::GpuZBins, or one word for the methods without bins
     vk::Handle<VkPipeline> depthRangePipeline_;        // clustered: nearest/farthest geometry
     vk::Handle<VkPipeline> sliceBoundariesPipeline_;   // clustered: slice start depths
     vk::Handle<VkPipeline> cullingPipeline_;

@@ -19,30 +19,62 @@ enum class LightListMethod : uint32_t {
     PerObject = PUNCTUAL_LIGHT_LIST_PER_OBJECT,
     Tiled = PUNCTUAL_LIGHT_LIST_TILED,
     Clustered = PUNCTUAL_LIGHT_LIST_CLUSTERED,
+    Tiled25D = PUNCTUAL_LIGHT_LIST_TILED_25D,
+    ZBin = PUNCTUAL_LIGHT_LIST_ZBIN,
 };
 
 struct LightListMethodInfo {
     LightListMethod value;
     const char* name;
     GpuConstant gpu;
-    bool usesLightGrid;  // a culling pass fills a light grid (per tile or per cluster) for the forward pass
-    bool depthSlices;    // the grid's tiles are split into --slices depth slices (clusters)
-    bool objectLists;    // the CPU builds per-object light lists (at most 8 per object) for it
-    bool isReference;    // the exact sum every other method is compared against
-    bool quickBench;     // swept by `bench --quick` (the full bench sweeps every method)
-    const char* description;
+    bool usesLightGrid = false;  // a culling pass fills a light grid (per tile or per cluster) for the forward pass
+    bool depthSlices = false;    // the grid's tiles are split into --slices depth slices (clusters)
+    bool depthMask = false;      // the culling kernel keeps a light only where it meets the tile's 2.5D depth mask
+    bool zBins = false;          // two-dimensional tile masks ANDed with CPU-built z-bins (lights/z_bins.h)
+    bool objectLists = false;    // the CPU builds per-object light lists (at most 8 per object) for it
+    bool isReference = false;    // the exact sum every other method is compared against
+    bool quickBench = false;     // swept by `bench --quick` (the full bench sweeps every method)
+    const char* description = "";
 };
 
-inline constexpr std::array<LightListMethodInfo, 4> kLightListMethods = {{
-    // value, name, GPU value, light grid, depth slices, object lists, reference, quick bench, help
-    {LightListMethod::Brute, "brute", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_BRUTE), false, false, false, true,
-     true, "every light"},
-    {LightListMethod::PerObject, "per-object", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_PER_OBJECT), false, false,
-     true, false, true, "the object's lights, at most 8, ranked on the CPU"},
-    {LightListMethod::Tiled, "tiled", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_TILED), true, false, false, false,
-     true, "the lights culled to its screen tile"},
-    {LightListMethod::Clustered, "clustered", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_CLUSTERED), true, true,
-     false, false, true, "the lights culled to its depth slice of the tile"},
+inline constexpr std::array<LightListMethodInfo, 6> kLightListMethods = {{
+    {.value = LightListMethod::Brute,
+     .name = "brute",
+     .gpu = PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_BRUTE),
+     .isReference = true,
+     .quickBench = true,
+     .description = "every light"},
+    {.value = LightListMethod::PerObject,
+     .name = "per-object",
+     .gpu = PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_PER_OBJECT),
+     .objectLists = true,
+     .quickBench = true,
+     .description = "the object's lights, at most 8, ranked on the CPU"},
+    {.value = LightListMethod::Tiled,
+     .name = "tiled",
+     .gpu = PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_TILED),
+     .usesLightGrid = true,
+     .quickBench = true,
+     .description = "the lights culled to its screen tile"},
+    {.value = LightListMethod::Clustered,
+     .name = "clustered",
+     .gpu = PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_CLUSTERED),
+     .usesLightGrid = true,
+     .depthSlices = true,
+     .quickBench = true,
+     .description = "the lights culled to its depth slice of the tile"},
+    {.value = LightListMethod::Tiled25D,
+     .name = "tiled-2.5d",
+     .gpu = PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_TILED_25D),
+     .usesLightGrid = true,
+     .depthMask = true,
+     .description = "the lights culled to its screen tile and its tile's occupied depth cells (Harada's 2.5D mask)"},
+    {.value = LightListMethod::ZBin,
+     .name = "zbin",
+     .gpu = PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_ZBIN),
+     .usesLightGrid = true,
+     .zBins = true,
+     .description = "its screen tile's lights (at every depth) AND its depth bin's range of depth-sorted lights (URP Forward+)"},
 }};
 static_assert(kLightListMethods.size() == PUNCTUAL_LIGHT_LIST_COUNT, "one entry per PUNCTUAL_LIGHT_LIST_* value");
 static_assert(gpuValuesAreIndices(kLightListMethods), "entry i is the method of GPU value i");
@@ -71,6 +103,16 @@ inline const LightListMethodInfo& methodInfo(LightListMethod method) {
 }
 
 inline bool usesLightGrid(LightListMethod method) { return methodInfo(method).usesLightGrid; }
+
+// The methods that cull to a light grid (tiled, clustered, tiled-2.5d, ...), in table order: the
+// lossless ones every test and study compares with brute force, so a new entry joins them.
+inline std::vector<LightListMethod> gridMethods() {
+    std::vector<LightListMethod> methods;
+    for (const LightListMethodInfo& info : kLightListMethods) {
+        if (info.usesLightGrid) methods.push_back(info.value);
+    }
+    return methods;
+}
 
 // The exact method every other is compared against (brute force).
 inline LightListMethod referenceMethod() {

@@ -31,6 +31,17 @@
 #include "vk/image.h"
 
 namespace punctual::render {
+namespace {
+
+// The lights' culling shapes in view space, once per frame (the same function the culling tests
+// of the CPU reference use).
+std::vector<gpu::CullLight> viewCullLights(const FrameLights& frameLights, const glm::mat4& view) {
+    std::vector<gpu::CullLight> cullLights;
+    for (const gpu::GpuPunctualLight& light : frameLights.packed) cullLights.push_back(gpu::makeCullLight(light, view));
+    return cullLights;
+}
+
+}  // namespace
 
 // Every GPU resource of the frame. The passes own what they write (depth, light grid, shadow
 // maps, tone-mapped pixels); the frame's shared inputs and the debug outputs live here.
@@ -119,7 +130,7 @@ struct Renderer::Resources {
     Resources(vk::Context& context, const Scene& sceneData, const RenderSettings& settings,
               const FrameLights& frameLights, const PerObjectLightLists& perObject, const LightGridLayout& gridLayout,
               const ShadowPlan& shadowPlan, const glm::mat4& view, const std::vector<uint32_t>& inView,
-              CameraDraws& draws)
+              const std::optional<ZBins>& zBins, CameraDraws& draws)
         : scene(context, sceneData, perObject.counts),
           frameUniform(context, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload,
                        "frame"),
@@ -147,10 +158,7 @@ struct Renderer::Resources {
         if (!frameLights.packed.empty()) {
             lights.write(frameLights.packed.data(), frameLights.packed.size() * sizeof(gpu::GpuPunctualLight));
         }
-        // The culling shapes in view space, once per frame (the same function the culling tests
-        // of the CPU reference use).
-        std::vector<gpu::CullLight> cullLights;
-        for (const gpu::GpuPunctualLight& light : frameLights.packed) cullLights.push_back(gpu::makeCullLight(light, view));
+        const std::vector<gpu::CullLight> cullLights = viewCullLights(frameLights, view);
 
         // The frame, in order. The camera's passes draw the objects in view only, each list in
         // object order as before (so every fragment is drawn in the same order: the same image).
@@ -176,7 +184,7 @@ struct Renderer::Resources {
                                                          usesLightGrid(settings.method) && !settings.opaqueCullingDepth,
                                                          settings.width, settings.height);
         culling = addPass<LightCullingPass>(context, gridLayout, usesLightGrid(settings.method), settings.width,
-                                            settings.height, cullLights);
+                                            settings.height, cullLights, zBins ? &*zBins : nullptr);
         shadows = addPass<ShadowPass>(context, shadowPlan, settings.shadows);
         addPass<ForwardPass>(context, radiance, depth->depth(), forwardVariant(settings, gridLayout, false, false),
                              unblended);
@@ -306,8 +314,12 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     }
     const LightListMethodInfo& method = methodInfo(settings.method);
     if (method.objectLists) perObjectLists_ = buildPerObjectLightLists(scene, lights_);
-    const uint32_t slices = method.depthSlices ? settings.clusterSlices : 1u;
-    gridLayout_ = LightGridLayout::forFrame(settings.width, settings.height, settings.tileSize, slices);
+    gridLayout_ = LightGridLayout::forMethod(method, settings.width, settings.height, settings.tileSize,
+                                             settings.clusterSlices);
+    if (method.zBins) {
+        zBins_ = buildZBins(viewCullLights(lights_, view_), lights_.spotCount,
+                            glm::vec2(projection_[3][2], projection_[2][2]));
+    }
     std::vector<uint32_t> inView;
     if (settings.cullObjectsToView) {
         inView = objectsInView(scene, projection_ * view_);
@@ -316,7 +328,7 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
         for (uint32_t i = 0; i < inView.size(); ++i) inView[i] = i;
     }
     resources_ = std::make_unique<Resources>(context, scene, settings, lights_, perObjectLists_, gridLayout_,
-                                             shadowPlan_, view_, inView, cameraDraws_);
+                                             shadowPlan_, view_, inView, zBins_, cameraDraws_);
     Resources& r = *resources_;
     gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_, gridLayout_, shadowPlan_);
     frame.lightCounts.w = r.transparentDepth->needed() ? 1u : 0u;

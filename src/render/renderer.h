@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -15,6 +16,7 @@
 #include "gpu_types.h"
 #include "lights/light_setup.h"
 #include "lights/per_object_lights.h"
+#include "lights/z_bins.h"
 #include "lights/shadow_setup.h"
 #include "metrics/culling_stats.h"
 #include "metrics/shadow_factor_image.h"
@@ -103,6 +105,8 @@ public:
 
     const LightGridLayout& gridLayout() const { return gridLayout_; }
     const PerObjectLightLists& perObjectLists() const { return perObjectLists_; }
+    // The z-bin method's bins (lights/z_bins.h); empty (nullopt) for the other methods.
+    const std::optional<ZBins>& zBins() const { return zBins_; }
     const ShadowPlan& shadowPlan() const { return shadowPlan_; }
     uint64_t shadowMemoryBytes() const;
     // Device memory the renderer allocated: the scene's buffers and textures, every pass's images
@@ -134,6 +138,7 @@ private:
     glm::mat4 projection_{1.0f};
     FrameLights lights_;
     PerObjectLightLists perObjectLists_;
+    std::optional<ZBins> zBins_;
     ShadowPlan shadowPlan_;
     LightGridLayout gridLayout_;
     CameraDraws cameraDraws_;

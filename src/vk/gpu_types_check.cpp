@@ -41,6 +41,8 @@ static_assert(offsetof(GpuShadowView, texel) == 96);
 
 static_assert(sizeof(GpuDepthRange) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES);
 static_assert(offsetof(GpuDepthRange, sliceStartDepth) == 16);
+static_assert(sizeof(GpuZBins) == 4 * PUNCTUAL_ZBIN_COUNT + 16 * PUNCTUAL_ZBIN_COUNT);
+static_assert(offsetof(GpuZBins, binMask) == 4 * PUNCTUAL_ZBIN_COUNT);  // 256: a multiple of uvec4's 16
 
 // CullLight (culling.h) is read from a std430 buffer: each vec3 + float pair packs into 16 bytes.
 static_assert(sizeof(CullLight) == 48);

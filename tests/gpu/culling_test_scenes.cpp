@@ -57,12 +57,16 @@ std::vector<NamedScene> adversarialCullingScenes() {
         // A row of thin posts near the camera in front of a far floor: the tiles on each post's
         // edges span from 6 m to 20 m. Small lights hug the posts' faces and others light only the
         // far floor, so a tile's whole depth column touches lights that reach none of its pixels.
+        // A third set floats in the gap, 8 m from the eye, behind each post's right edge on screen
+        // (twice the post's distance, twice its x) and 1.3 m up with a 1 m range: they reach no
+        // surface at all, yet sit inside the depth columns of the tiles on the posts' edges.
         Scene scene = floorScene("tile columns spanning a near wall and a far floor");
         for (int i = 0; i < 7; ++i) {
             const float x = -3.6f + 1.2f * float(i);
             addBox(scene, glm::vec3(x, 1.5f, 6.0f), glm::vec3(0.35f, 3.0f, 0.2f));
             scene.lights.push_back(withColor(pointLight(glm::vec3(x, 1.0f + 0.4f * float(i % 3), 6.4f), 0.7f, 1.0f),
                                              glm::vec3(1.0f, 0.6f, 0.3f)));
+            scene.lights.push_back(pointLight(glm::vec3(2.0f * (x + 0.175f), 1.3f, 2.0f), 1.0f, 1.0f));
         }
         for (int i = 0; i < 10; ++i) {
             scene.lights.push_back(withColor(

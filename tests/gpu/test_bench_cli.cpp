@@ -97,6 +97,7 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
         const std::string config = row["config"];
         EXPECT_EQ(row["rounds"], "3") << config;
         EXPECT_EQ(row["best_of"], "1") << config;
+        EXPECT_EQ(row["frame_total_ms"].size(), 3u) << config;  // 3 rounds of 1 frame
         EXPECT_TRUE(row["flagged"] == "0" || row["flagged"] == "1") << config;
         EXPECT_EQ(row["flag_reason"].get<std::string>().empty(), row["flagged"] == "0") << config;
         flaggedRows += row["flagged"] == "1" ? 1u : 0u;
@@ -159,7 +160,7 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     // The names the chart scripts read instead of lists of their own: every pass has its columns.
     EXPECT_EQ(json["passes"], nlohmann::json({"depth", "transparent_depth", "culling", "shadows", "forward",
                                               "transparent", "tonemap"}));
-    EXPECT_EQ(json["methods"], nlohmann::json({"brute", "per-object", "tiled", "clustered"}));
+    EXPECT_EQ(json["methods"], nlohmann::json({"brute", "per-object", "tiled", "clustered", "tiled-2.5d", "zbin"}));
     EXPECT_EQ(json["shadow_filters"], nlohmann::json({"hw", "tent3", "tent5", "tent7", "disk"}));
     EXPECT_EQ(json["point_layouts"], nlohmann::json({"cube", "slices"}));
     for (const auto& pass : json["passes"]) {

@@ -140,12 +140,13 @@ TEST(Cli, CompareShowsEveryMethodSideBySide) {
     const RunResult run = runPunctual(folder, "compare --validate --size 96x54 --shadow-res 256");
     ASSERT_EQ(run.exitCode, 0) << run.err;
     EXPECT_EQ(run.err, "");
-    for (const char* method : {"brute", "per-object", "tiled", "clustered"}) {
-        EXPECT_NE(run.out.find(std::string("\n") + method + " "), std::string::npos) << method << "\n" << run.out;
+    for (const std::string& method : render::methodNames()) {
+        EXPECT_NE(run.out.find("\n" + method + " "), std::string::npos) << method << "\n" << run.out;
     }
-    // Tiled and clustered are bit-identical to brute force: zero error on their rows.
-    for (const char* method : {"tiled", "clustered"}) {
-        const size_t row = run.out.find(std::string("\n") + method + " ");
+    // The light-grid methods are bit-identical to brute force: zero error on their rows.
+    for (render::LightListMethod method : render::gridMethods()) {
+        const size_t row = run.out.find(std::string("\n") + render::methodName(method) + " ");
+        ASSERT_NE(row, std::string::npos) << render::methodName(method);
         const std::string line = run.out.substr(row + 1, run.out.find('\n', row + 1) - row - 1);
         EXPECT_NE(line.find("0.000      0.000%"), std::string::npos) << line;
     }

@@ -1,9 +1,10 @@
-// Light culling against brute force: tiled and clustered images are bit-identical to brute force
-// on the default scene and on adversarial scenes, a CPU reference of the tile and cluster tests
-// shows no light reaching a pixel is ever culled, and per-object lists lose light where an
-// object is lit by more than 8 lights.
+// Light culling against brute force: every light-grid method's images (tiled, clustered,
+// tiled-2.5d) are bit-identical to brute force on the default scene and on adversarial scenes, a
+// CPU reference of the tile, cluster and depth-mask tests shows no light reaching a pixel is ever
+// culled, and per-object lists lose light where an object is lit by more than 8 lights.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "culling.h"
@@ -83,6 +84,19 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
             tileFar[tile] = std::max(tileFar[tile], distance);
         }
     }
+    // tiled-2.5d: each tile's occupied depth cells over its extent (culling.h), as the kernel builds them.
+    std::vector<uint32_t> tileDepthMask(layout.tilesX * layout.tilesY, 0u);
+    if (layout.depthMask) {
+        for (uint32_t y = 0; y < height; ++y) {
+            for (uint32_t x = 0; x < width; ++x) {
+                const float d = depth[size_t(y) * width + x];
+                if (gpu::isBackgroundDepth(d)) continue;
+                const uint32_t tile = cellOf(x, y) / layout.slices;
+                const float scale = gpu::depthMaskScale(tileNear[tile], tileFar[tile]);
+                tileDepthMask[tile] |= 1u << gpu::depthMaskCell(gpu::viewDistanceFromDepth(d, depthToView), tileNear[tile], scale);
+            }
+        }
+    }
     std::vector<gpu::CullLight> cullLights;
     for (const gpu::GpuPunctualLight& light : lights.packed) cullLights.push_back(gpu::makeCullLight(light, renderer.view()));
     std::vector<uint32_t> reference(grid.size(), 0u);
@@ -100,11 +114,21 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
             for (uint32_t slice = 0; slice < layout.slices; ++slice) {
                 const uint32_t cell = tile * layout.slices + slice;
                 if (cellFar[cell] == 0.0f) continue;
-                const gpu::TileVolume volume = gpu::makeTileVolume(glm::min(ndcA, ndcB), glm::max(ndcA, ndcB),
-                                                                   cellNear[cell], cellFar[cell], ndcToView);
+                // zbin: the tile at every depth, near plane to far plane (the bins hold depth).
+                const gpu::TileVolume volume =
+                    layout.zBins ? gpu::makeTileVolume(glm::min(ndcA, ndcB), glm::max(ndcA, ndcB),
+                                                       depthToView.x / (1.0f + depthToView.y),
+                                                       depthToView.x / std::max(depthToView.y, 1e-30f), ndcToView)
+                                 : gpu::makeTileVolume(glm::min(ndcA, ndcB), glm::max(ndcA, ndcB), cellNear[cell],
+                                                       cellFar[cell], ndcToView);
                 for (uint32_t light = 0; light < lightCount; ++light) {
                     if (layout.slices > 1 && !gpu::lightMayTouchTile(cullLights[light], tileVolume)) continue;
                     if (!gpu::lightMayTouchTile(cullLights[light], volume)) continue;
+                    if (layout.depthMask &&
+                        !(gpu::lightDepthMask(cullLights[light], tileNear[tile], gpu::depthMaskScale(tileNear[tile], tileFar[tile])) &
+                          tileDepthMask[tile])) {
+                        continue;
+                    }
                     uint32_t word = 0;
                     const uint32_t bit = bitOf(light, word);
                     reference[cell * PUNCTUAL_GRID_WORDS + word] |= bit;
@@ -129,13 +153,16 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
             const glm::vec4 world = inverseViewProjection * ndc;
             const glm::vec3 position = glm::vec3(world) / world.w;
             const uint32_t cell = cellOf(x, y);
+            // zbin: the pixel's bin mask, ANDed with the tile's as forward.frag does (all ones otherwise).
+            glm::uvec4 binMask(~0u);
+            if (layout.zBins) binMask = renderer.zBins()->gpu.binMask[zBinOfDepth(renderer.zBins()->gpu, d)];
             for (uint32_t light = 0; light < lightCount; ++light) {
                 if (gpu::punctualAttenuation(lights.packed[light], position) <= 0.0f) continue;
                 ++check.reachingPairs;
                 uint32_t word = 0;
                 const uint32_t bit = bitOf(light, word);
-                if (!(grid[cell * PUNCTUAL_GRID_WORDS + word] & bit)) ++check.culledOnGpu;
-                if (!(reference[cell * PUNCTUAL_GRID_WORDS + word] & bit)) ++check.culledByReference;
+                if (!(grid[cell * PUNCTUAL_GRID_WORDS + word] & binMask[int(word)] & bit)) ++check.culledOnGpu;
+                if (!(reference[cell * PUNCTUAL_GRID_WORDS + word] & binMask[int(word)] & bit)) ++check.culledByReference;
             }
         }
     }
@@ -148,7 +175,7 @@ std::vector<testing::NamedScene> allScenes() {
     return scenes;
 }
 
-TEST(Culling, TiledAndClusteredImagesAreBitIdenticalToBruteForce) {
+TEST(Culling, CulledImagesAreBitIdenticalToBruteForce) {
     auto context = testing::makeValidatedContext();
     for (const testing::NamedScene& named : allScenes()) {
         SCOPED_TRACE(named.name);
@@ -156,7 +183,7 @@ TEST(Culling, TiledAndClusteredImagesAreBitIdenticalToBruteForce) {
         testing::saveTestImage("culling-" + named.name, brute);
         // Not a vacuous comparison: every scene shows lit pixels.
         EXPECT_GT(testing::fractionBrighterThan(brute, 24), 0.02);
-        for (LightListMethod method : {LightListMethod::Tiled, LightListMethod::Clustered}) {
+        for (LightListMethod method : render::gridMethods()) {
             for (uint32_t tileSize : {8u, 16u, 32u}) {
                 render::RenderSettings settings = settingsFor(method);
                 settings.tileSize = tileSize;
@@ -171,7 +198,7 @@ TEST(Culling, TiledAndClusteredImagesAreBitIdenticalToBruteForce) {
 TEST(Culling, NoLightReachingAPixelIsCulled) {
     auto context = testing::makeValidatedContext();
     for (const testing::NamedScene& named : allScenes()) {
-        for (LightListMethod method : {LightListMethod::Tiled, LightListMethod::Clustered}) {
+        for (LightListMethod method : render::gridMethods()) {
             SCOPED_TRACE(named.name + " / " + render::methodName(method));
             render::Renderer renderer(*context, named.scene, settingsFor(method));
             renderer.render(1, 0);
@@ -187,23 +214,29 @@ TEST(Culling, NoLightReachingAPixelIsCulled) {
     testing::expectNoValidationMessages(*context);
 }
 
-TEST(Culling, ClusteredSeparatesForegroundFromBackground) {
+TEST(Culling, DepthAwareMethodsSeparateForegroundFromBackground) {
     // In the near-posts scene the posts' lights must not land in the clusters of the far floor
-    // behind the same tiles: clustered tests fewer lights per pixel than tiled there.
+    // behind the same tiles, nor the lights floating between them in the occupied depth cells of
+    // either: clustered and tiled-2.5d test fewer lights per pixel than tiled there.
     auto context = testing::makeValidatedContext();
     const Scene scene = testing::adversarialCullingScenes()[3].scene;
-    double tested[2] = {0.0, 0.0};
-    int i = 0;
-    for (LightListMethod method : {LightListMethod::Tiled, LightListMethod::Clustered}) {
+    auto testedPerPixel = [&](LightListMethod method) {
         render::RenderSettings settings = settingsFor(method);
         settings.collectLightStats = true;
         render::Renderer renderer(*context, scene, settings);
         renderer.render(1, 0);
         const CullingStats stats = computeCullingStats(renderer.readLightStats());
-        EXPECT_EQ(stats.pixelsMissingLight, 0u);
-        tested[i++] = stats.testedPerPixel;
-    }
-    EXPECT_LT(tested[1], tested[0] * 0.9) << "tiled " << tested[0] << ", clustered " << tested[1];
+        EXPECT_EQ(stats.pixelsMissingLight, 0u) << render::methodName(method);
+        return stats.testedPerPixel;
+    };
+    const double tiled = testedPerPixel(LightListMethod::Tiled);
+    const double clustered = testedPerPixel(LightListMethod::Clustered);
+    EXPECT_LT(clustered, tiled * 0.9) << "tiled " << tiled << ", clustered " << clustered;
+    // The 2.5D mask drops the lights floating in the gap between the posts and the floor from the
+    // tiles on the posts' edges (measured 4.5% of tiled's tests; the lights hugging a surface
+    // stay, their depth extents holding occupied cells). Without the mask it equals tiled.
+    const double masked = testedPerPixel(LightListMethod::Tiled25D);
+    EXPECT_LT(masked, tiled * 0.98) << "tiled " << tiled << ", tiled-2.5d " << masked;
     testing::expectNoValidationMessages(*context);
 }
 

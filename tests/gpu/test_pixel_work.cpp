@@ -67,15 +67,15 @@ TEST(PixelWork, EveryLookupIssuesTheFiltersTaps) {
     testing::expectNoValidationMessages(*context);
 }
 
-// Culling is lossless, and a light that does not reach a pixel takes no lookup there: tiled and
-// clustered lists make exactly the reads brute force makes, pixel by pixel, while testing fewer
-// lights.
+// Culling is lossless, and a light that does not reach a pixel takes no lookup there: the light
+// grid methods' lists make exactly the reads brute force makes, pixel by pixel, while testing
+// fewer lights.
 TEST(PixelWork, CulledMethodsReadTheShadowsBruteForceReads) {
     auto context = testing::makeValidatedContext();
     const Scene scene = makeDefaultScene();
     const ShadowSettings shadows;
     const LightStatsImage brute = pixelWork(*context, scene, LightListMethod::Brute, shadows);
-    for (LightListMethod method : {LightListMethod::Tiled, LightListMethod::Clustered}) {
+    for (LightListMethod method : render::gridMethods()) {
         SCOPED_TRACE(render::methodName(method));
         const LightStatsImage culled = pixelWork(*context, scene, method, shadows);
         size_t compared = 0;

@@ -33,7 +33,7 @@ size_t drawnPixels(const std::vector<float>& depth) {
     return size_t(std::count_if(depth.begin(), depth.end(), [](float d) { return d > 0.0f; }));  // 0: the far plane
 }
 
-TEST(SharedData, EverySceneFileRendersAndTiledCullingStaysLossless) {
+TEST(SharedData, EverySceneFileRendersAndCulledMethodsStayLossless) {
     const fs::path folder = fs::path(PUNCTUAL_SHARED_DATA_DIR);
     if (!fs::is_directory(folder)) GTEST_SKIP() << "no " << folder.string() << " (../shared/data is absent)";
     const std::vector<fs::path> files = sceneFiles(folder);
@@ -50,9 +50,11 @@ TEST(SharedData, EverySceneFileRendersAndTiledCullingStaysLossless) {
         render::Renderer brute(*context, scene, settings);
         const ImageRgba8 image = brute.render(1, 0).image;
         EXPECT_GT(drawnPixels(brute.readDepth()), size_t(200 * 150 / 20)) << "the file's view shows its geometry";
-        settings.method = render::LightListMethod::Tiled;
-        render::Renderer tiled(*context, scene, settings);
-        EXPECT_TRUE(tiled.render(1, 0).image.pixels == image.pixels);
+        for (render::LightListMethod method : render::gridMethods()) {
+            settings.method = method;
+            render::Renderer culled(*context, scene, settings);
+            EXPECT_TRUE(culled.render(1, 0).image.pixels == image.pixels) << render::methodName(method);
+        }
         testing::saveTestImage("shared-data-" + file.stem().string(), image);
     }
     testing::expectNoValidationMessages(*context);

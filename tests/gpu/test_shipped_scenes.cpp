@@ -37,7 +37,7 @@ TEST(ShippedScenes, SmallRoomRendersAndItsShadowsValidate) {
     EXPECT_GT(validation.overall.compared, 5000u);
     EXPECT_LE(validation.overall.misclassifiedOutsideBand(), 0.01);
 
-    for (render::LightListMethod method : {render::LightListMethod::Tiled, render::LightListMethod::Clustered}) {
+    for (render::LightListMethod method : render::gridMethods()) {
         settings.method = method;
         settings.collectShadowFactors = false;
         render::Renderer culled(*context, scene, settings);

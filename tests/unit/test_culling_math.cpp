@@ -1,8 +1,9 @@
 // Known answers for the shared culling math (shaders/shared/culling.h), computed by hand: the
-// cluster slice search, the camera's (reversed) depth mapping, the spot light's bounding sphere
-// and the light grid's word/bit mapping.
+// cluster slice search, the camera's (reversed) depth mapping, the spot light's bounding sphere,
+// the light grid's word/bit mapping and the 2.5D depth mask's cells.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -251,6 +252,77 @@ TEST(LightGrid, WalkingTheWordsVisitsEveryLightOnceInAscendingOrder) {
         }
         EXPECT_EQ(expected, lights);
     }
+}
+
+// ---- 2.5D depth mask: 32 equal cells over the tile's extent -------------------------------------
+
+TEST(DepthMask, CellsSplitTheExtentIntoThirtyTwoEqualParts) {
+    // Extent 10..42: 32 cells of exactly 1 unit (scale 1), cell k = [10 + k, 11 + k).
+    const float scale = gpu::depthMaskScale(10.0f, 42.0f);
+    EXPECT_FLOAT_EQ(scale, 1.0f);
+    EXPECT_EQ(gpu::depthMaskCell(10.0f, 10.0f, scale), 0u);
+    EXPECT_EQ(gpu::depthMaskCell(10.999f, 10.0f, scale), 0u);
+    EXPECT_EQ(gpu::depthMaskCell(11.0f, 10.0f, scale), 1u);
+    EXPECT_EQ(gpu::depthMaskCell(25.5f, 10.0f, scale), 15u);
+    EXPECT_EQ(gpu::depthMaskCell(41.999f, 10.0f, scale), 31u);
+    EXPECT_EQ(gpu::depthMaskCell(42.0f, 10.0f, scale), 31u);   // the far end: the last cell, not a 33rd
+    EXPECT_EQ(gpu::depthMaskCell(5.0f, 10.0f, scale), 0u);     // before the extent: clamped
+    EXPECT_EQ(gpu::depthMaskCell(1000.0f, 10.0f, scale), 31u); // beyond it: clamped
+}
+
+TEST(DepthMask, AFlatTileIsOneCell) {
+    // Every pixel at one distance: scale 0, everything in cell 0.
+    const float scale = gpu::depthMaskScale(7.0f, 7.0f);
+    EXPECT_EQ(scale, 0.0f);
+    EXPECT_EQ(gpu::depthMaskCell(7.0f, 7.0f, scale), 0u);
+    EXPECT_EQ(gpu::depthMaskCell(100.0f, 7.0f, scale), 0u);
+}
+
+TEST(DepthMask, BitsOfACellRange) {
+    EXPECT_EQ(gpu::depthMaskBits(0, 0), 0x1u);
+    EXPECT_EQ(gpu::depthMaskBits(3, 5), 0x38u);
+    EXPECT_EQ(gpu::depthMaskBits(31, 31), 0x80000000u);
+    EXPECT_EQ(gpu::depthMaskBits(0, 31), 0xFFFFFFFFu);
+    EXPECT_EQ(gpu::depthMaskBits(30, 31), 0xC0000000u);
+}
+
+TEST(DepthMask, ALightCoversTheCellsOfItsSphereDepthExtent) {
+    // Extent 10..42 (scale 1). A sphere centred 20 units ahead (view z = -20), radius 3: view
+    // distances 17..23, cells 7..13. Sideways position plays no part.
+    gpu::CullLight light{};
+    light.sphereCenter = glm::vec3(5.0f, -2.0f, -20.0f);
+    light.sphereRadius = 3.0f;
+    EXPECT_EQ(gpu::lightDepthMask(light, 10.0f, 1.0f), gpu::depthMaskBits(7, 13));
+    // A pixel at distance 30 (cell 20) is not met; one at 22.5 (cell 12) is.
+    EXPECT_EQ(gpu::lightDepthMask(light, 10.0f, 1.0f) & (1u << 20), 0u);
+    EXPECT_NE(gpu::lightDepthMask(light, 10.0f, 1.0f) & (1u << 12), 0u);
+    // A light wholly behind the extent still lands in the last cell: the kernel tests it against the
+    // tile's occupied cells, and the side and depth tests have already dropped it if it misses.
+    light.sphereCenter.z = -100.0f;
+    EXPECT_EQ(gpu::lightDepthMask(light, 10.0f, 1.0f), gpu::depthMaskBits(31, 31));
+}
+
+TEST(DepthMask, EveryDistanceInsideALightsExtentHasItsCell) {
+    // The losslessness argument of culling.h, checked on a sweep: for lights of many extents over
+    // an awkward tile extent, every distance inside the light's extent has its cell in the mask.
+    const float nearD = 0.37f, farD = 913.1f;
+    const float scale = gpu::depthMaskScale(nearD, farD);
+    size_t checked = 0;
+    for (float centre = 0.1f; centre < 1000.0f; centre *= 1.37f) {
+        for (float radius = 0.01f; radius < 500.0f; radius *= 2.9f) {
+            gpu::CullLight light{};
+            light.sphereCenter = glm::vec3(0.0f, 0.0f, -centre);
+            light.sphereRadius = radius;
+            const uint32_t mask = gpu::lightDepthMask(light, nearD, scale);
+            for (int k = 0; k <= 64; ++k) {
+                const float d = std::max(centre - radius, nearD) + (std::min(centre + radius, farD) - std::max(centre - radius, nearD)) * float(k) / 64.0f;
+                if (d < nearD || d > farD || d < centre - radius || d > centre + radius) continue;
+                EXPECT_NE(mask & (1u << gpu::depthMaskCell(d, nearD, scale)), 0u) << centre << " " << radius << " " << d;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 1000u);
 }
 
 }  // namespace

@@ -31,7 +31,7 @@ std::string problemOf(void (*parse)(const std::string&), const std::string& name
 // ---- names ------------------------------------------------------------------------------------
 
 TEST(VariantTables, MethodNamesRoundTrip) {
-    EXPECT_EQ(render::methodNames(), (std::vector<std::string>{"brute", "per-object", "tiled", "clustered"}));
+    EXPECT_EQ(render::methodNames(), (std::vector<std::string>{"brute", "per-object", "tiled", "clustered", "tiled-2.5d", "zbin"}));
     for (const render::LightListMethodInfo& method : render::kLightListMethods) {
         EXPECT_EQ(render::parseMethod(method.name), method.value);
         EXPECT_STREQ(render::methodName(method.value), method.name);
@@ -59,7 +59,7 @@ TEST(VariantTables, PointShadowLayoutNamesRoundTrip) {
 
 TEST(VariantTables, UnknownNamesFailWithOneLineListingEveryName) {
     EXPECT_EQ(problemOf([](const std::string& n) { render::parseMethod(n); }, "fast"),
-              "--culling: expected brute, per-object, tiled or clustered, got 'fast'");
+              "--culling: expected brute, per-object, tiled, clustered, tiled-2.5d or zbin, got 'fast'");
     EXPECT_EQ(problemOf([](const std::string& n) { parseShadowFilter(n); }, "box"),
               "--shadow-filter: expected hw, tent3, tent5, tent7 or disk, got 'box'");
     EXPECT_EQ(problemOf([](const std::string& n) { parsePointShadowLayout(n); }, "sphere"),
@@ -129,8 +129,13 @@ TEST(VariantTables, ShadowFilterFootprints) {
     EXPECT_EQ(settings.filterTaps(), 9u);
 }
 
-TEST(VariantTables, QuickBenchSweepsEveryMethodAndTwoFilters) {
-    for (const render::LightListMethodInfo& method : render::kLightListMethods) EXPECT_TRUE(method.quickBench) << method.name;
+TEST(VariantTables, QuickBenchSweepsTheFourFirstMethodsAndTwoFilters) {
+    // The peers' schemes (tiled-2.5d, zbin) are in the full run only: --quick stays under 3 minutes.
+    std::vector<std::string> quickMethods;
+    for (const render::LightListMethodInfo& method : render::kLightListMethods) {
+        if (method.quickBench) quickMethods.emplace_back(method.name);
+    }
+    EXPECT_EQ(quickMethods, (std::vector<std::string>{"brute", "per-object", "tiled", "clustered"}));
     std::vector<std::string> quickFilters;
     for (const ShadowFilterInfo& filter : kShadowFilters) {
         if (filter.quickBench) quickFilters.emplace_back(filter.name);
@@ -143,6 +148,10 @@ TEST(VariantTables, LightGridMethods) {
     EXPECT_FALSE(render::usesLightGrid(LightListMethod::PerObject));
     EXPECT_TRUE(render::usesLightGrid(LightListMethod::Tiled));
     EXPECT_TRUE(render::usesLightGrid(LightListMethod::Clustered));
+    EXPECT_TRUE(render::usesLightGrid(LightListMethod::Tiled25D));
+    EXPECT_TRUE(render::usesLightGrid(LightListMethod::ZBin));
+    EXPECT_EQ(render::gridMethods(), (std::vector<LightListMethod>{LightListMethod::Tiled, LightListMethod::Clustered,
+                                                                   LightListMethod::Tiled25D, LightListMethod::ZBin}));
 }
 
 // What the renderer builds for each method comes from the table: depth slices only for clusters,

@@ -1,0 +1,117 @@
+// Known answers for the z-bin method's bins (src/lights/z_bins.h), computed by hand: the depth
+// order of the lights, each bin's range of sorted indices and its mask in packed order.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "lights/z_bins.h"
+
+namespace punctual {
+namespace {
+
+// A camera with near 0.1 and far 100: depth = a / D - b with a = f n / (f - n), b = n / (f - n)
+// (culling.h), 1 at the near plane and 0 at the far one.
+const glm::vec2 kDepthToView(100.0f * 0.1f / 99.9f, 0.1f / 99.9f);
+
+gpu::CullLight lightAt(float distance, float radius) {
+    gpu::CullLight light{};
+    light.sphereCenter = glm::vec3(0.0f, 0.0f, -distance);
+    light.sphereRadius = radius;
+    return light;
+}
+
+uint32_t first(const glm::uvec4& bin) { return bin.w & 0xFFFFu; }
+uint32_t last(const glm::uvec4& bin) { return bin.w >> 16; }
+
+TEST(ZBins, LightsAreSortedByTheirNearestExtent) {
+    // Packed: spot 0 at 10..14, spot 1 at 2..4, point 2 at 5..9 (spotCount 2). Nearest ends 10, 2, 5.
+    const ZBins bins = buildZBins({lightAt(12.0f, 2.0f), lightAt(3.0f, 1.0f), lightAt(7.0f, 2.0f)}, 2, kDepthToView);
+    EXPECT_EQ(bins.sortedLights, (std::vector<uint32_t>{1, 2, 0}));
+}
+
+TEST(ZBins, StartsRunFromTheNearPlaneThroughTheLightsExtentLogarithmically) {
+    // Extents 2..4 and 8..32 (nearest 2, farthest 32): bin s >= 1 starts at 2 x 16^(s / 64), so bin
+    // 16 starts at 2 x 16^(1/4) = 4, bin 32 at 8 and bin 48 at 16.
+    const ZBins bins = buildZBins({lightAt(3.0f, 1.0f), lightAt(20.0f, 12.0f)}, 2, kDepthToView);
+    EXPECT_EQ(bins.gpu.binStartDepth[0], 1.0f);
+    EXPECT_NEAR(gpu::viewDistanceFromDepth(bins.gpu.binStartDepth[1], kDepthToView), 2.0f * std::pow(16.0f, 1.0f / 64.0f), 1e-3f);
+    EXPECT_NEAR(gpu::viewDistanceFromDepth(bins.gpu.binStartDepth[16], kDepthToView), 4.0f, 1e-3f);
+    EXPECT_NEAR(gpu::viewDistanceFromDepth(bins.gpu.binStartDepth[32], kDepthToView), 8.0f, 1e-3f);
+    EXPECT_NEAR(gpu::viewDistanceFromDepth(bins.gpu.binStartDepth[48], kDepthToView), 16.0f, 2e-3f);
+    for (uint32_t s = 1; s < PUNCTUAL_ZBIN_COUNT; ++s) EXPECT_LE(bins.gpu.binStartDepth[s], bins.gpu.binStartDepth[s - 1]);
+}
+
+TEST(ZBins, EachBinHoldsTheRangeOfSortedLightsOverlappingIt) {
+    // Sorted: A (2..4, packed 1), B (3..6, packed 0), C (8..32, packed 2, a point; spotCount 2).
+    // Bins (starts as above with nearest 2, farthest 32): distances 2..4 are bins 0..15, 4..8 are
+    // bins 16..31, 8..32 bins 32..63. A spans bins 0..16 at most, B 7..26 or so, C 32..63.
+    const ZBins bins = buildZBins({lightAt(4.5f, 1.5f), lightAt(3.0f, 1.0f), lightAt(20.0f, 12.0f)}, 2, kDepthToView);
+    ASSERT_EQ(bins.sortedLights, (std::vector<uint32_t>{1, 0, 2}));
+    // A pixel at distance 3.5 is inside A and B: its bin's range is sorted 0..1, mask spots 0 and 1.
+    const glm::uvec4 both = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(3.5f, kDepthToView))];
+    EXPECT_EQ(first(both), 0u);
+    EXPECT_EQ(last(both), 1u);
+    EXPECT_EQ(both.x, 0x3u);
+    EXPECT_EQ(both.z, 0u);
+    // At 5 only B: range 1..1.
+    const glm::uvec4 onlyB = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(5.0f, kDepthToView))];
+    EXPECT_EQ(first(onlyB), 1u);
+    EXPECT_EQ(last(onlyB), 1u);
+    EXPECT_EQ(onlyB.x, 0x1u);  // packed spot 0
+    // At 7, in the gap: empty.
+    const glm::uvec4 gap = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(7.0f, kDepthToView))];
+    EXPECT_GT(first(gap), last(gap));
+    EXPECT_EQ(gap.x | gap.y | gap.z, 0u);
+    // At 30, C alone: the point word's bit 0 (packed 2 = the first point).
+    const glm::uvec4 onlyC = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(30.0f, kDepthToView))];
+    EXPECT_EQ(first(onlyC), 2u);
+    EXPECT_EQ(last(onlyC), 2u);
+    EXPECT_EQ(onlyC.x | onlyC.y, 0u);
+    EXPECT_EQ(onlyC.z, 0x1u);
+}
+
+TEST(ZBins, ARangeAlsoHoldsTheSortedLightsBetweenItsEnds) {
+    // The scheme's looseness: A 2..40 (a long extent), B 5..6, C 10..12, sorted A, B, C. A bin at
+    // distance 11 meets A and C, so its range is 0..2 and holds B too, which does not reach it.
+    const ZBins bins = buildZBins({lightAt(21.0f, 19.0f), lightAt(5.5f, 0.5f), lightAt(11.0f, 1.0f)}, 3, kDepthToView);
+    ASSERT_EQ(bins.sortedLights, (std::vector<uint32_t>{0, 1, 2}));
+    const glm::uvec4 bin = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(11.0f, kDepthToView))];
+    EXPECT_EQ(first(bin), 0u);
+    EXPECT_EQ(last(bin), 2u);
+    EXPECT_EQ(bin.x, 0x7u);
+}
+
+TEST(ZBins, EveryDistanceInsideALightFindsItInItsBin) {
+    // Losslessness over many lights: every distance inside a light's extent lands in a bin whose
+    // mask holds that light.
+    std::vector<gpu::CullLight> lights;
+    for (int i = 0; i < 40; ++i) lights.push_back(lightAt(0.5f + 2.3f * float(i % 17), 0.2f + 0.9f * float(i % 5)));
+    const ZBins bins = buildZBins(lights, 32, kDepthToView);
+    size_t checked = 0;
+    for (uint32_t light = 0; light < lights.size(); ++light) {
+        const float centre = -lights[light].sphereCenter.z;
+        for (int k = 0; k <= 50; ++k) {
+            // From just inside the near end to just inside the far end (never before the near plane).
+            const float d = std::max(centre - lights[light].sphereRadius * 0.999f +
+                                         lights[light].sphereRadius * 1.998f * float(k) / 50.0f,
+                                     0.11f);
+            const glm::uvec4 bin = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(d, kDepthToView))];
+            const uint32_t word = gpu::lightGridWord(light, 32);
+            EXPECT_NE(bin[int(word)] & (1u << gpu::lightGridBit(light, 32)), 0u) << light << " at " << d;
+            ++checked;
+        }
+    }
+    EXPECT_EQ(checked, 40u * 51u);
+}
+
+TEST(ZBins, NoLightsMakeEmptyBins) {
+    const ZBins bins = buildZBins({}, 0, kDepthToView);
+    for (uint32_t b = 0; b < PUNCTUAL_ZBIN_COUNT; ++b) {
+        EXPECT_EQ(bins.gpu.binMask[b].x | bins.gpu.binMask[b].y | bins.gpu.binMask[b].z, 0u);
+    }
+}
+
+}  // namespace
+}  // namespace punctual
