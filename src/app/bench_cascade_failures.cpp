@@ -300,7 +300,7 @@ std::vector<FailureStudy> cascadeFailureStudies(vk::Context& context, bool quick
                             const reference::EmbreeScene embree(scene);
                             double ms = 0.0;
                             const ShimmerCounts counts =
-                                measureShimmer(context, scene, embree, walkingCameraPath(scene.camera, quick ? 6u : 30u),
+                                measureShimmer(context, scene, embree, walkingCameraPath(scene.camera, quick ? 4u : 30u),
                                                view, settings, &ms);
                             return std::pair{counts.unexplainedShare(), ms};
                         }});

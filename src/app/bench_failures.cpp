@@ -53,9 +53,12 @@ double lightBeyondCaps(const ValidatedFrame& frame, const Scene& scene, const Fr
     return allSum > 0.0 ? 1.0 - keptSum / allSum : 0.0;
 }
 
-std::vector<std::string> gridMethodNames() {
+// The light-grid methods, those --quick sweeps where `quick` (it stays under 3 minutes).
+std::vector<std::string> gridMethodNames(bool quick) {
     std::vector<std::string> names;
-    for (render::LightListMethod method : render::gridMethods()) names.emplace_back(render::methodName(method));
+    for (render::LightListMethod method : render::gridMethods()) {
+        if (!quick || render::methodInfo(method).quickBench) names.emplace_back(render::methodName(method));
+    }
     return names;
 }
 
@@ -123,7 +126,7 @@ std::vector<FailureStudy> studies(vk::Context& context, bool quick, uint32_t wid
                     }});
     list.push_back({"tile-depth-discontinuities", "tile size (pixels)", "lights tested / lights reaching (efficiency)",
                     quick ? std::vector<double>{16.0, 64.0} : std::vector<double>{8.0, 16.0, 32.0, 64.0},
-                    gridMethodNames(),
+                    gridMethodNames(quick),
                     [&context, base](double value, const std::string& variant) {
                         render::RenderSettings s = base(render::parseMethod(variant));
                         s.tileSize = uint32_t(value);
