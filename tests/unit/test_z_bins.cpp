@@ -22,6 +22,11 @@ gpu::CullLight lightAt(float distance, float radius) {
     return light;
 }
 
+// The bin (masks and range) a pixel at view distance `distance` reads.
+glm::uvec4 binAt(const ZBins& bins, float distance) {
+    return bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(distance, kDepthToView))];
+}
+
 uint32_t first(const glm::uvec4& bin) { return bin.w & 0xFFFFu; }
 uint32_t last(const glm::uvec4& bin) { return bin.w >> 16; }
 
@@ -50,22 +55,22 @@ TEST(ZBins, EachBinHoldsTheRangeOfSortedLightsOverlappingIt) {
     const ZBins bins = buildZBins({lightAt(4.5f, 1.5f), lightAt(3.0f, 1.0f), lightAt(20.0f, 12.0f)}, 2, kDepthToView);
     ASSERT_EQ(bins.sortedLights, (std::vector<uint32_t>{1, 0, 2}));
     // A pixel at distance 3.5 is inside A and B: its bin's range is sorted 0..1, mask spots 0 and 1.
-    const glm::uvec4 both = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(3.5f, kDepthToView))];
+    const glm::uvec4 both = binAt(bins, 3.5f);
     EXPECT_EQ(first(both), 0u);
     EXPECT_EQ(last(both), 1u);
     EXPECT_EQ(both.x, 0x3u);
     EXPECT_EQ(both.z, 0u);
     // At 5 only B: range 1..1.
-    const glm::uvec4 onlyB = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(5.0f, kDepthToView))];
+    const glm::uvec4 onlyB = binAt(bins, 5.0f);
     EXPECT_EQ(first(onlyB), 1u);
     EXPECT_EQ(last(onlyB), 1u);
     EXPECT_EQ(onlyB.x, 0x1u);  // packed spot 0
     // At 7, in the gap: empty.
-    const glm::uvec4 gap = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(7.0f, kDepthToView))];
+    const glm::uvec4 gap = binAt(bins, 7.0f);
     EXPECT_GT(first(gap), last(gap));
     EXPECT_EQ(gap.x | gap.y | gap.z, 0u);
     // At 30, C alone: the point word's bit 0 (packed 2 = the first point).
-    const glm::uvec4 onlyC = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(30.0f, kDepthToView))];
+    const glm::uvec4 onlyC = binAt(bins, 30.0f);
     EXPECT_EQ(first(onlyC), 2u);
     EXPECT_EQ(last(onlyC), 2u);
     EXPECT_EQ(onlyC.x | onlyC.y, 0u);
@@ -77,7 +82,7 @@ TEST(ZBins, ARangeAlsoHoldsTheSortedLightsBetweenItsEnds) {
     // distance 11 meets A and C, so its range is 0..2 and holds B too, which does not reach it.
     const ZBins bins = buildZBins({lightAt(21.0f, 19.0f), lightAt(5.5f, 0.5f), lightAt(11.0f, 1.0f)}, 3, kDepthToView);
     ASSERT_EQ(bins.sortedLights, (std::vector<uint32_t>{0, 1, 2}));
-    const glm::uvec4 bin = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(11.0f, kDepthToView))];
+    const glm::uvec4 bin = binAt(bins, 11.0f);
     EXPECT_EQ(first(bin), 0u);
     EXPECT_EQ(last(bin), 2u);
     EXPECT_EQ(bin.x, 0x7u);
@@ -97,7 +102,7 @@ TEST(ZBins, EveryDistanceInsideALightFindsItInItsBin) {
             const float d = std::max(centre - lights[light].sphereRadius * 0.999f +
                                          lights[light].sphereRadius * 1.998f * float(k) / 50.0f,
                                      0.11f);
-            const glm::uvec4 bin = bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(d, kDepthToView))];
+            const glm::uvec4 bin = binAt(bins, d);
             const uint32_t word = gpu::lightGridWord(light, 32);
             EXPECT_NE(bin[int(word)] & (1u << gpu::lightGridBit(light, 32)), 0u) << light << " at " << d;
             ++checked;
