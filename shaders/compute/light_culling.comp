@@ -12,10 +12,13 @@
 //  4. the masks (64-bit spot, 32-bit point) of every occupied slice are written out.
 // Tiled with DEPTH_MASK (--culling tiled-2.5d) adds Harada's 2.5D test to step 3: the tile's
 // 32-cell depth mask (culling.h) is built from its pixels once their min..max extent is known,
-// and a light that passed the tile test is kept only if its depth cells meet an occupied one.
+// and a light that passed the tile test is kept only if its depth cells meet an occupied one
+// whose frustum segment its shapes meet (culling.h, makeDepthCellVolume).
 // ZBINS (--culling zbin): the tile's mask is two-dimensional, every light that meets the tile's
 // side planes anywhere between the near and far planes, and no depth is read at all: the z-bins
 // (lights/z_bins.h, built on the CPU) hold depth, and forward.frag ANDs the two masks.
+// COARSE_TILES > 0: the coarse pass (coarse_culling.comp) has culled the lights to this tile's
+// big tile, and steps 1-3 test only those (the candidates), listed while the depths are read.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_types.h"
 #include "culling.h"
@@ -28,6 +31,7 @@ layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
 layout(constant_id = PUNCTUAL_SPEC_DEPTH_MASK) const bool DEPTH_MASK = false;  // tiled only
 layout(constant_id = PUNCTUAL_SPEC_ZBINS) const bool ZBINS = false;            // tiled only
+layout(constant_id = PUNCTUAL_SPEC_COARSE_TILES) const uint COARSE_TILES = 0u;  // 0: no coarse pass
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 // The lights' view-space culling shapes, made once per frame on the CPU (makeCullLight in
@@ -35,6 +39,7 @@ layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame 
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_CULL_LIGHTS) readonly buffer CullLightBlock { CullLight frameCullLights[]; };
 layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) writeonly buffer GridBlock { uint lightGrid[]; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_COARSE_GRID) readonly buffer CoarseGridBlock { uint coarseGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
 // The transparent surfaces' depth span per pixel (transparent_depth.frag), when the frame has
 // any (frame.lightCounts.w): a pixel then shades every depth from its opaque surface (or, over
@@ -49,17 +54,22 @@ const uint kSide = 8u;
 shared uint sliceMinDistance[SLICE_COUNT];  // float bits of view distances (positive: bits sort like values)
 shared uint sliceMaxDistance[SLICE_COUNT];
 shared uint sliceMasks[SLICE_COUNT * PUNCTUAL_GRID_WORDS];
-shared CullLight cullLights[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
+shared uint candidateCount;  // COARSE_TILES: the lights of this tile's coarse tile
+shared uint candidateLights[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
 shared float sliceStart[SLICE_COUNT];  // copy of depthRange.sliceStartDepth for the pixel loop
 shared uint occupiedCount;
 shared uint tileLightCount;  // lights passing the whole-tile test (clustered: tested again per slice)
 shared uint tileLights[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
+// Clustered: the shapes of the lights that passed the whole-tile test, read again per slice.
+// (Tiled reads each light once, straight from the buffer.)
+shared CullLight tileLightShapes[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
 shared TileVolume tileVolume;
 shared uint tileMinDistance;  // float bits: the extent of all the tile's pixels
 shared uint tileMaxDistance;
 shared uint occupiedSlices[SLICE_COUNT];
 shared TileVolume occupiedVolumes[SLICE_COUNT];
 shared uint tileDepthMask;  // DEPTH_MASK: the occupied cells of the tile's depth extent
+shared TileVolume cellVolumes[DEPTH_MASK ? PUNCTUAL_DEPTH_MASK_CELLS : 1u];  // DEPTH_MASK: each cell's segment
 
 // Marks packed light `light` in the masks of `slice` (spots in words 0-1, points in word 2; see
 // lightGridWord in culling.h).
@@ -77,7 +87,6 @@ void main() {
         sliceMaxDistance[i] = 0u;
     }
     for (uint i = thread; i < SLICE_COUNT * PUNCTUAL_GRID_WORDS; i += kThreads) sliceMasks[i] = 0u;
-    for (uint i = thread; i < lightCount; i += kThreads) cullLights[i] = frameCullLights[i];
     for (uint i = thread; i < SLICE_COUNT; i += kThreads) sliceStart[i] = depthRange.sliceStartDepth[i];
     if (thread == 0u) {
         occupiedCount = 0u;
@@ -85,11 +94,26 @@ void main() {
         tileMinDistance = 0x7F7FFFFFu;
         tileMaxDistance = 0u;
         tileDepthMask = 0u;
+        candidateCount = 0u;
     }
     barrier();
 
-    // 1. Depth extent of each slice in this tile.
+    // 0. The candidates: the lights the coarse pass kept for this tile's coarse tile (in any
+    //    order: the masks this kernel writes do not depend on it).
     uvec2 tile = gl_WorkGroupID.xy;
+    if (COARSE_TILES > 0u) {
+        uvec2 coarseTile = tile / COARSE_TILES;
+        uint coarseTilesAcross = (frame.lightGrid.y + COARSE_TILES - 1u) / COARSE_TILES;
+        uint coarseBase = (coarseTile.y * coarseTilesAcross + coarseTile.x) * PUNCTUAL_GRID_WORDS;
+        for (uint light = thread; light < lightCount; light += kThreads) {
+            uint word = lightGridWord(light, frame.lightCounts.x);
+            if ((coarseGrid[coarseBase + word] & (1u << lightGridBit(light, frame.lightCounts.x))) != 0u) {
+                candidateLights[atomicAdd(candidateCount, 1u)] = light;
+            }
+        }
+    }
+
+    // 1. Depth extent of each slice in this tile.
     uvec2 viewport = uvec2(frame.viewport.xy);
     uint runSlice = 0xFFFFFFFFu;  // the slice of the current run of this thread's pixels
     uint threadMin = 0xFFFFFFFFu;  // all of this thread's pixels (clustered: the tile-level test)
@@ -159,8 +183,12 @@ void main() {
     // 1b. DEPTH_MASK: the cells of the tile's extent that its pixels occupy, each pixel (or a
     //     transparent span, every cell from its near to its far end) read again now that the
     //     extent is known. The same distances as step 1, so every pixel lies inside the extent.
+    //     Each cell's frustum segment, for step 3's per-cell tests.
     float maskNear = uintBitsToFloat(sliceMinDistance[0]);
     float maskScale = depthMaskScale(maskNear, uintBitsToFloat(sliceMaxDistance[0]));
+    vec2 pixelToNdc = 2.0 * frame.viewport.zw;
+    vec2 ndcA = vec2(tile * TILE_SIZE) * pixelToNdc - 1.0;
+    vec2 ndcB = min(vec2((tile + 1u) * TILE_SIZE), frame.viewport.xy) * pixelToNdc - 1.0;
     if (DEPTH_MASK && SLICE_COUNT == 1u && sliceMaxDistance[0] != 0u) {
         uint threadMask = 0u;
         for (uint y = gl_LocalInvocationID.y; y < TILE_SIZE; y += kSide) {
@@ -186,20 +214,18 @@ void main() {
             }
         }
         if (threadMask != 0u) atomicOr(tileDepthMask, threadMask);
+        if (thread < PUNCTUAL_DEPTH_MASK_CELLS) {
+            cellVolumes[thread] = makeDepthCellVolume(min(ndcA, ndcB), max(ndcA, ndcB), thread, maskNear,
+                                                      uintBitsToFloat(sliceMaxDistance[0]), frame.ndcToView);
+        }
     }
-    barrier();
+    if (DEPTH_MASK) barrier();
 
-    // 2. List the occupied slices with their frustum segments.
-    vec2 pixelToNdc = 2.0 * frame.viewport.zw;
-    vec2 ndcA = vec2(tile * TILE_SIZE) * pixelToNdc - 1.0;
-    vec2 ndcB = min(vec2((tile + 1u) * TILE_SIZE), frame.viewport.xy) * pixelToNdc - 1.0;
+    // 2. List the occupied slices with their frustum segments; clustered also the whole tile's.
     if (ZBINS && thread == 0u) {
-        // The whole view depth, near plane to far plane: D = a / (depth + b) at depths 1 and 0.
-        float nearPlane = frame.depthToView.x / (1.0 + frame.depthToView.y);
-        float farPlane = frame.depthToView.x / max(frame.depthToView.y, 1e-30);
         occupiedCount = 1u;
         occupiedSlices[0] = 0u;
-        occupiedVolumes[0] = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), nearPlane, farPlane, frame.ndcToView);
+        occupiedVolumes[0] = makeTileColumn(min(ndcA, ndcB), max(ndcA, ndcB), frame.depthToView.xy, frame.ndcToView);
     }
     for (uint slice = thread; !ZBINS && slice < SLICE_COUNT; slice += kThreads) {
         if (sliceMaxDistance[slice] == 0u) continue;  // no pixel in this slice
@@ -208,33 +234,49 @@ void main() {
         occupiedVolumes[index] = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(sliceMinDistance[slice]),
                                                 uintBitsToFloat(sliceMaxDistance[slice]), frame.ndcToView);
     }
-    barrier();
-
-    // 3. Test every light against the tile's whole depth extent (for tiled, the only test). For
-    //    clustered, the lights that pass are then tested against each occupied slice: a
-    //    two-level hierarchy that keeps the slice tests to the few lights near the tile.
-    if (thread == 0u && occupiedCount > 0u) {
-        tileVolume = SLICE_COUNT == 1u ? occupiedVolumes[0]
-                                       : makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(tileMinDistance),
-                                                        uintBitsToFloat(tileMaxDistance), frame.ndcToView);
+    if (SLICE_COUNT > 1u && thread == 0u && tileMaxDistance != 0u) {
+        tileVolume = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(tileMinDistance),
+                                    uintBitsToFloat(tileMaxDistance), frame.ndcToView);
     }
     barrier();
-    for (uint light = thread; occupiedCount > 0u && light < lightCount; light += kThreads) {
-        if (!lightMayTouchTile(cullLights[light], tileVolume)) continue;
-        if (DEPTH_MASK && SLICE_COUNT == 1u && (lightDepthMask(cullLights[light], maskNear, maskScale) & tileDepthMask) == 0u) {
-            continue;
+
+    // 3. Test every candidate light against the tile's whole depth extent (for tiled, the only
+    //    test; tiled-2.5d then asks for an occupied depth cell the light meets). For clustered,
+    //    the lights that pass are then tested against each occupied slice: a two-level hierarchy
+    //    that keeps the slice tests to the few lights near the tile.
+    uint candidates = COARSE_TILES > 0u ? candidateCount : lightCount;
+    for (uint k = thread; occupiedCount > 0u && k < candidates; k += kThreads) {
+        uint light = COARSE_TILES > 0u ? candidateLights[k] : k;
+        CullLight shape = frameCullLights[light];
+        if (!lightMayTouchTile(shape, SLICE_COUNT == 1u ? occupiedVolumes[0] : tileVolume)) continue;
+        if (DEPTH_MASK && SLICE_COUNT == 1u) {
+            // Harada's test, then the light's own shapes against each occupied cell it spans.
+            uint cells = lightDepthMask(shape, maskNear, maskScale) & tileDepthMask;
+            bool meets = false;
+            while (cells != 0u && !meets) {
+                uint cell = uint(findLSB(cells));
+                cells &= cells - 1u;
+                meets = lightMayTouchTile(shape, cellVolumes[cell]);
+            }
+            if (!meets) continue;
         }
         if (SLICE_COUNT == 1u) {
             setLightBit(0u, light);
         } else {
-            tileLights[atomicAdd(tileLightCount, 1u)] = light;
+            uint index = atomicAdd(tileLightCount, 1u);
+            tileLights[index] = light;
+            tileLightShapes[index] = shape;
         }
     }
-    barrier();
-    for (uint job = thread; job < occupiedCount * tileLightCount; job += kThreads) {
-        uint index = job / tileLightCount;
-        uint light = tileLights[job - index * tileLightCount];
-        if (lightMayTouchTile(cullLights[light], occupiedVolumes[index])) setLightBit(occupiedSlices[index], light);
+    if (SLICE_COUNT > 1u) {
+        barrier();
+        for (uint job = thread; job < occupiedCount * tileLightCount; job += kThreads) {
+            uint index = job / tileLightCount;
+            uint passed = job - index * tileLightCount;
+            if (lightMayTouchTile(tileLightShapes[passed], occupiedVolumes[index])) {
+                setLightBit(occupiedSlices[index], tileLights[passed]);
+            }
+        }
     }
     barrier();
 

@@ -171,6 +171,15 @@ PUNCTUAL_FN TileVolume makeTileVolume(vec2 ndcMin, vec2 ndcMax, float nearDistan
     return v;
 }
 
+// The tile's whole frustum column, from the near plane to the far plane (depths 1 and 0:
+// D = a / (1 + b) and a / b, viewDistanceFromDepth), for the tests that read no depth: the z-bin
+// method's tiles (the bins hold depth) and the coarse pass's big tiles. b is 0 for an infinite far
+// plane, hence the guard.
+PUNCTUAL_FN TileVolume makeTileColumn(vec2 ndcMin, vec2 ndcMax, vec2 depthToView, vec4 ndcToView) {
+    return makeTileVolume(ndcMin, ndcMax, viewDistanceFromDepth(1.0f, depthToView),
+                          depthToView.x / max(depthToView.y, 1e-30f), ndcToView);
+}
+
 // True when the sphere (view space) may overlap the tile segment.
 PUNCTUAL_FN bool sphereMayTouchTile(vec3 center, float radius, TileVolume v) {
     float distance = -center.z;
@@ -307,6 +316,22 @@ PUNCTUAL_FN uint lightDepthMask(CullLight light, float nearDistance, float scale
     float centre = -light.sphereCenter.z;
     return depthMaskBits(depthMaskCell(centre - light.sphereRadius, nearDistance, scale),
                          depthMaskCell(centre + light.sphereRadius, nearDistance, scale));
+}
+
+// The tile's frustum segment of depth cell `cell` of the extent [nearDistance, farDistance]: from
+// the cell's start to the next cell's, the last cell ending at farDistance. A distance D lands in
+// cell floor(32 (D - near) / (far - near)) (depthMaskCell), so it lies within the cell's bounds up
+// to a few float roundings of D, which makeTileVolume's relative margin (1e-3 of the distance)
+// covers. A light whose shapes miss every occupied cell's segment reaches no pixel of the tile:
+// tighter than the depth-extent test alone, which keeps a light whose sphere spans an occupied
+// cell's depths anywhere in the tile's column, not only inside the tile.
+PUNCTUAL_FN TileVolume makeDepthCellVolume(vec2 ndcMin, vec2 ndcMax, uint cell, float nearDistance, float farDistance,
+                                           vec4 ndcToView) {
+    float cells = float(PUNCTUAL_DEPTH_MASK_CELLS);
+    float start = nearDistance + (farDistance - nearDistance) * (float(cell) / cells);
+    float end = cell + 1u >= PUNCTUAL_DEPTH_MASK_CELLS ? farDistance
+                                                       : nearDistance + (farDistance - nearDistance) * (float(cell + 1u) / cells);
+    return makeTileVolume(ndcMin, ndcMax, start, end, ndcToView);
 }
 
 PUNCTUAL_NAMESPACE_END

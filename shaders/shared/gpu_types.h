@@ -43,6 +43,7 @@
 // 0xFFFFFFFF where there are none. Written by transparent_depth.frag, read by the culling kernels.
 #define PUNCTUAL_BINDING_TRANSPARENT_DEPTH 16
 #define PUNCTUAL_BINDING_ZBINS 17             // GpuZBins: the z-bin method's bins (lights/z_bins.h)
+#define PUNCTUAL_BINDING_COARSE_GRID 18       // per coarse tile: 3 mask words, as the light grid's (coarse_culling.comp)
 
 // Shadow validation buffer (forward shader's WRITE_SHADOW_FACTORS variant), in 32-bit words:
 // per pixel PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS words (world position xyz, 1 if covered, shading
@@ -122,6 +123,7 @@
 #define PUNCTUAL_SPEC_TRANSPARENT 12
 #define PUNCTUAL_SPEC_DEPTH_MASK 13
 #define PUNCTUAL_SPEC_ZBINS 14
+#define PUNCTUAL_SPEC_COARSE_TILES 15  // culling: fine tiles a side of a coarse tile (0: no coarse pass)
 
 PUNCTUAL_NAMESPACE_BEGIN
 

@@ -87,6 +87,7 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
         json["tile_size"] = grid.tileSize;
         json["slices"] = grid.slices;
         json["cells"] = grid.cellCount();
+        json["coarse_tiles"] = grid.coarseTiles;  // fine tiles a side of a coarse tile; 0: no coarse pass
     }
     if (render::methodInfo(settings.method).objectLists) {
         json["per_object"] = {{"objects_over_cap", renderer.perObjectLists().objectsOverCap},

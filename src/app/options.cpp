@@ -26,6 +26,12 @@ uint32_t parseWhole(const std::string& option, const std::string& text) {
     return value;
 }
 
+// A switch: "on" or "off".
+bool parseOnOff(const std::string& option, const std::string& text) {
+    if (text != "on" && text != "off") throw Error(option, "expected on or off, got '" + text + "'");
+    return text == "on";
+}
+
 // A whole number of an option that is not a render setting (--device, --frames), in its range.
 uint32_t parseCount(const std::string& option, const std::string& text, uint32_t min, uint32_t max) {
     uint32_t value = 0;
@@ -138,10 +144,10 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             options.heatmapPath = value();
         } else if (arg == "--shadow-density") {
             options.shadowDensityPath = value();
+        } else if (arg == "--coarse-tiles") {
+            options.coarseTiles = parseOnOff(arg, value());
         } else if (arg == "--shadows") {
-            const std::string& text = value();
-            if (text != "on" && text != "off") throw Error(arg, "expected on or off, got '" + text + "'");
-            options.shadows.enabled = text == "on";
+            options.shadows.enabled = parseOnOff(arg, value());
         } else if (arg == "--shadow-res") {
             const std::string& text = value();
             options.shadows.resolution = text == "auto" ? ShadowSettings::kAutoResolution : parseWhole(arg, text);
@@ -187,9 +193,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         } else if (arg == "--transparent-shadows") {
             options.shadows.transparent = parseTransparentShadows(value());
         } else if (arg == "--shadow-receiver-plane") {
-            const std::string& text = value();
-            if (text != "on" && text != "off") throw Error(arg, "expected on or off, got '" + text + "'");
-            options.shadows.receiverPlane = text == "on";
+            options.shadows.receiverPlane = parseOnOff(arg, value());
         } else if (arg == "--shadow-penumbra") {
             options.shadows.diskRadius = parseFloat(arg, value());
         } else if (arg == "--shadow-strength") {
@@ -232,6 +236,7 @@ render::RenderSettings renderSettingsFrom(const RenderOptions& options) {
     settings.method = options.culling;
     settings.tileSize = options.tileSize;
     settings.clusterSlices = options.slices;
+    settings.coarseTiles = options.coarseTiles;
     settings.shadows = options.shadows;
     return settings;
 }
@@ -266,6 +271,8 @@ options:
 )" + variantHelp(render::kLightListMethods, defaults.culling, kListIndent) +
            R"(  --tile-size N        tile size in pixels for tiled and clustered culling (default 16)
   --slices N           depth slices for clustered culling, 1 to 32 (default 16)
+  --coarse-tiles on|off  on (default): the grid methods cull the lights to 64x64-pixel big
+                       tiles first, and the tile (or cluster) tests start from those
   --heatmap FILE.png   draw the lights tested per pixel as a colour map with a legend
   --shadow-density FILE.png  draw the shadow texels per screen pixel (1 is the target of auto
                        resolution) where shadowed lights reach, with a legend

@@ -30,6 +30,7 @@ struct RenderOptions {
     render::LightListMethod culling = render::LightListMethod::Tiled;  // --culling
     uint32_t tileSize = 16;                // --tile-size N
     uint32_t slices = 16;                  // --slices N (clustered)
+    bool coarseTiles = true;               // --coarse-tiles on|off (the grid methods)
     std::optional<std::string> heatmapPath;  // --heatmap FILE.png
     std::optional<std::string> shadowDensityPath;  // --shadow-density FILE.png
     ShadowSettings shadows;                // --shadows, --shadow-res, --shadow-filter, ...

@@ -5,7 +5,9 @@
 
 #include "gpu_types.h"
 #include "render/frame_bindings.h"
+#include "render/render_settings.h"
 #include "shaders/compute_cluster_slices_comp_spv.h"
+#include "shaders/compute_coarse_culling_comp_spv.h"
 #include "shaders/compute_depth_range_comp_spv.h"
 #include "shaders/compute_light_culling_comp_spv.h"
 #include "vk/context.h"
@@ -19,7 +21,7 @@ constexpr uint32_t kDepthRangeGroup = 32;  // pixels a side covered by one depth
 }
 
 LightGridLayout LightGridLayout::forMethod(const LightListMethodInfo& method, uint32_t width, uint32_t height,
-                                           uint32_t tileSize, uint32_t clusterSlices) {
+                                           uint32_t tileSize, uint32_t clusterSlices, bool coarse) {
     LightGridLayout layout;
     layout.tileSize = tileSize;
     layout.tilesX = (width + tileSize - 1) / tileSize;
@@ -27,6 +29,8 @@ LightGridLayout LightGridLayout::forMethod(const LightListMethodInfo& method, ui
     layout.slices = method.depthSlices ? clusterSlices : 1u;
     layout.depthMask = method.depthMask;
     layout.zBins = method.zBins;
+    const uint32_t perCoarseTile = kCoarseTilePixels / tileSize;
+    layout.coarseTiles = coarse && method.usesLightGrid && perCoarseTile >= 2 ? perCoarseTile : 0u;
     return layout;
 }
 
@@ -47,7 +51,13 @@ LightCullingPass::LightCullingPass(vk::Context& context, const LightGridLayout& 
       cullLights_(context, std::max<size_t>(cullLights.size(), 1) * sizeof(gpu::CullLight),
                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "cull lights"),
       zBins_(context, zBins ? sizeof(gpu::GpuZBins) : sizeof(uint32_t),
-             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload, "z-bins") {
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload, "z-bins"),
+      coarseGrid_(context,
+                  VkDeviceSize(culled && layout.coarseTiles ? layout.coarseTilesX() * layout.coarseTilesY() * PUNCTUAL_GRID_WORDS
+                                                            : 1) *
+                      sizeof(uint32_t),
+                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::DeviceLocal,
+                  "coarse light grid") {
     if (!cullLights.empty()) cullLights_.write(cullLights.data(), cullLights.size() * sizeof(gpu::CullLight));
     if (zBins) zBins_.write(&zBins->gpu, sizeof(gpu::GpuZBins));
     // Cells no pixel occupies are never written, and no pixel the frame shades reads one. Zeroed
@@ -63,26 +73,40 @@ void LightCullingPass::addBindings(BindingTable& table) const {
     table.addBuffer(PUNCTUAL_BINDING_CULL_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT,
                     cullLights_);
     table.addBuffer(PUNCTUAL_BINDING_ZBINS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages, zBins_);
+    table.addBuffer(PUNCTUAL_BINDING_COARSE_GRID, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT,
+                    coarseGrid_);
 }
 
 uint64_t LightCullingPass::memoryBytes() const {
-    return grid_.size() + depthRange_.size() + cullLights_.size() + zBins_.size();
+    return grid_.size() + depthRange_.size() + cullLights_.size() + zBins_.size() + coarseGrid_.size();
 }
 
 void LightCullingPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
     if (!culled_) return;
     // VkBool32 for the bool constant, as the specification asks.
-    const std::array<uint32_t, 4> values = {layout_.tileSize, layout_.slices, VkBool32(layout_.depthMask),
-                                            VkBool32(layout_.zBins)};
-    const std::array<VkSpecializationMapEntry, 4> entries = {{
+    const std::array<uint32_t, 5> values = {layout_.tileSize, layout_.slices, VkBool32(layout_.depthMask),
+                                            VkBool32(layout_.zBins), layout_.coarseTiles};
+    const std::array<VkSpecializationMapEntry, 5> entries = {{
         {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, sizeof(uint32_t), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_DEPTH_MASK, 2 * sizeof(uint32_t), sizeof(VkBool32)},
         {PUNCTUAL_SPEC_ZBINS, 3 * sizeof(uint32_t), sizeof(VkBool32)},
+        {PUNCTUAL_SPEC_COARSE_TILES, 4 * sizeof(uint32_t), sizeof(uint32_t)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};
     cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
                                                  compute_light_culling_comp_spv, &specialization);
+    if (layout_.coarseTiles) {
+        // The coarse kernel reads the tile size and the coarse-tile side: the first and last entries.
+        const std::array<VkSpecializationMapEntry, 2> coarseEntries = {{
+            {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
+            {PUNCTUAL_SPEC_COARSE_TILES, 4 * sizeof(uint32_t), sizeof(uint32_t)},
+        }};
+        const VkSpecializationInfo coarseSpecialization{uint32_t(coarseEntries.size()), coarseEntries.data(),
+                                                        sizeof(values), values.data()};
+        coarsePipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
+                                                    compute_coarse_culling_comp_spv, &coarseSpecialization);
+    }
     if (layout_.slices > 1) {
         depthRangePipeline_ =
             vk::createComputePipeline(context.device(), bindings.pipelineLayout(), compute_depth_range_comp_spv);
@@ -111,6 +135,12 @@ void LightCullingPass::record(const FrameContext& frame) const {
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sliceBoundariesPipeline_);
         vkCmdDispatch(cmd, 1, 1, 1);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    }
+    if (coarsePipeline_) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, coarsePipeline_);
+        vkCmdDispatch(cmd, layout_.coarseTilesX(), layout_.coarseTilesY(), 1);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     }

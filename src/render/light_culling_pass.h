@@ -1,5 +1,7 @@
 #pragma once
-// Tiled and clustered light culling (compute). Tiled: one workgroup per tile tests every light
+// Tiled and clustered light culling (compute). With the coarse pass on, one workgroup per big tile
+// first culls the lights to its frustum column (coarse_culling.comp), and the kernels below start
+// from those. Tiled: one workgroup per tile tests every light
 // against the tile's depth extent (tiled-2.5d: and against its depth mask; zbin: against the tile
 // at every depth, the z-bins uploaded here holding depth). Clustered: a depth-range pass first finds the frame's nearest
 // and farthest geometry, then the same kernel splits each tile into logarithmic depth slices
@@ -26,12 +28,17 @@ struct LightGridLayout {
     uint32_t slices = 1;  // 1: tiled
     bool depthMask = false;  // tiled-2.5d: lights also tested against the tile's depth mask
     bool zBins = false;      // zbin: two-dimensional tile masks (no depth read), the bins hold depth
+    uint32_t coarseTiles = 0;  // fine tiles a side of a coarse tile; 0: no coarse pass
 
     uint32_t cellCount() const { return tilesX * tilesY * slices; }
+    uint32_t coarseTilesX() const { return coarseTiles ? (tilesX + coarseTiles - 1) / coarseTiles : 0; }
+    uint32_t coarseTilesY() const { return coarseTiles ? (tilesY + coarseTiles - 1) / coarseTiles : 0; }
     // The grid `method` culls to: `clusterSlices` depth slices where it has them (clustered), one
-    // otherwise; its depth mask and z-bins flags (the culling kernel's specialization constants).
+    // otherwise; its depth mask and z-bins flags (the culling kernel's specialization constants);
+    // with `coarse`, kCoarseTilePixels / tileSize fine tiles a side per coarse tile where that is
+    // at least two.
     static LightGridLayout forMethod(const LightListMethodInfo& method, uint32_t width, uint32_t height,
-                                     uint32_t tileSize, uint32_t clusterSlices);
+                                     uint32_t tileSize, uint32_t clusterSlices, bool coarse);
 };
 
 class LightCullingPass final : public Pass {
@@ -55,6 +62,7 @@ public:
 
     const vk::Buffer& grid() const { return grid_; }              // cellCount * PUNCTUAL_GRID_WORDS words
     const vk::Buffer& depthRange() const { return depthRange_; }  // gpu::GpuDepthRange
+    const vk::Buffer& coarseGrid() const { return coarseGrid_; }  // the coarse pass's masks
 
 private:
     LightGridLayout layout_;
@@ -65,6 +73,8 @@ private:
     vk::Buffer depthRange_;
     vk::Buffer cullLights_;
     vk::Buffer zBins_;  // gpu::GpuZBins, or one word for the methods without bins
+    vk::Buffer coarseGrid_;  // coarse tiles x PUNCTUAL_GRID_WORDS words, or one word without the coarse pass
+    vk::Handle<VkPipeline> coarsePipeline_;            // the coarse pass (coarse_culling.comp)
     vk::Handle<VkPipeline> depthRangePipeline_;        // clustered: nearest/farthest geometry
     vk::Handle<VkPipeline> sliceBoundariesPipeline_;   // clustered: slice start depths
     vk::Handle<VkPipeline> cullingPipeline_;

@@ -15,6 +15,9 @@ namespace punctual::render {
 inline constexpr uint32_t kMaxImageSide = 8192;
 inline constexpr uint32_t kMinTileSize = 4;
 inline constexpr uint32_t kMaxTileSize = 128;
+// The coarse pass's big tiles: as many fine tiles a side as fit in this many pixels (4 of 16);
+// none where fewer than two fit (HDRP's big tiles are 64 pixels too).
+inline constexpr uint32_t kCoarseTilePixels = 64;
 
 struct RenderSettings {
     uint32_t width = 1280;
@@ -23,6 +26,9 @@ struct RenderSettings {
     LightListMethod method = LightListMethod::Tiled;
     uint32_t tileSize = 16;       // pixels, tiled and clustered
     uint32_t clusterSlices = 16;  // depth slices, clustered only
+    // The coarse pass (--coarse-tiles): big tiles of about kCoarseTilePixels a side cull the
+    // lights first, and the fine culling kernel tests only those. The grid methods only.
+    bool coarseTiles = true;
     bool collectLightStats = false;  // allocate what readLightStats() needs
     bool collectShadowFactors = false;  // allocate what readShadowFactors() needs
     ShadowSettings shadows;

@@ -315,7 +315,7 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     const LightListMethodInfo& method = methodInfo(settings.method);
     if (method.objectLists) perObjectLists_ = buildPerObjectLightLists(scene, lights_);
     gridLayout_ = LightGridLayout::forMethod(method, settings.width, settings.height, settings.tileSize,
-                                             settings.clusterSlices);
+                                             settings.clusterSlices, settings.coarseTiles);
     if (method.zBins) {
         zBins_ = buildZBins(viewCullLights(lights_, view_), lights_.spotCount,
                             glm::vec2(projection_[3][2], projection_[2][2]));
@@ -459,12 +459,21 @@ std::vector<uint8_t> Renderer::readBuffer(const vk::Buffer& buffer) {
     return std::vector<uint8_t>(bytes, bytes + buffer.size());
 }
 
-std::vector<uint32_t> Renderer::readLightGrid() {
-    if (!usesLightGrid(settings_.method)) return {};
-    const std::vector<uint8_t> bytes = readBuffer(resources_->culling->grid());
+std::vector<uint32_t> Renderer::readWords(const vk::Buffer& buffer) {
+    const std::vector<uint8_t> bytes = readBuffer(buffer);
     std::vector<uint32_t> words(bytes.size() / sizeof(uint32_t));
     std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
     return words;
+}
+
+std::vector<uint32_t> Renderer::readLightGrid() {
+    if (!usesLightGrid(settings_.method)) return {};
+    return readWords(resources_->culling->grid());
+}
+
+std::vector<uint32_t> Renderer::readCoarseGrid() {
+    if (!usesLightGrid(settings_.method) || !gridLayout_.coarseTiles) return {};
+    return readWords(resources_->culling->coarseGrid());
 }
 
 gpu::GpuDepthRange Renderer::readDepthRange() {

@@ -97,6 +97,9 @@ public:
     // The light grid of the last frame: gridLayout().cellCount() * PUNCTUAL_GRID_WORDS words
     // (tiled and clustered only). Clustered also reports the frame's geometry depth range.
     std::vector<uint32_t> readLightGrid();
+    // The coarse pass's masks of the last frame: coarseTilesX() * coarseTilesY() * PUNCTUAL_GRID_WORDS
+    // words (gridLayout()); empty without the coarse pass.
+    std::vector<uint32_t> readCoarseGrid();
     gpu::GpuDepthRange readDepthRange();
     // Runs the statistics variant of the forward pass (needs settings.collectLightStats).
     LightStatsImage readLightStats();
@@ -130,6 +133,7 @@ private:
     void recordFrame(VkCommandBuffer cmd, const std::vector<const Pass*>& passes, bool timed);
     void submitAndWait(VkCommandBuffer cmd);
     std::vector<uint8_t> readBuffer(const vk::Buffer& buffer);
+    std::vector<uint32_t> readWords(const vk::Buffer& buffer);  // readBuffer as 32-bit words
 
     vk::Context& context_;
     const Scene& scene_;

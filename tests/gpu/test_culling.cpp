@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <memory>
 
 #include "culling.h"
@@ -36,6 +37,10 @@ struct ReferenceCheck {
     size_t culledByReference = 0;   // of those, missing from the CPU reference's cell
     size_t maskBits = 0;            // bits compared between the GPU and CPU masks (occupied cells)
     size_t maskDisagreements = 0;
+    size_t coarseBits = 0;           // coarse pass: (big tile, light) pairs compared
+    size_t coarseDisagreements = 0;  // of those, where the GPU and CPU coarse masks differ
+    size_t coarseKept = 0;           // of those, lights the GPU's coarse pass kept
+    size_t fineOutsideCoarse = 0;    // (tile, light) bits set in a fine cell but not its big tile
 };
 
 // Rebuilds every cell's masks on the CPU with the shared culling.h tests and checks, pixel by
@@ -47,6 +52,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
     const uint32_t height = renderer.settings().height;
     const std::vector<float> depth = renderer.readDepth();
     const std::vector<uint32_t> grid = renderer.readLightGrid();
+    const std::vector<uint32_t> coarseGrid = renderer.readCoarseGrid();
     const gpu::GpuDepthRange range = renderer.readDepthRange();
     const FrameLights& lights = renderer.lights();
     const glm::mat4& projection = renderer.projection();
@@ -99,38 +105,69 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
     }
     std::vector<gpu::CullLight> cullLights;
     for (const gpu::GpuPunctualLight& light : lights.packed) cullLights.push_back(gpu::makeCullLight(light, renderer.view()));
+    // The screen rectangle (NDC) of `tiles` x `tiles` fine tiles from fine tile (tx, ty), cut at
+    // the viewport as the kernels cut it.
+    auto tileRect = [&](uint32_t tx, uint32_t ty, uint32_t tiles, glm::vec2& ndcMin, glm::vec2& ndcMax) {
+        const uint32_t side = layout.tileSize * tiles;
+        const glm::vec2 ndcA = glm::vec2(float(tx * layout.tileSize) / float(width), float(ty * layout.tileSize) / float(height)) * 2.0f - 1.0f;
+        const glm::vec2 ndcB = glm::min(glm::vec2(float(tx * layout.tileSize + side) / float(width),
+                                                  float(ty * layout.tileSize + side) / float(height)),
+                                        glm::vec2(1.0f)) * 2.0f - 1.0f;
+        ndcMin = glm::min(ndcA, ndcB);
+        ndcMax = glm::max(ndcA, ndcB);
+    };
+    // The coarse pass: each big tile keeps the lights that meet its column, near to far plane.
+    const uint32_t coarseTilesX = layout.coarseTilesX();
+    std::vector<uint32_t> coarse(size_t(coarseTilesX) * layout.coarseTilesY() * PUNCTUAL_GRID_WORDS, 0u);
+    for (uint32_t cy = 0; cy < layout.coarseTilesY(); ++cy) {
+        for (uint32_t cx = 0; cx < coarseTilesX; ++cx) {
+            glm::vec2 ndcMin, ndcMax;
+            tileRect(cx * layout.coarseTiles, cy * layout.coarseTiles, layout.coarseTiles, ndcMin, ndcMax);
+            const gpu::TileVolume column = gpu::makeTileColumn(ndcMin, ndcMax, depthToView, ndcToView);
+            for (uint32_t light = 0; light < lightCount; ++light) {
+                if (!gpu::lightMayTouchTile(cullLights[light], column)) continue;
+                uint32_t word = 0;
+                const uint32_t bit = bitOf(light, word);
+                coarse[(size_t(cy) * coarseTilesX + cx) * PUNCTUAL_GRID_WORDS + word] |= bit;
+            }
+        }
+    }
     std::vector<uint32_t> reference(grid.size(), 0u);
     for (uint32_t ty = 0; ty < layout.tilesY; ++ty) {
         for (uint32_t tx = 0; tx < layout.tilesX; ++tx) {
-            const glm::vec2 ndcA = glm::vec2(float(tx * layout.tileSize) / float(width), float(ty * layout.tileSize) / float(height)) * 2.0f - 1.0f;
-            const glm::vec2 ndcB = glm::min(glm::vec2(float((tx + 1) * layout.tileSize) / float(width),
-                                                      float((ty + 1) * layout.tileSize) / float(height)),
-                                            glm::vec2(1.0f)) * 2.0f - 1.0f;
+            glm::vec2 ndcMin, ndcMax;
+            tileRect(tx, ty, 1, ndcMin, ndcMax);
             const uint32_t tile = ty * layout.tilesX + tx;
             if (tileFar[tile] == 0.0f) continue;
+            const size_t coarseBase =
+                layout.coarseTiles ? (size_t(ty / layout.coarseTiles) * coarseTilesX + tx / layout.coarseTiles) * PUNCTUAL_GRID_WORDS : 0;
             // Clustered tests each light against the whole tile first, then against each slice.
-            const gpu::TileVolume tileVolume = gpu::makeTileVolume(glm::min(ndcA, ndcB), glm::max(ndcA, ndcB),
-                                                                   tileNear[tile], tileFar[tile], ndcToView);
+            const gpu::TileVolume tileVolume = gpu::makeTileVolume(ndcMin, ndcMax, tileNear[tile], tileFar[tile], ndcToView);
+            const float maskScale = gpu::depthMaskScale(tileNear[tile], tileFar[tile]);
             for (uint32_t slice = 0; slice < layout.slices; ++slice) {
                 const uint32_t cell = tile * layout.slices + slice;
                 if (cellFar[cell] == 0.0f) continue;
                 // zbin: the tile at every depth, near plane to far plane (the bins hold depth).
                 const gpu::TileVolume volume =
-                    layout.zBins ? gpu::makeTileVolume(glm::min(ndcA, ndcB), glm::max(ndcA, ndcB),
-                                                       depthToView.x / (1.0f + depthToView.y),
-                                                       depthToView.x / std::max(depthToView.y, 1e-30f), ndcToView)
-                                 : gpu::makeTileVolume(glm::min(ndcA, ndcB), glm::max(ndcA, ndcB), cellNear[cell],
-                                                       cellFar[cell], ndcToView);
+                    layout.zBins ? gpu::makeTileColumn(ndcMin, ndcMax, depthToView, ndcToView)
+                                 : gpu::makeTileVolume(ndcMin, ndcMax, cellNear[cell], cellFar[cell], ndcToView);
                 for (uint32_t light = 0; light < lightCount; ++light) {
-                    if (layout.slices > 1 && !gpu::lightMayTouchTile(cullLights[light], tileVolume)) continue;
-                    if (!gpu::lightMayTouchTile(cullLights[light], volume)) continue;
-                    if (layout.depthMask &&
-                        !(gpu::lightDepthMask(cullLights[light], tileNear[tile], gpu::depthMaskScale(tileNear[tile], tileFar[tile])) &
-                          tileDepthMask[tile])) {
-                        continue;
-                    }
                     uint32_t word = 0;
                     const uint32_t bit = bitOf(light, word);
+                    if (layout.coarseTiles && !(coarse[coarseBase + word] & bit)) continue;
+                    if (layout.slices > 1 && !gpu::lightMayTouchTile(cullLights[light], tileVolume)) continue;
+                    if (!gpu::lightMayTouchTile(cullLights[light], volume)) continue;
+                    if (layout.depthMask) {
+                        // An occupied depth cell within the light's extent whose segment it meets.
+                        uint32_t cells = gpu::lightDepthMask(cullLights[light], tileNear[tile], maskScale) & tileDepthMask[tile];
+                        bool meets = false;
+                        for (; cells && !meets; cells &= cells - 1) {
+                            meets = gpu::lightMayTouchTile(
+                                cullLights[light], gpu::makeDepthCellVolume(ndcMin, ndcMax, uint32_t(std::countr_zero(cells)),
+                                                                            tileNear[tile], tileFar[tile], ndcToView));
+                        }
+                        if (!meets) continue;
+                    }
                     reference[cell * PUNCTUAL_GRID_WORDS + word] |= bit;
                 }
             }
@@ -143,6 +180,26 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
         for (uint32_t b = 0; b < 32; ++b) {
             ++check.maskBits;
             check.maskDisagreements += ((grid[i] ^ reference[i]) >> b) & 1u;
+        }
+        if (layout.coarseTiles) {
+            const uint32_t tile = uint32_t(i / PUNCTUAL_GRID_WORDS) / layout.slices;
+            const uint32_t tx = tile % layout.tilesX;
+            const uint32_t ty = tile / layout.tilesX;
+            const size_t coarseWord =
+                (size_t(ty / layout.coarseTiles) * coarseTilesX + tx / layout.coarseTiles) * PUNCTUAL_GRID_WORDS + i % PUNCTUAL_GRID_WORDS;
+            check.fineOutsideCoarse += size_t(std::popcount(grid[i] & ~coarseGrid[coarseWord]));
+        }
+    }
+    for (size_t i = 0; i < coarseGrid.size() && layout.coarseTiles; ++i) {
+        // Only the words of real lights: spot words up to the spot count, the point word's low bits.
+        const uint32_t word = uint32_t(i % PUNCTUAL_GRID_WORDS);
+        const uint32_t first = gpu::lightGridFirstLight(word, lights.spotCount);
+        const uint32_t end = word < 2 ? std::min(lights.spotCount, first + 32) : lightCount;
+        for (uint32_t light = first; light < end; ++light) {
+            const uint32_t bit = 1u << gpu::lightGridBit(light, lights.spotCount);
+            ++check.coarseBits;
+            check.coarseKept += (coarseGrid[i] & bit) ? 1 : 0;
+            check.coarseDisagreements += ((coarseGrid[i] ^ coarse[i]) & bit) ? 1 : 0;
         }
     }
     for (uint32_t y = 0; y < height; ++y) {
@@ -184,11 +241,15 @@ TEST(Culling, CulledImagesAreBitIdenticalToBruteForce) {
         // Not a vacuous comparison: every scene shows lit pixels.
         EXPECT_GT(testing::fractionBrighterThan(brute, 24), 0.02);
         for (LightListMethod method : render::gridMethods()) {
-            for (uint32_t tileSize : {8u, 16u, 32u}) {
+            // Tile sizes 8, 16 and 32 with the coarse pass (8 and 4 fine tiles a big tile's side,
+            // 2 at 32), and 16 without it.
+            for (const auto& [tileSize, coarse] : {std::pair{8u, true}, {16u, true}, {32u, true}, {16u, false}}) {
                 render::RenderSettings settings = settingsFor(method);
                 settings.tileSize = tileSize;
+                settings.coarseTiles = coarse;
                 const ImageRgba8 culled = renderImage(*context, named.scene, settings);
-                EXPECT_TRUE(culled.pixels == brute.pixels) << render::methodName(method) << " tile " << tileSize;
+                EXPECT_TRUE(culled.pixels == brute.pixels)
+                    << render::methodName(method) << " tile " << tileSize << (coarse ? "" : ", no coarse pass");
             }
         }
     }
@@ -199,16 +260,30 @@ TEST(Culling, NoLightReachingAPixelIsCulled) {
     auto context = testing::makeValidatedContext();
     for (const testing::NamedScene& named : allScenes()) {
         for (LightListMethod method : render::gridMethods()) {
-            SCOPED_TRACE(named.name + " / " + render::methodName(method));
-            render::Renderer renderer(*context, named.scene, settingsFor(method));
-            renderer.render(1, 0);
-            const ReferenceCheck check = checkAgainstReference(renderer);
-            EXPECT_GT(check.reachingPairs, 1000u);
-            EXPECT_EQ(check.culledOnGpu, 0u);
-            EXPECT_EQ(check.culledByReference, 0u);
-            // The GPU kernel and the CPU reference run the same tests on the same inputs; only
-            // float rounding at a shape's very edge may flip a bit.
-            EXPECT_LE(double(check.maskDisagreements), 1e-3 * double(check.maskBits));
+            for (bool coarse : {true, false}) {
+                SCOPED_TRACE(named.name + " / " + render::methodName(method) + (coarse ? "" : ", no coarse pass"));
+                render::RenderSettings settings = settingsFor(method);
+                settings.coarseTiles = coarse;
+                render::Renderer renderer(*context, named.scene, settings);
+                renderer.render(1, 0);
+                const ReferenceCheck check = checkAgainstReference(renderer);
+                EXPECT_GT(check.reachingPairs, 1000u);
+                EXPECT_EQ(check.culledOnGpu, 0u);
+                EXPECT_EQ(check.culledByReference, 0u);
+                // The GPU kernel and the CPU reference run the same tests on the same inputs; only
+                // float rounding at a shape's very edge may flip a bit.
+                EXPECT_LE(double(check.maskDisagreements), 1e-3 * double(check.maskBits));
+                // The coarse pass: the same on the CPU, and every fine cell's lights within its
+                // big tile's. Not vacuous: the default scene's 96 lights spread over the hall, so
+                // its big tiles drop some (the adversarial scenes' few lights each span the
+                // 256x144 frame's 4x3 big tiles).
+                EXPECT_EQ(check.coarseBits > 0, coarse);
+                EXPECT_LE(double(check.coarseDisagreements), 1e-3 * double(check.coarseBits));
+                EXPECT_EQ(check.fineOutsideCoarse, 0u);
+                if (coarse && named.name == "default scene") {
+                    EXPECT_LT(double(check.coarseKept), 0.9 * double(check.coarseBits));
+                }
+            }
         }
     }
     testing::expectNoValidationMessages(*context);

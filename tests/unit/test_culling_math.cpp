@@ -325,5 +325,56 @@ TEST(DepthMask, EveryDistanceInsideALightsExtentHasItsCell) {
     EXPECT_GT(checked, 1000u);
 }
 
+TEST(DepthMask, ACellsSegmentSpansItsShareOfTheExtent) {
+    // Extent 10..42: cell k spans [10 + k, 11 + k], widened by the culling margin (1e-3 relative:
+    // culling.h); the last cell ends at the extent's far end. Sideways, the tile's planes.
+    const glm::vec4 ndcToView(1.0f, 1.0f, 0.0f, 0.0f);  // a 90-degree square view
+    const gpu::TileVolume first = gpu::makeDepthCellVolume(glm::vec2(-0.5f), glm::vec2(0.0f), 0, 10.0f, 42.0f, ndcToView);
+    EXPECT_FLOAT_EQ(first.nearDistance, 10.0f * (1.0f - PUNCTUAL_CULL_RELATIVE_MARGIN));
+    EXPECT_FLOAT_EQ(first.farDistance, 11.0f * (1.0f + PUNCTUAL_CULL_RELATIVE_MARGIN));
+    const gpu::TileVolume middle = gpu::makeDepthCellVolume(glm::vec2(-0.5f), glm::vec2(0.0f), 15, 10.0f, 42.0f, ndcToView);
+    EXPECT_FLOAT_EQ(middle.nearDistance, 25.0f * (1.0f - PUNCTUAL_CULL_RELATIVE_MARGIN));
+    EXPECT_FLOAT_EQ(middle.farDistance, 26.0f * (1.0f + PUNCTUAL_CULL_RELATIVE_MARGIN));
+    const gpu::TileVolume last = gpu::makeDepthCellVolume(glm::vec2(-0.5f), glm::vec2(0.0f), 31, 10.0f, 42.0f, ndcToView);
+    EXPECT_FLOAT_EQ(last.nearDistance, 41.0f * (1.0f - PUNCTUAL_CULL_RELATIVE_MARGIN));
+    EXPECT_FLOAT_EQ(last.farDistance, 42.0f * (1.0f + PUNCTUAL_CULL_RELATIVE_MARGIN));
+    // The tile x in [-0.5, 0] NDC: at distance 25 the segment spans x from -12.5 to 0.
+    EXPECT_NEAR(middle.aabbMin.x, -0.5f * 26.0f * (1.0f + PUNCTUAL_CULL_RELATIVE_MARGIN), 1e-4f);
+    EXPECT_NEAR(middle.aabbMax.x, 0.0f, 1e-6f);
+    // A flat tile (far = near): every cell is the one distance.
+    const gpu::TileVolume flat = gpu::makeDepthCellVolume(glm::vec2(-0.5f), glm::vec2(0.0f), 0, 7.0f, 7.0f, ndcToView);
+    EXPECT_FLOAT_EQ(flat.nearDistance, 7.0f * (1.0f - PUNCTUAL_CULL_RELATIVE_MARGIN));
+    EXPECT_FLOAT_EQ(flat.farDistance, 7.0f * (1.0f + PUNCTUAL_CULL_RELATIVE_MARGIN));
+}
+
+TEST(DepthMask, ALightNearAnOccupiedCellsDepthButBesideTheTileMissesItsSegment) {
+    // The per-cell test's point: a sphere at the occupied cell's distance but well to the side of
+    // the tile spans the cell's depths (the mask keeps it) yet misses the cell's segment.
+    const glm::vec4 ndcToView(1.0f, 1.0f, 0.0f, 0.0f);
+    const gpu::TileVolume cell = gpu::makeDepthCellVolume(glm::vec2(-0.1f), glm::vec2(0.1f), 15, 10.0f, 42.0f, ndcToView);
+    gpu::CullLight light{};
+    light.cosOuter = -1.0f;
+    light.sphereCenter = glm::vec3(8.0f, 0.0f, -25.5f);  // the cell's distance; the tile spans |x| <= 2.6
+    light.sphereRadius = 3.0f;
+    EXPECT_NE(gpu::lightDepthMask(light, 10.0f, gpu::depthMaskScale(10.0f, 42.0f)) & (1u << 15), 0u);
+    EXPECT_FALSE(gpu::lightMayTouchTile(light, cell));
+    light.sphereCenter.x = 4.0f;  // now within 3 of the tile's side
+    EXPECT_TRUE(gpu::lightMayTouchTile(light, cell));
+}
+
+TEST(TileColumn, SpansNearPlaneToFarPlane) {
+    // Camera near 0.1, far 100: a = f n / (f - n), b = n / (f - n) (culling.h), and the column
+    // runs from the near plane to the far plane, widened by the margin.
+    const float n = 0.1f, f = 100.0f;
+    const glm::vec2 depthToView(f * n / (f - n), n / (f - n));
+    const gpu::TileVolume column = gpu::makeTileColumn(glm::vec2(-1.0f), glm::vec2(1.0f), depthToView, glm::vec4(1, 1, 0, 0));
+    EXPECT_NEAR(column.nearDistance, n * (1.0f - PUNCTUAL_CULL_RELATIVE_MARGIN), 1e-6f);
+    EXPECT_NEAR(column.farDistance, f * (1.0f + PUNCTUAL_CULL_RELATIVE_MARGIN), 1e-3f);
+    // An infinite far plane (b = 0) gives a huge but finite far distance, not a division by zero.
+    const gpu::TileVolume infinite = gpu::makeTileColumn(glm::vec2(-1.0f), glm::vec2(1.0f), glm::vec2(n, 0.0f), glm::vec4(1, 1, 0, 0));
+    EXPECT_TRUE(std::isfinite(infinite.farDistance));
+    EXPECT_GT(infinite.farDistance, 1e20f);
+}
+
 }  // namespace
 }  // namespace punctual

@@ -1,0 +1,49 @@
+#version 450
+// The coarse light-culling pass (HDRP's "big tile" prepass): one workgroup per coarse tile of
+// COARSE_TILES x COARSE_TILES fine tiles (64x64 pixels at the default 16-pixel tiles), testing
+// every light against the tile's frustum column from the near plane to the far plane. No depth is
+// read: the pass costs one light test per (coarse tile, light), a sixteenth of the fine tests it
+// saves, and the fine kernel (light_culling.comp) then tests only the lights of its coarse tile.
+//
+// Lossless: each test is conservative against the true shapes (culling.h), so a light that
+// reaches any pixel of a fine tile meets that pixel's frustum segment, which lies inside the
+// coarse column, and passes here. The fine kernel only ever drops lights, never adds them.
+#extension GL_GOOGLE_include_directive : require
+#include "gpu_types.h"
+#include "culling.h"
+
+layout(local_size_x = 64) in;
+layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
+layout(constant_id = PUNCTUAL_SPEC_COARSE_TILES) const uint COARSE_TILES = 4u;  // fine tiles a side
+
+layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_CULL_LIGHTS) readonly buffer CullLightBlock { CullLight frameCullLights[]; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_COARSE_GRID) writeonly buffer CoarseGridBlock { uint coarseGrid[]; };
+
+shared uint coarseMask[PUNCTUAL_GRID_WORDS];
+shared TileVolume column;
+
+void main() {
+    uint thread = gl_LocalInvocationIndex;
+    uvec2 coarseTile = gl_WorkGroupID.xy;
+    if (thread < PUNCTUAL_GRID_WORDS) coarseMask[thread] = 0u;
+    if (thread == 0u) {
+        // The column's screen rectangle, cut at the viewport as the fine tiles are.
+        uint side = TILE_SIZE * COARSE_TILES;
+        vec2 pixelToNdc = 2.0 * frame.viewport.zw;
+        vec2 ndcA = vec2(coarseTile * side) * pixelToNdc - 1.0;
+        vec2 ndcB = min(vec2((coarseTile + 1u) * side), frame.viewport.xy) * pixelToNdc - 1.0;
+        column = makeTileColumn(min(ndcA, ndcB), max(ndcA, ndcB), frame.depthToView.xy, frame.ndcToView);
+    }
+    barrier();
+    uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
+    for (uint light = thread; light < lightCount; light += 64u) {
+        if (!lightMayTouchTile(frameCullLights[light], column)) continue;
+        atomicOr(coarseMask[lightGridWord(light, frame.lightCounts.x)], 1u << lightGridBit(light, frame.lightCounts.x));
+    }
+    barrier();
+    uint coarseTilesAcross = (uint(frame.viewport.x) + TILE_SIZE * COARSE_TILES - 1u) / (TILE_SIZE * COARSE_TILES);
+    if (thread < PUNCTUAL_GRID_WORDS) {
+        coarseGrid[(coarseTile.y * coarseTilesAcross + coarseTile.x) * PUNCTUAL_GRID_WORDS + thread] = coarseMask[thread];
+    }
+}
