@@ -79,6 +79,49 @@ void setLightBit(uint slice, uint light) {
     atomicOr(sliceMasks[slice * PUNCTUAL_GRID_WORDS + word], 1u << bit);
 }
 
+// Pixels read four at a time: one gather fetches a 2x2 block (fewer fetches and address
+// computations than four single-texel reads).
+const uint kBlocks = (TILE_SIZE + 1u) / 2u;  // blocks a side of a tile (an odd size's last is half outside)
+
+// `extent` (nearest depth, farthest depth) widened by the geometry of the 2x2 block whose top-left
+// pixel is `corner`, its pixels at or past `tileEnd` left out. The gather samples the block's
+// centre, (corner + 1) / size: u * width - 0.5 = corner + 0.5, whose floor is the corner, half a
+// texel from any rounding; texels past the image's edge read the edge (clamp-to-edge sampler) and
+// are left out with the rest past tileEnd. Its result's order (the Vulkan specification's): x (0,1),
+// y (1,1), z (1,0), w (0,0) from the corner. Written out rather than looped: lavapipe keeps a
+// dynamically indexed vector in memory.
+vec2 quadExtent(uvec2 corner, uvec2 tileEnd, vec2 extent) {
+    if (corner.x >= tileEnd.x || corner.y >= tileEnd.y) return extent;
+    vec4 quad = textureGather(depthImage, (vec2(corner) + 1.0) * frame.viewport.zw);
+    bool right = corner.x + 1u < tileEnd.x;
+    bool below = corner.y + 1u < tileEnd.y;
+    // Background texels (depth 0) never raise the nearest; they are kept out of the farthest.
+    const float kNone = 2.0;  // above any depth: min() ignores it
+    vec4 geometry = vec4(below && !isBackgroundDepth(quad.x) ? quad.x : kNone,
+                         right && below && !isBackgroundDepth(quad.y) ? quad.y : kNone,
+                         right && !isBackgroundDepth(quad.z) ? quad.z : kNone, !isBackgroundDepth(quad.w) ? quad.w : kNone);
+    vec4 nearest = vec4(below ? quad.x : 0.0, right && below ? quad.y : 0.0, right ? quad.z : 0.0, quad.w);
+    return vec2(max(extent.x, max(max(nearest.x, nearest.y), max(nearest.z, nearest.w))),
+                min(extent.y, min(min(geometry.x, geometry.y), min(geometry.z, geometry.w))));
+}
+
+// The depth-mask cells (culling.h) the geometry of a 2x2 block occupies: quadExtent's block.
+uint quadDepthCells(uvec2 corner, uvec2 tileEnd, float maskNear, float maskScale) {
+    if (corner.x >= tileEnd.x || corner.y >= tileEnd.y) return 0u;
+    vec4 quad = textureGather(depthImage, (vec2(corner) + 1.0) * frame.viewport.zw);
+    bool right = corner.x + 1u < tileEnd.x;
+    bool below = corner.y + 1u < tileEnd.y;
+    vec2 toView = frame.depthToView.xy;
+    uint cells = 0u;
+    if (!isBackgroundDepth(quad.w)) cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.w, toView), maskNear, maskScale);
+    if (right && !isBackgroundDepth(quad.z)) cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.z, toView), maskNear, maskScale);
+    if (below && !isBackgroundDepth(quad.x)) cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.x, toView), maskNear, maskScale);
+    if (right && below && !isBackgroundDepth(quad.y)) {
+        cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.y, toView), maskNear, maskScale);
+    }
+    return cells;
+}
+
 void main() {
     uint thread = gl_LocalInvocationIndex;
     uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
@@ -120,7 +163,27 @@ void main() {
     uint threadMax = 0u;
     uint runMin = 0xFFFFFFFFu;
     uint runMax = 0u;
-    for (uint y = gl_LocalInvocationID.y; !ZBINS && y < TILE_SIZE; y += kSide) {
+    // Tiled without transparent spans (the common case) folds the tile's nearest and farthest
+    // depths first and divides once: view distance falls monotonically with depth, also as
+    // rounded (viewDistanceFromDepth), so the extreme depths give exactly the extreme distances.
+    // It reads the depths four at a time, a 2x2 block per gather (quadExtent). Measured on
+    // lavapipe at 1280x720 with no lights: 27 ms before, 10 ms after; the per-pixel loop below,
+    // with its slice search and transparent spans, serves the other cases.
+    uvec2 tileEnd = min((tile + 1u) * TILE_SIZE, viewport);  // one past the tile's last pixel
+    bool foldDepths = SLICE_COUNT == 1u && !ZBINS && frame.lightCounts.w == 0u;
+    if (foldDepths) {
+        vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) geometry depth; x = 0: none
+        for (uint by = gl_LocalInvocationID.y; by < kBlocks; by += kSide) {
+            for (uint bx = gl_LocalInvocationID.x; bx < kBlocks; bx += kSide) {
+                extent = quadExtent(tile * TILE_SIZE + 2u * uvec2(bx, by), tileEnd, extent);
+            }
+        }
+        if (extent.x > 0.0) {
+            atomicMin(sliceMinDistance[0], floatBitsToUint(viewDistanceFromDepth(extent.x, frame.depthToView.xy)));
+            atomicMax(sliceMaxDistance[0], floatBitsToUint(viewDistanceFromDepth(extent.y, frame.depthToView.xy)));
+        }
+    }
+    for (uint y = gl_LocalInvocationID.y; !foldDepths && !ZBINS && y < TILE_SIZE; y += kSide) {
         for (uint x = gl_LocalInvocationID.x; x < TILE_SIZE; x += kSide) {
             uvec2 pixel = tile * TILE_SIZE + uvec2(x, y);
             if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
@@ -191,7 +254,12 @@ void main() {
     vec2 ndcB = min(vec2((tile + 1u) * TILE_SIZE), frame.viewport.xy) * pixelToNdc - 1.0;
     if (DEPTH_MASK && SLICE_COUNT == 1u && sliceMaxDistance[0] != 0u) {
         uint threadMask = 0u;
-        for (uint y = gl_LocalInvocationID.y; y < TILE_SIZE; y += kSide) {
+        for (uint by = gl_LocalInvocationID.y; foldDepths && by < kBlocks; by += kSide) {
+            for (uint bx = gl_LocalInvocationID.x; bx < kBlocks; bx += kSide) {
+                threadMask |= quadDepthCells(tile * TILE_SIZE + 2u * uvec2(bx, by), tileEnd, maskNear, maskScale);
+            }
+        }
+        for (uint y = gl_LocalInvocationID.y; !foldDepths && y < TILE_SIZE; y += kSide) {
             for (uint x = gl_LocalInvocationID.x; x < TILE_SIZE; x += kSide) {
                 uvec2 pixel = tile * TILE_SIZE + uvec2(x, y);
                 if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
@@ -221,34 +289,41 @@ void main() {
     }
     if (DEPTH_MASK) barrier();
 
-    // 2. List the occupied slices with their frustum segments; clustered also the whole tile's.
-    if (ZBINS && thread == 0u) {
-        occupiedCount = 1u;
-        occupiedSlices[0] = 0u;
-        occupiedVolumes[0] = makeTileColumn(min(ndcA, ndcB), max(ndcA, ndcB), frame.depthToView.xy, frame.ndcToView);
+    // 2. Clustered: list the occupied slices with their frustum segments, and the whole tile's.
+    //    Tiled (one slice): every thread makes the tile's segment itself, which costs less than a
+    //    barrier (zbin: the tile's whole column, the bins holding depth).
+    bool occupied = SLICE_COUNT == 1u && (ZBINS || sliceMaxDistance[0] != 0u);
+    TileVolume wholeTile;
+    if (SLICE_COUNT == 1u) {
+        wholeTile = ZBINS ? makeTileColumn(min(ndcA, ndcB), max(ndcA, ndcB), frame.depthToView.xy, frame.ndcToView)
+                          : makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(sliceMinDistance[0]),
+                                           uintBitsToFloat(sliceMaxDistance[0]), frame.ndcToView);
+    } else {
+        for (uint slice = thread; slice < SLICE_COUNT; slice += kThreads) {
+            if (sliceMaxDistance[slice] == 0u) continue;  // no pixel in this slice
+            uint index = atomicAdd(occupiedCount, 1u);
+            occupiedSlices[index] = slice;
+            occupiedVolumes[index] = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(sliceMinDistance[slice]),
+                                                    uintBitsToFloat(sliceMaxDistance[slice]), frame.ndcToView);
+        }
+        if (thread == 0u && tileMaxDistance != 0u) {
+            tileVolume = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(tileMinDistance),
+                                        uintBitsToFloat(tileMaxDistance), frame.ndcToView);
+        }
+        barrier();
+        occupied = occupiedCount > 0u;
+        wholeTile = tileVolume;
     }
-    for (uint slice = thread; !ZBINS && slice < SLICE_COUNT; slice += kThreads) {
-        if (sliceMaxDistance[slice] == 0u) continue;  // no pixel in this slice
-        uint index = atomicAdd(occupiedCount, 1u);
-        occupiedSlices[index] = slice;
-        occupiedVolumes[index] = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(sliceMinDistance[slice]),
-                                                uintBitsToFloat(sliceMaxDistance[slice]), frame.ndcToView);
-    }
-    if (SLICE_COUNT > 1u && thread == 0u && tileMaxDistance != 0u) {
-        tileVolume = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(tileMinDistance),
-                                    uintBitsToFloat(tileMaxDistance), frame.ndcToView);
-    }
-    barrier();
 
     // 3. Test every candidate light against the tile's whole depth extent (for tiled, the only
     //    test; tiled-2.5d then asks for an occupied depth cell the light meets). For clustered,
     //    the lights that pass are then tested against each occupied slice: a two-level hierarchy
     //    that keeps the slice tests to the few lights near the tile.
     uint candidates = COARSE_TILES > 0u ? candidateCount : lightCount;
-    for (uint k = thread; occupiedCount > 0u && k < candidates; k += kThreads) {
+    for (uint k = thread; occupied && k < candidates; k += kThreads) {
         uint light = COARSE_TILES > 0u ? candidateLights[k] : k;
         CullLight shape = frameCullLights[light];
-        if (!lightMayTouchTile(shape, SLICE_COUNT == 1u ? occupiedVolumes[0] : tileVolume)) continue;
+        if (!lightMayTouchTile(shape, wholeTile)) continue;
         if (DEPTH_MASK && SLICE_COUNT == 1u) {
             // Harada's test, then the light's own shapes against each occupied cell it spans.
             uint cells = lightDepthMask(shape, maskNear, maskScale) & tileDepthMask;

@@ -157,6 +157,17 @@ vec3 shadeSun(Surface surface) {
     return shadeDirectionalLight(surface, frame.sun) * shadow;
 }
 
+// The lights of one mask word, lowest bit first, from packed light `firstLight`.
+// Added to `radiance` one by one, in the brute-force loop's order and association.
+void shadeGridWord(Surface surface, uint bits, uint firstLight, precise inout vec3 radiance, inout uint tested) {
+    while (bits != 0u) {
+        uint bit = uint(findLSB(bits));
+        bits &= bits - 1u;  // clear the lowest set bit: ascending order
+        radiance += shadeLight(surface, lights[firstLight + bit]);
+        ++tested;
+    }
+}
+
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 void main() {
@@ -237,15 +248,10 @@ void main() {
             break;
     }
     // The grid methods' lights: the set bits of the three words, ascending (spots, then points).
-    for (uint word = 0u; walkGridWords && word < PUNCTUAL_GRID_WORDS; ++word) {
-        uint bits = gridWords[word];
-        uint firstLight = lightGridFirstLight(word, spotCount);
-        while (bits != 0u) {
-            uint bit = uint(findLSB(bits));
-            bits &= bits - 1u;  // clear the lowest set bit: ascending order
-            radiance += shadeLight(surface, lights[firstLight + bit]);
-            ++tested;
-        }
+    if (walkGridWords) {
+        shadeGridWord(surface, gridWords.x, lightGridFirstLight(0u, spotCount), radiance, tested);
+        shadeGridWord(surface, gridWords.y, lightGridFirstLight(1u, spotCount), radiance, tested);
+        shadeGridWord(surface, gridWords.z, lightGridFirstLight(2u, spotCount), radiance, tested);
     }
     // Emission last, after every light, in the reference's order. It lights nothing else.
     radiance += emission;
