@@ -290,6 +290,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
                 settings.height = config.height;
             }
             settings.method = config.method;
+            settings.coarseTiles = config.coarseTiles;
             settings.shadows = config.shadows;
             settings.collectLightStats = true;  // rendered apart, untimed (addCounters)
             settings.collectShadowFactors = config.validateShadows;

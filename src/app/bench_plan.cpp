@@ -197,6 +197,28 @@ void addTriangleSeries(std::vector<BenchConfig>& configs, bool quick) {
     }
 }
 
+// The peers' comparison on the default scene with its own lights, at 1280x720 with shadows off
+// (issue 15's targets): every method, and each grid method again without its coarse pass.
+// --quick: the quick methods at the run's size, coarse pass on.
+void addMethodSeries(std::vector<BenchConfig>& configs, bool quick) {
+    for (render::LightListMethod method : benchMethods(quick)) {
+        for (bool coarse : {true, false}) {
+            if (!coarse && (quick || !render::usesLightGrid(method))) continue;
+            BenchConfig config;
+            config.series = "methods";
+            config.scene = &kDefaultBuiltinScene;
+            config.method = method;
+            config.shadows = shadowsOff();
+            config.coarseTiles = coarse;
+            if (!quick) {
+                config.width = 1280;
+                config.height = 720;
+            }
+            configs.push_back(config);
+        }
+    }
+}
+
 }  // namespace
 
 const std::vector<BenchSeries>& benchSeries() {
@@ -214,6 +236,8 @@ const std::vector<BenchSeries>& benchSeries() {
                                " at auto resolution, validated against Embree"},
         {"cascades", "the outdoor scene's sun: 1-4 cascades x 512, 1024, 2048 x the texel filters, validated"},
         {"triangles", "the rooms scene at 10^4..10^7 triangles x every method, with peak memory"},
+        {"methods", "the default scene's own lights at 1280x720, shadows off, x every method, the grid methods also "
+                    "without their coarse pass"},
         {"failures", "the failure study (failures.csv)"},
     };
     return series;
@@ -228,6 +252,7 @@ std::vector<BenchConfig> benchPlan(bool quick) {
     addShadowSeries(configs, quick);
     addCascadeSeries(configs, quick);
     addTriangleSeries(configs, quick);
+    addMethodSeries(configs, quick);
     return configs;
 }
 
@@ -248,6 +273,7 @@ std::string benchConfigName(const BenchConfig& c) {
         if (c.lightRange != kBenchLightRange) s << "-range" << c.lightRange;
     }
     if (c.width) s << "-" << c.width << "x" << c.height;
+    if (!c.coarseTiles) s << "-no-coarse";
     if (c.shadows.enabled) {
         s << "-shadows-" << shadowResolutionName(c.shadows) << "-" << shadowFormatName(c.shadows.format) << "-"
           << shadowFilterName(c.shadows.filter) << "-" << pointShadowLayoutName(c.shadows.pointLayout);

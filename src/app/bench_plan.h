@@ -38,6 +38,7 @@ struct BenchConfig {
     uint32_t height = 0;
     ShadowSettings shadows;
     bool validateShadows = false;
+    bool coarseTiles = true;  // the grid methods' coarse pass (--coarse-tiles)
 };
 
 struct BenchSeries {

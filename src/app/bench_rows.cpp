@@ -35,7 +35,7 @@ std::vector<std::string> benchColumns(const std::vector<std::string>& passes) {
                                         "pixels",        "scene",           "scene_triangles", "objects",
                                         "shadows",       "shadow_res",      "shadow_budget_mib", "shadow_format",
                                         "shadow_filter", "point_layout",    "cascades",       "shadowed_spots",
-                                        "shadowed_points", "rounds",        "best_of"};
+                                        "shadowed_points", "coarse_tiles",  "rounds",         "best_of"};
     std::vector<std::string> timed = passes;
     timed.emplace_back("total");
     for (const char* statistic : {"_ms", "_iqr_ms", "_cv"}) {
@@ -64,6 +64,8 @@ void addConfiguration(BenchRow& row, const BenchConfig& config, const Scene& sce
     row["config"] = benchConfigName(config);
     row["series"] = config.series;
     row["method"] = render::methodName(config.method);
+    // Fine tiles a side of the coarse pass's big tiles; 0: none (methods without a grid, or off).
+    row["coarse_tiles"] = std::to_string(renderer.gridLayout().coarseTiles);
     row["spot"] = std::to_string(lightsOfType(scene, LightType::Spot));
     row["point"] = std::to_string(lightsOfType(scene, LightType::Point));
     if (!config.scene) row["light_range"] = benchNumber(config.lightRange);
