@@ -5,7 +5,8 @@
 //     SLICE_COUNT = 1: one slice spanning the tile's own min..max depth. A pixel with transparent
 //     surfaces in front records its whole depth span, into every slice the span crosses.
 //  2. the occupied slices are listed, each with its frustum segment bounded by the distances of
-//     the pixels really in it (computed once per slice, not per light);
+//     the pixels really in it and, for tiles of up to 32 pixels without transparent spans, by the
+//     rectangle of their columns and rows (computed once per slice, not per light);
 //  3. each (occupied slice, light) pair is tested: the light's conservative shapes against the
 //     segment. Empty slices test nothing, and a light reaching only the foreground of a tile
 //     never lands in a slice that holds only background.
@@ -13,10 +14,12 @@
 // Tiled with DEPTH_MASK (--culling tiled-2.5d) adds Harada's 2.5D test to step 3: the tile's
 // 32-cell depth mask (culling.h) is built from its pixels once their min..max extent is known,
 // and a light that passed the tile test is kept only if its depth cells meet an occupied one
-// whose frustum segment its shapes meet (culling.h, makeDepthCellVolume).
-// ZBINS (--culling zbin): the tile's mask is two-dimensional, every light that meets the tile's
-// side planes anywhere between the near and far planes, and no depth is read at all: the z-bins
-// (lights/z_bins.h, built on the CPU) hold depth, and forward.frag ANDs the two masks.
+// whose frustum segment its shapes meet (culling.h, makeDepthCellVolume), each cell's segment cut
+// to the rectangle of its pixels as the slices' are.
+// DEPTHLESS_TILES (--culling zbin-2d): the tile's mask is two-dimensional, every light that meets
+// the tile's side planes anywhere between the near and far planes, and no depth is read at all:
+// the z-bins (lights/z_bins.h, built on the CPU) hold depth, and forward.frag ANDs the two masks.
+// (--culling zbin builds its tile masks as tiled does, within the tile's depth extent.)
 // COARSE_TILES > 0: the coarse pass (coarse_culling.comp) has culled the lights to this tile's
 // big tile, and steps 1-3 test only those (the candidates), listed while the depths are read.
 #extension GL_GOOGLE_include_directive : require
@@ -30,7 +33,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
 layout(constant_id = PUNCTUAL_SPEC_DEPTH_MASK) const bool DEPTH_MASK = false;  // tiled only
-layout(constant_id = PUNCTUAL_SPEC_ZBINS) const bool ZBINS = false;            // tiled only
+layout(constant_id = PUNCTUAL_SPEC_DEPTHLESS_TILES) const bool DEPTHLESS_TILES = false;  // tiled only
 layout(constant_id = PUNCTUAL_SPEC_COARSE_TILES) const uint COARSE_TILES = 0u;  // 0: no coarse pass
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
@@ -53,6 +56,13 @@ const uint kSide = 8u;
 
 shared uint sliceMinDistance[SLICE_COUNT];  // float bits of view distances (positive: bits sort like values)
 shared uint sliceMaxDistance[SLICE_COUNT];
+// Clustered and tiled-2.5d, tiles of at most 32 pixels, no transparent spans: the columns and rows
+// of the tile (bit i: the tile's pixel column or row i) where each slice (clustered) or depth cell
+// (tiled-2.5d) has pixels. Its frustum segment then spans only that rectangle of the tile: a slice
+// or cell holding an object's edge is a sliver.
+const uint kRectCells = DEPTH_MASK ? PUNCTUAL_DEPTH_MASK_CELLS : SLICE_COUNT;
+shared uint cellColumns[kRectCells];
+shared uint cellRows[kRectCells];
 shared uint sliceMasks[SLICE_COUNT * PUNCTUAL_GRID_WORDS];
 shared uint candidateCount;  // COARSE_TILES: the lights of this tile's coarse tile
 shared uint candidateLights[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
@@ -116,12 +126,31 @@ uvec3 addToSliceRun(uvec3 run, uint slice, uint minBits, uint maxBits) {
     return uvec3(slice, minBits, maxBits);
 }
 
-// One pixel at `depth` into the run, in its slice (the search forward.frag makes); background
-// pixels add nothing.
-uvec3 addPixelToSliceRun(uvec3 run, float depth) {
+// Marks the tile-local pixel columns first.x .. last.x and rows first.y .. last.y as holding
+// pixels of slice or depth cell `cell` (cellColumns, cellRows; tiles of at most 32 pixels).
+void markCellRect(uint cell, uvec2 first, uvec2 last) {
+    if (TILE_SIZE > 32u) return;
+    atomicOr(cellColumns[cell], depthMaskBits(first.x, last.x));
+    atomicOr(cellRows[cell], depthMaskBits(first.y, last.y));
+}
+
+// The NDC rectangle (min corner in xy, max corner in zw) of cell `cell`'s marked pixels, from its
+// first column's left edge to its last column's right edge, cut at the viewport.
+vec4 cellRectNdc(uvec2 tile, uint cell, vec2 pixelToNdc) {
+    uvec2 first = tile * TILE_SIZE + uvec2(findLSB(cellColumns[cell]), findLSB(cellRows[cell]));
+    uvec2 last = tile * TILE_SIZE + uvec2(findMSB(cellColumns[cell]), findMSB(cellRows[cell])) + 1u;
+    vec2 a = vec2(first) * pixelToNdc - 1.0;
+    vec2 b = min(vec2(last), frame.viewport.xy) * pixelToNdc - 1.0;
+    return vec4(min(a, b), max(a, b));
+}
+
+// One pixel at `depth` (tile-local position `local`) into the run, in its slice (the search
+// forward.frag makes); background pixels add nothing.
+uvec3 addPixelToSliceRun(uvec3 run, float depth, uvec2 local) {
     if (isBackgroundDepth(depth)) return run;
     uint slice;
     PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, depth, sliceStart, SLICE_COUNT);
+    markCellRect(slice, local, local);
     uint bits = floatBitsToUint(viewDistanceFromDepth(depth, frame.depthToView.xy));
     return addToSliceRun(run, slice, bits, bits);
 }
@@ -149,6 +178,10 @@ void main() {
     for (uint i = thread; i < SLICE_COUNT; i += kThreads) {
         sliceMinDistance[i] = 0x7F7FFFFFu;  // FLT_MAX
         sliceMaxDistance[i] = 0u;
+    }
+    for (uint i = thread; i < kRectCells; i += kThreads) {
+        cellColumns[i] = 0u;
+        cellRows[i] = 0u;
     }
     for (uint i = thread; i < SLICE_COUNT * PUNCTUAL_GRID_WORDS; i += kThreads) sliceMasks[i] = 0u;
     for (uint i = thread; i < SLICE_COUNT; i += kThreads) sliceStart[i] = depthRange.sliceStartDepth[i];
@@ -191,7 +224,7 @@ void main() {
     // lavapipe at 1280x720 with no lights: 27 ms before, 10 ms after. Clustered reads blocks
     // next; the per-pixel loop after it serves frames with transparent spans.
     uvec2 tileEnd = min((tile + 1u) * TILE_SIZE, viewport);  // one past the tile's last pixel
-    bool foldDepths = SLICE_COUNT == 1u && !ZBINS && frame.lightCounts.w == 0u;
+    bool foldDepths = SLICE_COUNT == 1u && !DEPTHLESS_TILES && frame.lightCounts.w == 0u;
     if (foldDepths) {
         vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) geometry depth; x = 0: none
         for (uint by = gl_LocalInvocationID.y; by < kBlocks; by += kSide) {
@@ -209,7 +242,7 @@ void main() {
     // distances to that slice with two searches and two divisions instead of four each; a block
     // across a slice boundary adds its pixels one by one. (Measured on lavapipe, default scene at
     // 1280x720: the clustered culling pass 13% faster, A/B under load.)
-    bool clusterBlocks = SLICE_COUNT > 1u && !ZBINS && frame.lightCounts.w == 0u;
+    bool clusterBlocks = SLICE_COUNT > 1u && !DEPTHLESS_TILES && frame.lightCounts.w == 0u;
     uvec3 run = uvec3(0xFFFFFFFFu, 0xFFFFFFFFu, 0u);  // the thread's current slice, its min and max distance bits
     for (uint by = gl_LocalInvocationID.y; clusterBlocks && by < kBlocks; by += kSide) {
         for (uint bx = gl_LocalInvocationID.x; bx < kBlocks; bx += kSide) {
@@ -223,24 +256,27 @@ void main() {
             uint farBits = floatBitsToUint(viewDistanceFromDepth(extent.y, frame.depthToView.xy));
             threadMin = min(threadMin, nearBits);
             threadMax = max(threadMax, farBits);
+            uvec2 local = 2u * uvec2(bx, by);
+            bool right = corner.x + 1u < tileEnd.x;
+            bool below = corner.y + 1u < tileEnd.y;
             if (nearSlice == farSlice) {
                 run = addToSliceRun(run, nearSlice, nearBits, farBits);
+                // (The whole block: a background pixel in it only widens the rectangle.)
+                markCellRect(nearSlice, local, local + uvec2(right ? 1u : 0u, below ? 1u : 0u));
                 continue;
             }
             vec4 quad = textureGather(depthImage, (vec2(corner) + 1.0) * frame.viewport.zw);
-            bool right = corner.x + 1u < tileEnd.x;
-            bool below = corner.y + 1u < tileEnd.y;
-            run = addPixelToSliceRun(run, quad.w);
-            if (right) run = addPixelToSliceRun(run, quad.z);
-            if (below) run = addPixelToSliceRun(run, quad.x);
-            if (right && below) run = addPixelToSliceRun(run, quad.y);
+            run = addPixelToSliceRun(run, quad.w, local);
+            if (right) run = addPixelToSliceRun(run, quad.z, local + uvec2(1u, 0u));
+            if (below) run = addPixelToSliceRun(run, quad.x, local + uvec2(0u, 1u));
+            if (right && below) run = addPixelToSliceRun(run, quad.y, local + uvec2(1u, 1u));
         }
     }
     if (run.x != 0xFFFFFFFFu) {
         atomicMin(sliceMinDistance[run.x], run.y);
         atomicMax(sliceMaxDistance[run.x], run.z);
     }
-    for (uint y = gl_LocalInvocationID.y; !foldDepths && !clusterBlocks && !ZBINS && y < TILE_SIZE; y += kSide) {
+    for (uint y = gl_LocalInvocationID.y; !foldDepths && !clusterBlocks && !DEPTHLESS_TILES && y < TILE_SIZE; y += kSide) {
         for (uint x = gl_LocalInvocationID.x; x < TILE_SIZE; x += kSide) {
             uvec2 pixel = tile * TILE_SIZE + uvec2(x, y);
             if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
@@ -313,7 +349,12 @@ void main() {
         uint threadMask = 0u;
         for (uint by = gl_LocalInvocationID.y; foldDepths && by < kBlocks; by += kSide) {
             for (uint bx = gl_LocalInvocationID.x; bx < kBlocks; bx += kSide) {
-                threadMask |= quadDepthCells(tile * TILE_SIZE + 2u * uvec2(bx, by), tileEnd, maskNear, maskScale);
+                uvec2 corner = tile * TILE_SIZE + 2u * uvec2(bx, by);
+                uint cells = quadDepthCells(corner, tileEnd, maskNear, maskScale);
+                threadMask |= cells;
+                // Each of the block's cells gets the whole block's rectangle.
+                uvec2 last = 2u * uvec2(bx, by) + uvec2(corner.x + 1u < tileEnd.x ? 1u : 0u, corner.y + 1u < tileEnd.y ? 1u : 0u);
+                for (; cells != 0u; cells &= cells - 1u) markCellRect(uint(findLSB(cells)), 2u * uvec2(bx, by), last);
             }
         }
         for (uint y = gl_LocalInvocationID.y; !foldDepths && y < TILE_SIZE; y += kSide) {
@@ -339,9 +380,13 @@ void main() {
             }
         }
         if (threadMask != 0u) atomicOr(tileDepthMask, threadMask);
+        barrier();
         if (thread < PUNCTUAL_DEPTH_MASK_CELLS) {
-            cellVolumes[thread] = makeDepthCellVolume(min(ndcA, ndcB), max(ndcA, ndcB), thread, maskNear,
-                                                      uintBitsToFloat(sliceMaxDistance[0]), frame.ndcToView);
+            // The rectangle of the cell's pixels where marked (an unoccupied cell is never tested).
+            bool marked = foldDepths && TILE_SIZE <= 32u && cellColumns[thread] != 0u;
+            vec4 rect = marked ? cellRectNdc(tile, thread, pixelToNdc) : vec4(min(ndcA, ndcB), max(ndcA, ndcB));
+            cellVolumes[thread] = makeDepthCellVolume(rect.xy, rect.zw, thread, maskNear, uintBitsToFloat(sliceMaxDistance[0]),
+                                                      frame.ndcToView);
         }
     }
     if (DEPTH_MASK) barrier();
@@ -349,10 +394,10 @@ void main() {
     // 2. Clustered: list the occupied slices with their frustum segments, and the whole tile's.
     //    Tiled (one slice): every thread makes the tile's segment itself, which costs less than a
     //    barrier (zbin: the tile's whole column, the bins holding depth).
-    bool occupied = SLICE_COUNT == 1u && (ZBINS || sliceMaxDistance[0] != 0u);
+    bool occupied = SLICE_COUNT == 1u && (DEPTHLESS_TILES || sliceMaxDistance[0] != 0u);
     TileVolume wholeTile;
     if (SLICE_COUNT == 1u) {
-        wholeTile = ZBINS ? makeTileColumn(min(ndcA, ndcB), max(ndcA, ndcB), frame.depthToView.xy, frame.ndcToView)
+        wholeTile = DEPTHLESS_TILES ? makeTileColumn(min(ndcA, ndcB), max(ndcA, ndcB), frame.depthToView.xy, frame.ndcToView)
                           : makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(sliceMinDistance[0]),
                                            uintBitsToFloat(sliceMaxDistance[0]), frame.ndcToView);
     } else {
@@ -360,7 +405,9 @@ void main() {
             if (sliceMaxDistance[slice] == 0u) continue;  // no pixel in this slice
             uint index = atomicAdd(occupiedCount, 1u);
             occupiedSlices[index] = slice;
-            occupiedVolumes[index] = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(sliceMinDistance[slice]),
+            // The rectangle of the slice's pixels where marked, else the whole tile.
+            vec4 rect = clusterBlocks && TILE_SIZE <= 32u ? cellRectNdc(tile, slice, pixelToNdc) : vec4(min(ndcA, ndcB), max(ndcA, ndcB));
+            occupiedVolumes[index] = makeTileVolume(rect.xy, rect.zw, uintBitsToFloat(sliceMinDistance[slice]),
                                                     uintBitsToFloat(sliceMaxDistance[slice]), frame.ndcToView);
         }
         if (thread == 0u && tileMaxDistance != 0u) {

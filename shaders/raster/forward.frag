@@ -5,7 +5,8 @@
 //   per-object  the object's (at most 8) lights, ascending;
 //   tiled       the set bits of the pixel's tile masks, ascending;
 //   tiled-2.5d  the same, the masks also pruned by the tile's depth cells (light_culling.comp);
-//   zbin        the set bits of the tile's two-dimensional masks AND its z-bin's, ascending;
+//   zbin        the set bits of the tile's masks AND its z-bin's, ascending;
+//   zbin-2d     the same, the tile's masks two-dimensional (built without depth);
 //   clustered   the set bits of the pixel's cluster masks, ascending.
 // All walk lights in the same ascending order and a light beyond its range adds exactly 0, so
 // tiled and clustered images are bit-identical to brute force. Every variant value (light list,
@@ -94,6 +95,26 @@ uint pixelGridCell() {
     uint slice;
     PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, gl_FragCoord.z, depthRange.sliceStartDepth, SLICE_COUNT);
     return (tile.y * frame.lightGrid.y + tile.x) * SLICE_COUNT + slice;
+}
+
+// Statistics variant: the list this pixel's method gives it is a function of one key, its list
+// cell: the whole screen (brute), the object (per-object), the tile (tiled, tiled-2.5d), the
+// cluster (clustered), or the tile and z-bin (zbin, zbin-2d). Exact lists per such cell (each the
+// lights reaching any of its pixels) are the best any culler of that granularity can do: the
+// statistics compare each method with them (metrics/culling_stats.h, floor efficiency).
+uint pixelListCell() {
+    // (Not a switch on LIGHT_LIST: that is the shading switch's, which must list every method.)
+    bool zBinned = LIGHT_LIST == PUNCTUAL_LIGHT_LIST_ZBIN || LIGHT_LIST == PUNCTUAL_LIGHT_LIST_ZBIN_2D;
+    bool gridded = LIGHT_LIST == PUNCTUAL_LIGHT_LIST_TILED || LIGHT_LIST == PUNCTUAL_LIGHT_LIST_TILED_25D ||
+                   LIGHT_LIST == PUNCTUAL_LIGHT_LIST_CLUSTERED;
+    if (LIGHT_LIST == PUNCTUAL_LIGHT_LIST_PER_OBJECT) return draw.objectIndex;
+    if (gridded) return pixelGridCell();
+    if (zBinned) {
+        uint bin;
+        PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(bin, gl_FragCoord.z, zBins.binStartDepth, PUNCTUAL_ZBIN_COUNT);
+        return pixelGridCell() * PUNCTUAL_ZBIN_COUNT + bin;
+    }
+    return 0u;  // brute force: one list for the screen
 }
 
 // Statistics variant: the shadow-map lookups and texture taps this pixel has taken so far
@@ -233,9 +254,11 @@ void main() {
             walkGridWords = true;
             break;
         }
-        case PUNCTUAL_LIGHT_LIST_ZBIN: {
-            // URP Forward+ / Drobot: the tile's two-dimensional mask AND the mask of the pixel's
-            // z-bin (lights/z_bins.h), found by the stored-start search the CPU binned with.
+        case PUNCTUAL_LIGHT_LIST_ZBIN:
+        case PUNCTUAL_LIGHT_LIST_ZBIN_2D: {
+            // URP Forward+ / Drobot: the tile's mask (zbin-2d: two-dimensional, every depth) AND
+            // the mask of the pixel's z-bin (lights/z_bins.h), found by the stored-start search
+            // the CPU binned with.
             uint base = pixelGridCell() * PUNCTUAL_GRID_WORDS;
             uint bin;
             PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(bin, gl_FragCoord.z, zBins.binStartDepth, PUNCTUAL_ZBIN_COUNT);
@@ -279,9 +302,17 @@ void main() {
         // The method's own lookups, before the brute-force radiance below takes its own.
         uint work = packPixelWork(tested, shadowLookups, shadowTaps);
         uint affecting = 0u;
+        uvec3 affectingWords = uvec3(0u);  // the reaching lights as a grid mask (lightGridWord)
         vec3 bruteRadiance = shadeSun(surface);
         for (uint i = 0u; i < lightCount; ++i) {
-            if (punctualAttenuation(lights[i], inWorldPosition) > 0.0) ++affecting;
+            if (punctualAttenuation(lights[i], inWorldPosition) > 0.0) {
+                ++affecting;
+                uint bit = 1u << lightGridBit(i, spotCount);
+                uint word = lightGridWord(i, spotCount);
+                if (word == 0u) affectingWords.x |= bit;
+                else if (word == 1u) affectingWords.y |= bit;
+                else affectingWords.z |= bit;
+            }
             bruteRadiance += shadeLight(surface, lights[i]);
         }
         bruteRadiance += emission;
@@ -299,6 +330,13 @@ void main() {
             lightStatWords[index * 4u + 1u] = affecting | 0x80000000u;
             lightStatWords[index * 4u + 2u] = floatBitsToUint(luminance(radiance));
             lightStatWords[index * 4u + 3u] = floatBitsToUint(luminance(bruteRadiance));
+            // Third block (after the opaque and the transparent ones): the reaching lights' mask and
+            // the pixel's list cell, for the exact-list floor.
+            uint exact = (2u * uint(frame.viewport.x * frame.viewport.y) + index) * 4u;
+            lightStatWords[exact + 0u] = affectingWords.x;
+            lightStatWords[exact + 1u] = affectingWords.y;
+            lightStatWords[exact + 2u] = affectingWords.z;
+            lightStatWords[exact + 3u] = pixelListCell();
         }
     }
 }

@@ -129,6 +129,8 @@ struct TileVolume {
     float farDistance;
     vec3 sphereCenter;
     float sphereRadius;
+    vec2 rayMin;  // the xy bounds of the four corner rays at distance 1 (their z is -1): the
+    vec2 rayMax;  // cross-section at distance D spans rayMin D .. rayMax D
 };
 
 // View-space direction (at distance 1) through an NDC point. `ndcToView` = (1/P00, 1/P11, P20, P21):
@@ -168,6 +170,8 @@ PUNCTUAL_FN TileVolume makeTileVolume(vec2 ndcMin, vec2 ndcMax, float nearDistan
     v.aabbMax.z = -nearD;
     v.sphereCenter = (v.aabbMin + v.aabbMax) * 0.5f;
     v.sphereRadius = length(v.aabbMax - v.aabbMin) * 0.5f;
+    v.rayMin = vec2(lo);
+    v.rayMax = vec2(hi);
     return v;
 }
 
@@ -270,13 +274,118 @@ PUNCTUAL_FN CullLight makeCullLight(GpuPunctualLight light, mat4 view) {
     return c;
 }
 
-// The tile test: the light's bounding sphere against the segment, and for spots also the cone
-// against the segment's bounding sphere (tighter than the sphere alone for narrow cones).
-PUNCTUAL_FN bool lightMayTouchTile(CullLight light, TileVolume v) {
+// How far a spot light reaches along unit direction u: the largest u . x over the points x it
+// lights, padded. The lit region is the spherical sector (apex P, unit axis D, half-angle theta,
+// slant r; see spotBoundingSphere): its points are P + t w with 0 <= t <= r and angle(w, D) <=
+// theta. The w nearest to u turns from D towards u by theta (or reaches u itself), so the largest
+// u . w is cos(max(0, angle(u, D) - theta)) = cos(alpha) cos(theta) + sin(alpha) sin(theta) once
+// alpha = angle(u, D) > theta, and 1 before; t = r when that is positive, else t = 0 (the apex).
+// Padded by the margin of r: its few roundings are ~1e-7 r. A spot seen side-on (alpha = 90 deg,
+// theta = 30 deg) reaches r/2 along the view axis, where its bounding sphere reaches about 0.58 r
+// past the apex; one pointing away reaches r one way and 0 the other.
+PUNCTUAL_FN float spotReachAlong(CullLight light, vec3 u) {
+    float cosTheta = light.cosOuter;
+    float sinTheta = sqrt(max(1.0f - cosTheta * cosTheta, 0.0f));
+    float cosAlpha = dot(u, light.axis);
+    float sinAlpha = sqrt(max(1.0f - cosAlpha * cosAlpha, 0.0f));
+    float reach = cosAlpha >= cosTheta ? 1.0f : max(cosAlpha * cosTheta + sinAlpha * sinTheta, 0.0f);
+    return dot(u, light.position) + light.range * (reach + PUNCTUAL_CULL_RELATIVE_MARGIN);
+}
+
+// A light's view-distance extent, vec2(nearest, farthest): the range of -z over all it can reach.
+// Points: the range sphere's, centre -/+ radius. Spots: the sector's reach along -z and +z, cut by
+// the bounding sphere's extent (both are conservative).
+PUNCTUAL_FN vec2 lightDistanceExtent(CullLight light) {
+    float centre = -light.sphereCenter.z;
+    vec2 sphere = vec2(centre - light.sphereRadius, centre + light.sphereRadius);
+    if (light.cosOuter <= -1.0f) return sphere;
+    return vec2(max(sphere.x, -spotReachAlong(light, vec3(0.0f, 0.0f, 1.0f))),
+                min(sphere.y, spotReachAlong(light, vec3(0.0f, 0.0f, -1.0f))));
+}
+
+// True when a spot's sector may overlap the segment: it reaches inside each side plane (planes
+// through the eye, unit normals pointing in: a sector whose largest n . x is negative lies wholly
+// outside) and its reach along +-x and +-y overlaps the AABB's sides (its depth extent is tested
+// by the caller). These are the exact separating planes the bounding sphere only approximates.
+PUNCTUAL_FN bool spotMayTouchTile(CullLight light, TileVolume v) {
+    for (int i = 0; i < 4; ++i) {
+        if (spotReachAlong(light, vec3(v.sidePlanes[i])) < 0.0f) return false;
+    }
+    if (spotReachAlong(light, vec3(1.0f, 0.0f, 0.0f)) < v.aabbMin.x) return false;
+    if (-spotReachAlong(light, vec3(-1.0f, 0.0f, 0.0f)) > v.aabbMax.x) return false;
+    if (spotReachAlong(light, vec3(0.0f, 1.0f, 0.0f)) < v.aabbMin.y) return false;
+    if (-spotReachAlong(light, vec3(0.0f, -1.0f, 0.0f)) > v.aabbMax.y) return false;
+    return true;
+}
+
+// The part of segment `v` between distances nearD <= farD (within its own, widened ones): the
+// same side planes, its AABB the cross-sections' bounds scaled to both ends (as makeTileVolume)
+// and the sphere around that. A light meets the segment only within its own depth extent, so it
+// is tested against that part, whose box and sphere are smaller where the segment is long.
+PUNCTUAL_FN TileVolume clipSegment(TileVolume v, float nearD, float farD) {
+    TileVolume part = v;
+    part.nearDistance = nearD;
+    part.farDistance = farD;
+    part.aabbMin = vec3(min(v.rayMin * nearD, v.rayMin * farD), -farD);
+    part.aabbMax = vec3(max(v.rayMax * nearD, v.rayMax * farD), -nearD);
+    part.sphereCenter = (part.aabbMin + part.aabbMax) * 0.5f;
+    part.sphereRadius = length(part.aabbMax - part.aabbMin) * 0.5f * (1.0f + PUNCTUAL_CULL_RELATIVE_MARGIN);
+    return part;
+}
+
+// The smallest n . x over segment `v`: over its eight corners, since the segment is their convex
+// hull. A tile's screen rectangle is axis-aligned, so its corner rays are (x, y, -1) with x in
+// {rayMin.x, rayMax.x} and y in {rayMin.y, rayMax.y} independently, and a corner at distance D is
+// D times its ray: per distance the smallest is D (min over x of n.x x + min over y of n.y y - n.z),
+// linear in D, so at one of the two ends.
+PUNCTUAL_FN float segmentMinAlong(TileVolume v, vec3 n) {
+    float perDistance = min(n.x * v.rayMin.x, n.x * v.rayMax.x) + min(n.y * v.rayMin.y, n.y * v.rayMax.y) - n.z;
+    return min(perDistance * v.nearDistance, perDistance * v.farDistance);
+}
+
+// Separating planes between a spot's sector and segment `v`, tested against the segment's corners
+// (segmentMinAlong):
+//   the cone's tangent plane facing the segment's centre c: with c - P split into a part along the
+//     axis D and the unit u across it, the cone's generator nearest to c is cos(theta) D +
+//     sin(theta) u, and the plane through the apex holding it and the normal of the (D, u) plane
+//     has the outward normal n = cos(theta) u - sin(theta) D; the cone (theta <= 90 deg) lies where
+//     n . (x - P) <= 0;
+//   the plane through the apex across the axis: the sector lies where D . (x - P) >= 0;
+//   the plane across the axis at the range: the sector lies where D . (x - P) <= r.
+// Each keeps the light unless the whole segment lies beyond the plane by the margin of r. These are
+// the sector's own planes, where coneMayTouchSphere bounds the segment by a sphere. (Planes facing
+// the segment's two ends as well were measured: 0.2% fewer lights tested, the culling pass 3x
+// slower on lavapipe.)
+PUNCTUAL_FN bool coneMayTouchSegment(CullLight light, TileVolume v) {
+    float pad = light.range * PUNCTUAL_CULL_RELATIVE_MARGIN;
+    float apexAlongAxis = dot(light.axis, light.position);
+    if (segmentMinAlong(v, light.axis) - apexAlongAxis > light.range + pad) return false;
+    if (-segmentMinAlong(v, -light.axis) - apexAlongAxis < -pad) return false;
+    vec3 offset = v.sphereCenter - light.position;
+    vec3 across = offset - light.axis * dot(offset, light.axis);
+    float acrossLength = length(across);
+    if (acrossLength <= 1e-6f * light.range) return true;  // the centre on the axis: no plane faces it
+    float sinTheta = sqrt(max(1.0f - light.cosOuter * light.cosOuter, 0.0f));
+    vec3 n = light.cosOuter * (across / acrossLength) - sinTheta * light.axis;
+    return segmentMinAlong(v, n) - dot(n, light.position) <= pad;
+}
+
+// The tile test. A light meets the segment only within its own depth extent
+// (lightDistanceExtent), so the tests run on that part of the segment (clipSegment): the light's
+// bounding sphere against its planes and box; for spots also the sector's range sphere (around
+// the apex), the sector's reach against the planes and box (spotMayTouchTile), the cone against
+// the part's bounding sphere (coneMayTouchSphere) and the sector's own planes against the part's
+// corners (coneMayTouchSegment). Each is conservative; the light is culled when any says it misses.
+PUNCTUAL_FN bool lightMayTouchTile(CullLight light, TileVolume segment) {
+    vec2 extent = lightDistanceExtent(light);
+    if (extent.y < segment.nearDistance || extent.x > segment.farDistance) return false;
+    TileVolume v = clipSegment(segment, max(segment.nearDistance, extent.x), min(segment.farDistance, extent.y));
     if (!sphereMayTouchTile(light.sphereCenter, light.sphereRadius, v)) return false;
     if (light.cosOuter <= -1.0f) return true;
-    return coneMayTouchSphere(light.position, light.axis, light.range, light.cosOuter, v.sphereCenter,
-                              v.sphereRadius);
+    if (!sphereMayTouchTile(light.position, light.range, v)) return false;
+    if (!spotMayTouchTile(light, v)) return false;
+    if (!coneMayTouchSphere(light.position, light.axis, light.range, light.cosOuter, v.sphereCenter, v.sphereRadius)) return false;
+    return coneMayTouchSegment(light, v);
 }
 
 // Harada's 2.5D culling (Harada, McKee and Yang, "Forward+: A step toward film-style shading in
@@ -311,11 +420,10 @@ PUNCTUAL_FN uint depthMaskBits(uint first, uint last) {
     return upToLast & ~((1u << first) - 1u);
 }
 
-// A light's mask in a tile: the cells of its bounding sphere's view-distance extent.
+// A light's mask in a tile: the cells of its view-distance extent (lightDistanceExtent).
 PUNCTUAL_FN uint lightDepthMask(CullLight light, float nearDistance, float scale) {
-    float centre = -light.sphereCenter.z;
-    return depthMaskBits(depthMaskCell(centre - light.sphereRadius, nearDistance, scale),
-                         depthMaskCell(centre + light.sphereRadius, nearDistance, scale));
+    vec2 extent = lightDistanceExtent(light);
+    return depthMaskBits(depthMaskCell(extent.x, nearDistance, scale), depthMaskCell(extent.y, nearDistance, scale));
 }
 
 // The tile's frustum segment of depth cell `cell` of the extent [nearDistance, farDistance]: from

@@ -47,7 +47,7 @@ std::vector<std::string> benchColumns(const std::vector<std::string>& passes) {
           "camera_triangles", "depth_triangles", "forward_triangles", "transparent_triangles", "shadow_triangles",
           "depth_draws", "forward_draws", "transparent_draws", "shadow_draws", "shadow_draws_max",
           "shadow_memory_bytes", "light_grid_bytes", "scene_bytes", "frame_bytes", "device_bytes", "peak_rss_bytes",
-          "efficiency", "missed_energy", "image_error", "pixels_off", "shadow_reduced_views", "shadow_misclassified",
+          "efficiency", "floor_efficiency", "missed_energy", "image_error", "pixels_off", "shadow_reduced_views", "shadow_misclassified",
           "shadow_misclassified_all", "shadow_misclassified_1px", "shadow_false_shadow", "shadow_false_lit",
           "sun_misclassified", "sun_misclassified_1px"}) {
         columns.emplace_back(column);
@@ -134,6 +134,7 @@ void addCounters(BenchRow& row, render::Renderer& renderer, const LightStatsImag
         row["shadow_lookups_per_pixel"] = benchNumber(culling.shadowLookupsPerPixel);
         row["filter_taps_per_pixel"] = benchNumber(culling.shadowTapsPerPixel);
         row["efficiency"] = benchNumber(culling.efficiency);
+        row["floor_efficiency"] = benchNumber(culling.floorEfficiency);
         row["missed_energy"] = benchNumber(culling.missedEnergy);
     }
     const render::CameraDraws& camera = renderer.cameraDraws();

@@ -71,6 +71,9 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
         {"shadow_lookups_per_pixel", stats.shadowLookupsPerPixel},
         {"shadow_taps_per_pixel", stats.shadowTapsPerPixel},
         {"efficiency", stats.efficiency},
+        // Exact lists at the method's granularity (its tiles, clusters, tile and z-bin pairs or
+        // objects): the efficiency no conservative method of that granularity beats.
+        {"floor_efficiency", stats.floorEfficiency},
         {"max_tested", stats.maxTested},
         {"max_affecting", stats.maxAffecting},
         {"missed_energy", stats.missedEnergy},

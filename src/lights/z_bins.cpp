@@ -14,8 +14,8 @@ struct Extent {
 };
 
 Extent extentOf(const gpu::CullLight& light) {
-    const float centre = -light.sphereCenter.z;
-    return {std::max(centre - light.sphereRadius, 0.0f), centre + light.sphereRadius};
+    const glm::vec2 extent = gpu::lightDistanceExtent(light);
+    return {std::max(extent.x, 0.0f), extent.y};
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 #pragma once
 // The z-bin method's bins, built on the CPU each frame (URP Forward+, after Drobot, "Improved
 // culling for tiled and clustered rendering", SIGGRAPH 2017):
-//   1. each light's view-distance extent is its bounding sphere's (culling.h, makeCullLight:
+//   1. each light's view-distance extent is culling.h's lightDistanceExtent (its shapes,
 //      already widened by the culling margin), nearest end first;
 //   2. the lights are sorted by that nearest end (ties by packed index: deterministic);
 //   3. PUNCTUAL_ZBIN_COUNT logarithmic bins between the nearest and the farthest light extent

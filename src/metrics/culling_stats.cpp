@@ -1,8 +1,41 @@
 #include "metrics/culling_stats.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
+#include <unordered_map>
+
+#include "gpu_types.h"
 
 namespace punctual {
+namespace {
+
+// Lights tested over the covered pixels if each list cell's list held exactly the lights that reach
+// one of its pixels: the union of the cell's masks, counted once per pixel of the cell.
+double exactListTested(const LightStatsImage& image) {
+    if (image.listCells.size() != image.covered.size()) return 0.0;
+    using Mask = std::array<uint32_t, PUNCTUAL_GRID_WORDS>;
+    struct Cell {
+        Mask lights{};
+        uint64_t pixels = 0;
+    };
+    std::unordered_map<uint32_t, Cell> cells;
+    for (size_t i = 0; i < image.covered.size(); ++i) {
+        if (!image.covered[i]) continue;
+        Cell& cell = cells[image.listCells[i]];
+        for (uint32_t w = 0; w < PUNCTUAL_GRID_WORDS; ++w) cell.lights[w] |= image.affectingMasks[i * PUNCTUAL_GRID_WORDS + w];
+        ++cell.pixels;
+    }
+    double tested = 0.0;
+    for (const auto& [key, cell] : cells) {
+        int lights = 0;
+        for (uint32_t word : cell.lights) lights += std::popcount(word);
+        tested += double(lights) * double(cell.pixels);
+    }
+    return tested;
+}
+
+}  // namespace
 
 CullingStats computeCullingStats(const LightStatsImage& image) {
     CullingStats stats;
@@ -44,6 +77,7 @@ CullingStats computeCullingStats(const LightStatsImage& image) {
         stats.transparentAffectingPerFragment = transparentAffecting / double(stats.transparentFragments);
     }
     stats.efficiency = affecting > 0.0 ? tested / affecting : 0.0;
+    stats.floorEfficiency = affecting > 0.0 ? exactListTested(image) / affecting : 0.0;
     stats.missedEnergy = bruteSum > 0.0 ? std::max(0.0, 1.0 - methodSum / bruteSum) : 0.0;
     return stats;
 }

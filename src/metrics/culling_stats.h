@@ -22,6 +22,11 @@ struct LightStatsImage {
     std::vector<uint32_t> transparentAffecting;
     std::vector<uint32_t> transparentFragments;
     std::vector<uint32_t> transparentMissingLight;  // fragments whose method radiance fell short of brute force's
+    // Per opaque pixel: the lights that reach it as a light-grid mask (PUNCTUAL_GRID_WORDS words,
+    // culling.h's lightGridWord), and its list cell, the key its method's list is a function of
+    // (forward.frag, pixelListCell: the tile, the cluster, the tile and z-bin, the object).
+    std::vector<uint32_t> affectingMasks;
+    std::vector<uint32_t> listCells;
 };
 
 struct CullingStats {
@@ -33,6 +38,12 @@ struct CullingStats {
     uint32_t maxAffecting = 0;
     // tested / affecting: 1 is a perfect list; brute force is lights / affecting.
     double efficiency = 0.0;
+    // The efficiency of exact lists at the method's granularity: each list cell's list the lights
+    // that reach at least one of its covered pixels, so a pixel tests its cell's union. No
+    // conservative method of that granularity tests fewer; efficiency / floorEfficiency is how far
+    // a method's shapes and depth tests are from it, floorEfficiency - 1 what the cells' size costs.
+    // 0 where the image has no masks.
+    double floorEfficiency = 0.0;
     // 1 - (sum of the method's luminance) / (sum of brute force's): the share of radiance the
     // method's lists lose (0 for every conservative method, > 0 for per-object over its cap).
     double missedEnergy = 0.0;

@@ -29,6 +29,7 @@ LightGridLayout LightGridLayout::forMethod(const LightListMethodInfo& method, ui
     layout.slices = method.depthSlices ? clusterSlices : 1u;
     layout.depthMask = method.depthMask;
     layout.zBins = method.zBins;
+    layout.depthlessTiles = method.depthlessTiles;
     const uint32_t perCoarseTile = kCoarseTilePixels / tileSize;
     layout.coarseTiles = coarse && method.usesLightGrid && perCoarseTile >= 2 ? perCoarseTile : 0u;
     return layout;
@@ -85,12 +86,12 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
     if (!culled_) return;
     // VkBool32 for the bool constant, as the specification asks.
     const std::array<uint32_t, 5> values = {layout_.tileSize, layout_.slices, VkBool32(layout_.depthMask),
-                                            VkBool32(layout_.zBins), layout_.coarseTiles};
+                                            VkBool32(layout_.depthlessTiles), layout_.coarseTiles};
     const std::array<VkSpecializationMapEntry, 5> entries = {{
         {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, sizeof(uint32_t), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_DEPTH_MASK, 2 * sizeof(uint32_t), sizeof(VkBool32)},
-        {PUNCTUAL_SPEC_ZBINS, 3 * sizeof(uint32_t), sizeof(VkBool32)},
+        {PUNCTUAL_SPEC_DEPTHLESS_TILES, 3 * sizeof(uint32_t), sizeof(VkBool32)},
         {PUNCTUAL_SPEC_COARSE_TILES, 4 * sizeof(uint32_t), sizeof(uint32_t)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};

@@ -27,7 +27,8 @@ struct LightGridLayout {
     uint32_t tilesY = 0;
     uint32_t slices = 1;  // 1: tiled
     bool depthMask = false;  // tiled-2.5d: lights also tested against the tile's depth mask
-    bool zBins = false;      // zbin: two-dimensional tile masks (no depth read), the bins hold depth
+    bool zBins = false;      // zbin, zbin-2d: the forward pass ANDs the tile's mask with its z-bin's
+    bool depthlessTiles = false;  // zbin-2d: two-dimensional tile masks (no depth read), the bins hold depth
     uint32_t coarseTiles = 0;  // fine tiles a side of a coarse tile; 0: no coarse pass
 
     uint32_t cellCount() const { return tilesX * tilesY * slices; }

@@ -21,6 +21,7 @@ enum class LightListMethod : uint32_t {
     Clustered = PUNCTUAL_LIGHT_LIST_CLUSTERED,
     Tiled25D = PUNCTUAL_LIGHT_LIST_TILED_25D,
     ZBin = PUNCTUAL_LIGHT_LIST_ZBIN,
+    ZBin2D = PUNCTUAL_LIGHT_LIST_ZBIN_2D,
 };
 
 struct LightListMethodInfo {
@@ -30,14 +31,15 @@ struct LightListMethodInfo {
     bool usesLightGrid = false;  // a culling pass fills a light grid (per tile or per cluster) for the forward pass
     bool depthSlices = false;    // the grid's tiles are split into --slices depth slices (clusters)
     bool depthMask = false;      // the culling kernel keeps a light only where it meets the tile's 2.5D depth mask
-    bool zBins = false;          // two-dimensional tile masks ANDed with CPU-built z-bins (lights/z_bins.h)
+    bool zBins = false;          // tile masks ANDed with CPU-built z-bins (lights/z_bins.h)
+    bool depthlessTiles = false; // the tile masks read no depth: every light in the tile's column, near to far plane
     bool objectLists = false;    // the CPU builds per-object light lists (at most 8 per object) for it
     bool isReference = false;    // the exact sum every other method is compared against
     bool quickBench = false;     // swept by `bench --quick` (the full bench sweeps every method)
     const char* description = "";
 };
 
-inline constexpr std::array<LightListMethodInfo, 6> kLightListMethods = {{
+inline constexpr std::array<LightListMethodInfo, 7> kLightListMethods = {{
     {.value = LightListMethod::Brute,
      .name = "brute",
      .gpu = PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_BRUTE),
@@ -74,7 +76,14 @@ inline constexpr std::array<LightListMethodInfo, 6> kLightListMethods = {{
      .gpu = PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_ZBIN),
      .usesLightGrid = true,
      .zBins = true,
-     .description = "its screen tile's lights (at every depth) AND its depth bin's range of depth-sorted lights (URP Forward+)"},
+     .description = "its screen tile's lights (within the tile's depth extent) AND its depth bin's range of depth-sorted lights (URP Forward+'s bins, Drobot's depth-tested tiles)"},
+    {.value = LightListMethod::ZBin2D,
+     .name = "zbin-2d",
+     .gpu = PUNCTUAL_GPU_CONSTANT(PUNCTUAL_LIGHT_LIST_ZBIN_2D),
+     .usesLightGrid = true,
+     .zBins = true,
+     .depthlessTiles = true,
+     .description = "its screen tile's lights (at every depth) AND its depth bin's range (URP Forward+ as shipped: tiles built without depth)"},
 }};
 static_assert(kLightListMethods.size() == PUNCTUAL_LIGHT_LIST_COUNT, "one entry per PUNCTUAL_LIGHT_LIST_* value");
 static_assert(gpuValuesAreIndices(kLightListMethods), "entry i is the method of GPU value i");

@@ -138,8 +138,9 @@ struct Renderer::Resources {
           lights(context, std::max<size_t>(frameLights.packed.size(), 1) * sizeof(gpu::GpuPunctualLight),
                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "lights"),
           objectLights(storageWords(context, perObject.lights, "object lights")),
-          // Four words per pixel for the opaque surfaces, four for the transparent fragments.
-          lightStats(debugOutput(context, settings.collectLightStats, VkDeviceSize(settings.width) * settings.height * 32,
+          // Four words per pixel for the opaque surfaces, four for the transparent fragments, four
+          // for the opaque surface's reaching-light mask and list cell.
+          lightStats(debugOutput(context, settings.collectLightStats, VkDeviceSize(settings.width) * settings.height * 48,
                                  "light stats")),
           shadowDebug(debugOutput(context, settings.collectShadowFactors,
                                   VkDeviceSize(settings.width) * settings.height *
@@ -488,7 +489,7 @@ LightStatsImage Renderer::readLightStats() {
     submitAndWait(resources_->lightStatsCommands);
     const std::vector<uint8_t> bytes = readBuffer(resources_->lightStats);
     const size_t pixels = size_t(settings_.width) * settings_.height;
-    std::vector<uint32_t> words(pixels * 8);
+    std::vector<uint32_t> words(pixels * 12);
     std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
     LightStatsImage stats;
     stats.width = settings_.width;
@@ -504,6 +505,13 @@ LightStatsImage Renderer::readLightStats() {
     stats.transparentAffecting.resize(pixels);
     stats.transparentFragments.resize(pixels);
     stats.transparentMissingLight.resize(pixels);
+    stats.affectingMasks.resize(pixels * PUNCTUAL_GRID_WORDS);
+    stats.listCells.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+        const uint32_t* e = &words[(2 * pixels + i) * 4];
+        std::copy(e, e + PUNCTUAL_GRID_WORDS, &stats.affectingMasks[i * PUNCTUAL_GRID_WORDS]);
+        stats.listCells[i] = e[3];
+    }
     for (size_t i = 0; i < pixels; ++i) {
         const uint32_t* t = &words[(pixels + i) * 4];
         stats.transparentTested[i] = t[0];

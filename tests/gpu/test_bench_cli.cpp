@@ -47,7 +47,7 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
               "shadow_lookups_per_pixel,filter_taps_per_pixel,shadow_views,shadow_texels_rendered,shadow_filter_taps,"
               "objects_in_view,camera_triangles,depth_triangles,forward_triangles,transparent_triangles,"
               "shadow_triangles,depth_draws,forward_draws,transparent_draws,shadow_draws,shadow_draws_max,"
-              "shadow_memory_bytes,light_grid_bytes,scene_bytes,frame_bytes,device_bytes,peak_rss_bytes,efficiency,"
+              "shadow_memory_bytes,light_grid_bytes,scene_bytes,frame_bytes,device_bytes,peak_rss_bytes,efficiency,floor_efficiency,"
               "missed_energy,image_error,pixels_off,shadow_reduced_views,shadow_misclassified,"
               "shadow_misclassified_all,shadow_misclassified_1px,shadow_false_shadow,shadow_false_lit,"
               "sun_misclassified,sun_misclassified_1px,sun_cascade0_misclassified_1px,sun_cascade1_misclassified_1px,"
@@ -164,7 +164,7 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     // The names the chart scripts read instead of lists of their own: every pass has its columns.
     EXPECT_EQ(json["passes"], nlohmann::json({"depth", "transparent_depth", "culling", "shadows", "forward",
                                               "transparent", "tonemap"}));
-    EXPECT_EQ(json["methods"], nlohmann::json({"brute", "per-object", "tiled", "clustered", "tiled-2.5d", "zbin"}));
+    EXPECT_EQ(json["methods"], nlohmann::json({"brute", "per-object", "tiled", "clustered", "tiled-2.5d", "zbin", "zbin-2d"}));
     EXPECT_EQ(json["shadow_filters"], nlohmann::json({"hw", "tent3", "tent5", "tent7", "disk"}));
     EXPECT_EQ(json["point_layouts"], nlohmann::json({"cube", "slices"}));
     for (const auto& pass : json["passes"]) {

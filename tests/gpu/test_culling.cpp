@@ -1,11 +1,12 @@
 // Light culling against brute force: every light-grid method's images (tiled, clustered,
-// tiled-2.5d) are bit-identical to brute force on the default scene and on adversarial scenes, a
+// tiled-2.5d, zbin, zbin-2d) are bit-identical to brute force on the default scene and on adversarial scenes, a
 // CPU reference of the tile, cluster and depth-mask tests shows no light reaching a pixel is ever
 // culled, and per-object lists lose light where an object is lit by more than 8 lights.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <bit>
+#include <map>
 #include <memory>
 
 #include "culling.h"
@@ -132,6 +133,79 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
             }
         }
     }
+    // Clustered (tiles up to 32 pixels, no transparent spans): each slice's rectangle of pixel
+    // columns and rows, as the kernel marks them: a 2x2 block whose geometry lies in one slice
+    // marks the whole block (cut at the tile's and the viewport's edge), another each of its
+    // geometry pixels.
+    const render::RenderSettings& settings = renderer.settings();
+    const bool sliceRects = layout.slices > 1 && layout.tileSize <= 32 &&
+                            (renderer.cameraDraws().transparentDraws == 0 || settings.opaqueCullingDepth);
+    std::vector<glm::uvec4> cellRect(layout.cellCount(), glm::uvec4(~0u, ~0u, 0u, 0u));  // first x, y; last x, y (pixels)
+    auto markRect = [&](uint32_t cell, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) {
+        cellRect[cell] = glm::uvec4(std::min(cellRect[cell].x, x0), std::min(cellRect[cell].y, y0),
+                                    std::max(cellRect[cell].z, x1), std::max(cellRect[cell].w, y1));
+    };
+    for (uint32_t y = 0; sliceRects && y < height; y += 2) {
+        for (uint32_t x = 0; x < width; x += 2) {
+            const uint32_t tileEndX = std::min((x / layout.tileSize + 1) * layout.tileSize, width);
+            const uint32_t tileEndY = std::min((y / layout.tileSize + 1) * layout.tileSize, height);
+            const uint32_t x1 = std::min(x + 1, tileEndX - 1), y1 = std::min(y + 1, tileEndY - 1);
+            float nearest = 0.0f, farthest = 2.0f;
+            for (uint32_t py = y; py <= y1; ++py) {
+                for (uint32_t px = x; px <= x1; ++px) {
+                    const float d = depth[size_t(py) * width + px];
+                    if (gpu::isBackgroundDepth(d)) continue;
+                    nearest = std::max(nearest, d);
+                    farthest = std::min(farthest, d);
+                }
+            }
+            if (nearest == 0.0f) continue;
+            const uint32_t tileCell = ((y / layout.tileSize) * layout.tilesX + x / layout.tileSize) * layout.slices;
+            if (sliceOf(nearest) == sliceOf(farthest)) {
+                markRect(tileCell + sliceOf(nearest), x, y, x1, y1);
+                continue;
+            }
+            for (uint32_t py = y; py <= y1; ++py) {
+                for (uint32_t px = x; px <= x1; ++px) {
+                    const float d = depth[size_t(py) * width + px];
+                    if (!gpu::isBackgroundDepth(d)) markRect(tileCell + sliceOf(d), px, py, px, py);
+                }
+            }
+        }
+    }
+    // tiled-2.5d (the same conditions, one slice): each occupied depth cell's rectangle, every 2x2
+    // block giving each cell its geometry pixels fall in the whole block's.
+    const bool depthCellRects = layout.depthMask && layout.tileSize <= 32 &&
+                                (renderer.cameraDraws().transparentDraws == 0 || settings.opaqueCullingDepth);
+    std::vector<glm::uvec4> depthCellRect(size_t(layout.tilesX) * layout.tilesY * PUNCTUAL_DEPTH_MASK_CELLS,
+                                          glm::uvec4(~0u, ~0u, 0u, 0u));
+    for (uint32_t y = 0; depthCellRects && y < height; y += 2) {
+        for (uint32_t x = 0; x < width; x += 2) {
+            const uint32_t tile = (y / layout.tileSize) * layout.tilesX + x / layout.tileSize;
+            const uint32_t x1 = std::min(x + 1, std::min((x / layout.tileSize + 1) * layout.tileSize, width) - 1);
+            const uint32_t y1 = std::min(y + 1, std::min((y / layout.tileSize + 1) * layout.tileSize, height) - 1);
+            const float scale = gpu::depthMaskScale(tileNear[tile], tileFar[tile]);
+            uint32_t cells = 0;
+            for (uint32_t py = y; py <= y1; ++py) {
+                for (uint32_t px = x; px <= x1; ++px) {
+                    const float d = depth[size_t(py) * width + px];
+                    if (gpu::isBackgroundDepth(d)) continue;
+                    cells |= 1u << gpu::depthMaskCell(gpu::viewDistanceFromDepth(d, depthToView), tileNear[tile], scale);
+                }
+            }
+            for (; cells; cells &= cells - 1) {
+                glm::uvec4& r = depthCellRect[size_t(tile) * PUNCTUAL_DEPTH_MASK_CELLS + uint32_t(std::countr_zero(cells))];
+                r = glm::uvec4(std::min(r.x, x), std::min(r.y, y), std::max(r.z, x1), std::max(r.w, y1));
+            }
+        }
+    }
+    // The NDC rectangle of a pixel rectangle (first x, y; last x, y), as the kernel computes it.
+    auto pixelRectNdc = [&](const glm::uvec4& r, glm::vec2& ndcMin, glm::vec2& ndcMax) {
+        const glm::vec2 a = glm::vec2(float(r.x) / float(width), float(r.y) / float(height)) * 2.0f - 1.0f;
+        const glm::vec2 b = glm::vec2(float(r.z + 1) / float(width), float(r.w + 1) / float(height)) * 2.0f - 1.0f;
+        ndcMin = glm::min(a, b);
+        ndcMax = glm::max(a, b);
+    };
     std::vector<uint32_t> reference(grid.size(), 0u);
     for (uint32_t ty = 0; ty < layout.tilesY; ++ty) {
         for (uint32_t tx = 0; tx < layout.tilesX; ++tx) {
@@ -147,10 +221,13 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
             for (uint32_t slice = 0; slice < layout.slices; ++slice) {
                 const uint32_t cell = tile * layout.slices + slice;
                 if (cellFar[cell] == 0.0f) continue;
-                // zbin: the tile at every depth, near plane to far plane (the bins hold depth).
+                // zbin-2d: the tile at every depth, near plane to far plane (the bins hold depth).
+                // Clustered: the slice's rectangle of pixels.
+                glm::vec2 cellMin = ndcMin, cellMax = ndcMax;
+                if (sliceRects) pixelRectNdc(cellRect[cell], cellMin, cellMax);
                 const gpu::TileVolume volume =
-                    layout.zBins ? gpu::makeTileColumn(ndcMin, ndcMax, depthToView, ndcToView)
-                                 : gpu::makeTileVolume(ndcMin, ndcMax, cellNear[cell], cellFar[cell], ndcToView);
+                    layout.depthlessTiles ? gpu::makeTileColumn(ndcMin, ndcMax, depthToView, ndcToView)
+                                 : gpu::makeTileVolume(cellMin, cellMax, cellNear[cell], cellFar[cell], ndcToView);
                 for (uint32_t light = 0; light < lightCount; ++light) {
                     uint32_t word = 0;
                     const uint32_t bit = bitOf(light, word);
@@ -162,9 +239,11 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
                         uint32_t cells = gpu::lightDepthMask(cullLights[light], tileNear[tile], maskScale) & tileDepthMask[tile];
                         bool meets = false;
                         for (; cells && !meets; cells &= cells - 1) {
+                            const uint32_t depthCell = uint32_t(std::countr_zero(cells));
+                            glm::vec2 rectMin = ndcMin, rectMax = ndcMax;
+                            if (depthCellRects) pixelRectNdc(depthCellRect[size_t(tile) * PUNCTUAL_DEPTH_MASK_CELLS + depthCell], rectMin, rectMax);
                             meets = gpu::lightMayTouchTile(
-                                cullLights[light], gpu::makeDepthCellVolume(ndcMin, ndcMax, uint32_t(std::countr_zero(cells)),
-                                                                            tileNear[tile], tileFar[tile], ndcToView));
+                                cullLights[light], gpu::makeDepthCellVolume(rectMin, rectMax, depthCell, tileNear[tile], tileFar[tile], ndcToView));
                         }
                         if (!meets) continue;
                     }
@@ -286,6 +365,32 @@ TEST(Culling, NoLightReachingAPixelIsCulled) {
             }
         }
     }
+    testing::expectNoValidationMessages(*context);
+}
+
+TEST(Culling, NoGridMethodBeatsExactListsOfItsGranularity) {
+    // A pixel's list is a function of its list cell (tile, cluster, tile and z-bin) and must hold
+    // every light reaching any pixel of that cell, so no lossless method tests fewer than the
+    // exact lists (the floor). Methods sharing their cells share their floor; finer cells lower it.
+    auto context = testing::makeValidatedContext();
+    const Scene scene = makeDefaultScene();
+    std::map<LightListMethod, CullingStats> stats;
+    for (LightListMethod method : render::gridMethods()) {
+        render::RenderSettings settings = settingsFor(method);
+        settings.collectLightStats = true;
+        render::Renderer renderer(*context, scene, settings);
+        renderer.render(1, 0);
+        stats[method] = computeCullingStats(renderer.readLightStats());
+        const CullingStats& s = stats[method];
+        SCOPED_TRACE(render::methodName(method));
+        EXPECT_GT(s.affectingPerPixel, 1.0);  // not vacuous: lights reach the pixels
+        EXPECT_GT(s.floorEfficiency, 1.0);
+        EXPECT_GE(s.efficiency, s.floorEfficiency);
+    }
+    EXPECT_EQ(stats[LightListMethod::Tiled].floorEfficiency, stats[LightListMethod::Tiled25D].floorEfficiency);
+    EXPECT_EQ(stats[LightListMethod::ZBin].floorEfficiency, stats[LightListMethod::ZBin2D].floorEfficiency);
+    EXPECT_LT(stats[LightListMethod::Clustered].floorEfficiency, stats[LightListMethod::Tiled].floorEfficiency);
+    EXPECT_LT(stats[LightListMethod::ZBin].floorEfficiency, stats[LightListMethod::Tiled].floorEfficiency);
     testing::expectNoValidationMessages(*context);
 }
 

@@ -66,8 +66,8 @@ TEST(Transparency, WithTheOpaqueDepthAloneTiledCullingMissesTheGlasssLights) {
     const Scene scene = glassPanesScene();
     const ImageRgba8 brute = renderImage(*context, scene, settingsFor(LightListMethod::Brute));
     for (const LightListMethod method : render::gridMethods()) {
-        // zbin's culling reads no depth (its bins hold depth, per fragment): nothing to miss.
-        if (methodInfo(method).zBins) continue;
+        // zbin-2d's culling reads no depth (its bins hold depth, per fragment): nothing to miss.
+        if (methodInfo(method).depthlessTiles) continue;
         render::RenderSettings settings = settingsFor(method);
         settings.opaqueCullingDepth = true;
         EXPECT_GT(differingPixels(renderImage(*context, scene, settings), brute), 200u) << methodInfo(method).name;

@@ -55,7 +55,7 @@ TEST(VariantHelp, BenchHelpNamesTheSweptVariants) {
     testing::TempFolder folder;
     const RunResult run = runPunctual(folder, "bench --help");
     ASSERT_EQ(run.exitCode, 0) << run.err;
-    EXPECT_NE(run.out.find("the methods brute, per-object, tiled, clustered, tiled-2.5d, zbin (shadows off)"), std::string::npos)
+    EXPECT_NE(run.out.find("the methods brute, per-object, tiled, clustered, tiled-2.5d, zbin, zbin-2d (shadows off)"), std::string::npos)
         << run.out;
     EXPECT_NE(run.out.find("the filters hw, tent3, tent5, tent7, disk at auto resolution"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("filters hw and tent5 (under 3 minutes"), std::string::npos) << run.out;

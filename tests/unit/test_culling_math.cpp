@@ -290,6 +290,7 @@ TEST(DepthMask, ALightCoversTheCellsOfItsSphereDepthExtent) {
     // Extent 10..42 (scale 1). A sphere centred 20 units ahead (view z = -20), radius 3: view
     // distances 17..23, cells 7..13. Sideways position plays no part.
     gpu::CullLight light{};
+    light.cosOuter = -1.0f;  // a point light: its extent is its sphere's
     light.sphereCenter = glm::vec3(5.0f, -2.0f, -20.0f);
     light.sphereRadius = 3.0f;
     EXPECT_EQ(gpu::lightDepthMask(light, 10.0f, 1.0f), gpu::depthMaskBits(7, 13));
@@ -311,6 +312,7 @@ TEST(DepthMask, EveryDistanceInsideALightsExtentHasItsCell) {
     for (float centre = 0.1f; centre < 1000.0f; centre *= 1.37f) {
         for (float radius = 0.01f; radius < 500.0f; radius *= 2.9f) {
             gpu::CullLight light{};
+            light.cosOuter = -1.0f;  // a point light: its extent is its sphere's
             light.sphereCenter = glm::vec3(0.0f, 0.0f, -centre);
             light.sphereRadius = radius;
             const uint32_t mask = gpu::lightDepthMask(light, nearD, scale);
@@ -374,6 +376,80 @@ TEST(TileColumn, SpansNearPlaneToFarPlane) {
     const gpu::TileVolume infinite = gpu::makeTileColumn(glm::vec2(-1.0f), glm::vec2(1.0f), glm::vec2(n, 0.0f), glm::vec4(1, 1, 0, 0));
     EXPECT_TRUE(std::isfinite(infinite.farDistance));
     EXPECT_GT(infinite.farDistance, 1e20f);
+}
+
+// A spot with apex `apex`, unit axis `axis`, slant `range` and half-angle of cosine `cosOuter`,
+// its bounding sphere spotBoundingSphere's (no margins: the answers below are exact but for them).
+gpu::CullLight spotLight(glm::vec3 apex, glm::vec3 axis, float range, float cosOuter) {
+    gpu::CullLight light{};
+    light.position = apex;
+    light.axis = axis;
+    light.range = range;
+    light.cosOuter = cosOuter;
+    const glm::vec4 sphere = gpu::spotBoundingSphere(apex, axis, range, cosOuter);
+    light.sphereCenter = glm::vec3(sphere);
+    light.sphereRadius = sphere.w;
+    return light;
+}
+
+TEST(SpotExtent, APointingAwaySpotSpansFromItsApexToItsRange) {
+    // Apex 10 ahead, pointing away, range 5, 30 deg: the sector reaches 5 along the view direction
+    // and 0 back towards the camera (every w has w . (0, 0, 1) < 0): distances 10..15, padded by
+    // the margin of the range (0.005). Its bounding sphere (radius 5 / (2 cos 30) = 2.887 around
+    // distance 12.887) would reach 15.77.
+    const float cos30 = std::sqrt(3.0f) / 2.0f;
+    const gpu::CullLight light = spotLight(glm::vec3(0.0f, 0.0f, -10.0f), glm::vec3(0.0f, 0.0f, -1.0f), 5.0f, cos30);
+    EXPECT_NEAR(light.sphereRadius, 5.0f / (2.0f * cos30), 1e-5f);
+    const glm::vec2 extent = gpu::lightDistanceExtent(light);
+    // The near end is the sphere's (it passes through the apex), tighter than the padded sector's.
+    EXPECT_NEAR(extent.x, 10.0f, 1e-5f);
+    EXPECT_NEAR(-gpu::spotReachAlong(light, glm::vec3(0.0f, 0.0f, 1.0f)), 10.0f - 0.005f, 1e-5f);
+    EXPECT_NEAR(extent.y, 15.0f + 0.005f, 1e-5f);
+}
+
+TEST(SpotExtent, ASideOnSpotSpansHalfItsRangeEachWayAt30Degrees) {
+    // Pointing along +x, 30 deg: the view direction is 90 deg from the axis, 60 deg from the nearest
+    // edge of the cone, so the sector reaches 5 cos 60 = 2.5 each way: distances 7.5..12.5 (plus
+    // 0.005). The bounding sphere spans 10 -/+ 2.887.
+    const gpu::CullLight light = spotLight(glm::vec3(1.0f, 2.0f, -10.0f), glm::vec3(1.0f, 0.0f, 0.0f), 5.0f, std::sqrt(3.0f) / 2.0f);
+    const glm::vec2 extent = gpu::lightDistanceExtent(light);
+    EXPECT_NEAR(extent.x, 7.5f - 0.005f, 1e-5f);
+    EXPECT_NEAR(extent.y, 12.5f + 0.005f, 1e-5f);
+    // Along +x it reaches its whole range (the axis), along -x nothing past the apex but the pad.
+    EXPECT_NEAR(gpu::spotReachAlong(light, glm::vec3(1.0f, 0.0f, 0.0f)), 1.0f + 5.005f, 1e-5f);
+    EXPECT_NEAR(gpu::spotReachAlong(light, glm::vec3(-1.0f, 0.0f, 0.0f)), -1.0f + 0.005f, 1e-5f);
+}
+
+TEST(SpotExtent, TheSphereCutsTheSectorAndPointsKeepTheirSphere) {
+    // A sector extent wider than the light's sphere (here a sphere set smaller by hand) is cut by
+    // it: both bound the light, so their intersection does.
+    gpu::CullLight light = spotLight(glm::vec3(0.0f, 0.0f, -10.0f), glm::vec3(0.0f, 0.0f, -1.0f), 5.0f, 0.5f);
+    light.sphereCenter = glm::vec3(0.0f, 0.0f, -12.0f);
+    light.sphereRadius = 1.0f;
+    EXPECT_EQ(gpu::lightDistanceExtent(light), glm::vec2(11.0f, 13.0f));
+    gpu::CullLight point{};
+    point.cosOuter = -1.0f;
+    point.sphereCenter = glm::vec3(3.0f, 0.0f, -20.0f);
+    point.sphereRadius = 4.0f;
+    EXPECT_EQ(gpu::lightDistanceExtent(point), glm::vec2(16.0f, 24.0f));
+}
+
+TEST(SpotExtent, TheSectorTestCullsAWideSpotBesideATileThatItsSpheresPass) {
+    // The tile spans |x|, |y| <= 0.1 D between distances 10 and 42. A 60 deg spot at x = 3,
+    // distance 20, pointing along +x: every lit point has x >= 3 (each w has w . x >= cos 60 > 0)
+    // and distance within 20 -/+ 5 sin 60, where the tile reaches x <= 2.44. Its bounding sphere
+    // (centre x = 5.5, radius 4.33) meets the side plane and the AABB, and the cone meets the
+    // segment's big bounding sphere: only the sector's own planes see the miss.
+    const gpu::TileVolume tile = gpu::makeTileVolume(glm::vec2(-0.1f), glm::vec2(0.1f), 10.0f, 42.0f, glm::vec4(1, 1, 0, 0));
+    gpu::CullLight light = spotLight(glm::vec3(3.0f, 0.0f, -20.0f), glm::vec3(1.0f, 0.0f, 0.0f), 5.0f, 0.5f);
+    EXPECT_TRUE(gpu::sphereMayTouchTile(light.sphereCenter, light.sphereRadius, tile));
+    EXPECT_TRUE(gpu::coneMayTouchSphere(light.position, light.axis, light.range, light.cosOuter, tile.sphereCenter, tile.sphereRadius));
+    EXPECT_FALSE(gpu::spotMayTouchTile(light, tile));
+    EXPECT_FALSE(gpu::lightMayTouchTile(light, tile));
+    // Moved to x = 1.5, inside the tile at distance 20 (|x| <= 2): it touches.
+    light = spotLight(glm::vec3(1.5f, 0.0f, -20.0f), glm::vec3(1.0f, 0.0f, 0.0f), 5.0f, 0.5f);
+    EXPECT_TRUE(gpu::spotMayTouchTile(light, tile));
+    EXPECT_TRUE(gpu::lightMayTouchTile(light, tile));
 }
 
 }  // namespace

@@ -31,7 +31,7 @@ std::string problemOf(void (*parse)(const std::string&), const std::string& name
 // ---- names ------------------------------------------------------------------------------------
 
 TEST(VariantTables, MethodNamesRoundTrip) {
-    EXPECT_EQ(render::methodNames(), (std::vector<std::string>{"brute", "per-object", "tiled", "clustered", "tiled-2.5d", "zbin"}));
+    EXPECT_EQ(render::methodNames(), (std::vector<std::string>{"brute", "per-object", "tiled", "clustered", "tiled-2.5d", "zbin", "zbin-2d"}));
     for (const render::LightListMethodInfo& method : render::kLightListMethods) {
         EXPECT_EQ(render::parseMethod(method.name), method.value);
         EXPECT_STREQ(render::methodName(method.value), method.name);
@@ -59,7 +59,7 @@ TEST(VariantTables, PointShadowLayoutNamesRoundTrip) {
 
 TEST(VariantTables, UnknownNamesFailWithOneLineListingEveryName) {
     EXPECT_EQ(problemOf([](const std::string& n) { render::parseMethod(n); }, "fast"),
-              "--culling: expected brute, per-object, tiled, clustered, tiled-2.5d or zbin, got 'fast'");
+              "--culling: expected brute, per-object, tiled, clustered, tiled-2.5d, zbin or zbin-2d, got 'fast'");
     EXPECT_EQ(problemOf([](const std::string& n) { parseShadowFilter(n); }, "box"),
               "--shadow-filter: expected hw, tent3, tent5, tent7 or disk, got 'box'");
     EXPECT_EQ(problemOf([](const std::string& n) { parsePointShadowLayout(n); }, "sphere"),
@@ -130,7 +130,7 @@ TEST(VariantTables, ShadowFilterFootprints) {
 }
 
 TEST(VariantTables, QuickBenchSweepsTheFourFirstMethodsAndTwoFilters) {
-    // The peers' schemes (tiled-2.5d, zbin) are in the full run only: --quick stays under 3 minutes.
+    // The peers' schemes (tiled-2.5d, zbin, zbin-2d) are in the full run only: --quick stays under 3 minutes.
     std::vector<std::string> quickMethods;
     for (const render::LightListMethodInfo& method : render::kLightListMethods) {
         if (method.quickBench) quickMethods.emplace_back(method.name);
@@ -150,8 +150,10 @@ TEST(VariantTables, LightGridMethods) {
     EXPECT_TRUE(render::usesLightGrid(LightListMethod::Clustered));
     EXPECT_TRUE(render::usesLightGrid(LightListMethod::Tiled25D));
     EXPECT_TRUE(render::usesLightGrid(LightListMethod::ZBin));
+    EXPECT_TRUE(render::usesLightGrid(LightListMethod::ZBin2D));
     EXPECT_EQ(render::gridMethods(), (std::vector<LightListMethod>{LightListMethod::Tiled, LightListMethod::Clustered,
-                                                                   LightListMethod::Tiled25D, LightListMethod::ZBin}));
+                                                                   LightListMethod::Tiled25D, LightListMethod::ZBin,
+                                                                   LightListMethod::ZBin2D}));
 }
 
 // What the renderer builds for each method comes from the table: depth slices only for clusters,

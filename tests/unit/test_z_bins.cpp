@@ -17,6 +17,7 @@ const glm::vec2 kDepthToView(100.0f * 0.1f / 99.9f, 0.1f / 99.9f);
 
 gpu::CullLight lightAt(float distance, float radius) {
     gpu::CullLight light{};
+    light.cosOuter = -1.0f;  // a point light: its extent is its sphere's
     light.sphereCenter = glm::vec3(0.0f, 0.0f, -distance);
     light.sphereRadius = radius;
     return light;
