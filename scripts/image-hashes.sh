@@ -31,7 +31,7 @@ hash_render() {  # NAME SCENE_PATH ARGS...
 for entry in "${scenes[@]}"; do
   scene_name=${entry%%:*}
   scene_path=${entry#*:}
-  for method in brute per-object tiled clustered tiled-2.5d zbin; do
+  for method in brute per-object tiled clustered tiled-2.5d zbin zbin-2d; do
     hash_render "$scene_name $method shadows-off" "$scene_path" --culling "$method" --shadows off \
       --heatmap "$work/heat.png"
     hash_render "$scene_name $method shadows-auto" "$scene_path" --culling "$method"
