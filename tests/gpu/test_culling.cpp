@@ -133,70 +133,55 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
             }
         }
     }
-    // Clustered (tiles up to 32 pixels, no transparent spans): each slice's rectangle of pixel
-    // columns and rows, as the kernel marks them: a 2x2 block whose geometry lies in one slice
+    // Clustered and tiled-2.5d (tiles up to 32 pixels, no transparent spans): the rectangle of
+    // pixel columns and rows of each slice (per cluster) or depth cell (per tile and cell), as the
+    // kernel marks them block by block. Clustered: a 2x2 block whose geometry lies in one slice
     // marks the whole block (cut at the tile's and the viewport's edge), another each of its
-    // geometry pixels.
+    // geometry pixels. tiled-2.5d: every cell the block's geometry falls in gets the whole block.
     const render::RenderSettings& settings = renderer.settings();
-    const bool sliceRects = layout.slices > 1 && layout.tileSize <= 32 &&
-                            (renderer.cameraDraws().transparentDraws == 0 || settings.opaqueCullingDepth);
-    std::vector<glm::uvec4> cellRect(layout.cellCount(), glm::uvec4(~0u, ~0u, 0u, 0u));  // first x, y; last x, y (pixels)
-    auto markRect = [&](uint32_t cell, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) {
-        cellRect[cell] = glm::uvec4(std::min(cellRect[cell].x, x0), std::min(cellRect[cell].y, y0),
-                                    std::max(cellRect[cell].z, x1), std::max(cellRect[cell].w, y1));
+    const bool rectsMarked = layout.tileSize <= 32 && (renderer.cameraDraws().transparentDraws == 0 || settings.opaqueCullingDepth);
+    const bool sliceRects = rectsMarked && layout.slices > 1;
+    const bool depthCellRects = rectsMarked && layout.depthMask;
+    const size_t rectCount = depthCellRects ? size_t(layout.tilesX) * layout.tilesY * PUNCTUAL_DEPTH_MASK_CELLS : layout.cellCount();
+    std::vector<glm::uvec4> cellRect(rectCount, glm::uvec4(~0u, ~0u, 0u, 0u));  // first x, y; last x, y (pixels)
+    auto markRect = [&](size_t key, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) {
+        cellRect[key] = glm::uvec4(std::min(cellRect[key].x, x0), std::min(cellRect[key].y, y0),
+                                   std::max(cellRect[key].z, x1), std::max(cellRect[key].w, y1));
     };
-    for (uint32_t y = 0; sliceRects && y < height; y += 2) {
-        for (uint32_t x = 0; x < width; x += 2) {
-            const uint32_t tileEndX = std::min((x / layout.tileSize + 1) * layout.tileSize, width);
-            const uint32_t tileEndY = std::min((y / layout.tileSize + 1) * layout.tileSize, height);
-            const uint32_t x1 = std::min(x + 1, tileEndX - 1), y1 = std::min(y + 1, tileEndY - 1);
-            float nearest = 0.0f, farthest = 2.0f;
-            for (uint32_t py = y; py <= y1; ++py) {
-                for (uint32_t px = x; px <= x1; ++px) {
-                    const float d = depth[size_t(py) * width + px];
-                    if (gpu::isBackgroundDepth(d)) continue;
-                    nearest = std::max(nearest, d);
-                    farthest = std::min(farthest, d);
-                }
-            }
-            if (nearest == 0.0f) continue;
-            const uint32_t tileCell = ((y / layout.tileSize) * layout.tilesX + x / layout.tileSize) * layout.slices;
-            if (sliceOf(nearest) == sliceOf(farthest)) {
-                markRect(tileCell + sliceOf(nearest), x, y, x1, y1);
-                continue;
-            }
-            for (uint32_t py = y; py <= y1; ++py) {
-                for (uint32_t px = x; px <= x1; ++px) {
-                    const float d = depth[size_t(py) * width + px];
-                    if (!gpu::isBackgroundDepth(d)) markRect(tileCell + sliceOf(d), px, py, px, py);
-                }
-            }
-        }
-    }
-    // tiled-2.5d (the same conditions, one slice): each occupied depth cell's rectangle, every 2x2
-    // block giving each cell its geometry pixels fall in the whole block's.
-    const bool depthCellRects = layout.depthMask && layout.tileSize <= 32 &&
-                                (renderer.cameraDraws().transparentDraws == 0 || settings.opaqueCullingDepth);
-    std::vector<glm::uvec4> depthCellRect(size_t(layout.tilesX) * layout.tilesY * PUNCTUAL_DEPTH_MASK_CELLS,
-                                          glm::uvec4(~0u, ~0u, 0u, 0u));
-    for (uint32_t y = 0; depthCellRects && y < height; y += 2) {
+    for (uint32_t y = 0; (sliceRects || depthCellRects) && y < height; y += 2) {
         for (uint32_t x = 0; x < width; x += 2) {
             const uint32_t tile = (y / layout.tileSize) * layout.tilesX + x / layout.tileSize;
             const uint32_t x1 = std::min(x + 1, std::min((x / layout.tileSize + 1) * layout.tileSize, width) - 1);
             const uint32_t y1 = std::min(y + 1, std::min((y / layout.tileSize + 1) * layout.tileSize, height) - 1);
-            const float scale = gpu::depthMaskScale(tileNear[tile], tileFar[tile]);
-            uint32_t cells = 0;
+            std::vector<glm::uvec3> geometry;  // x, y, depth bits of the block's pixels with geometry
             for (uint32_t py = y; py <= y1; ++py) {
                 for (uint32_t px = x; px <= x1; ++px) {
                     const float d = depth[size_t(py) * width + px];
-                    if (gpu::isBackgroundDepth(d)) continue;
-                    cells |= 1u << gpu::depthMaskCell(gpu::viewDistanceFromDepth(d, depthToView), tileNear[tile], scale);
+                    if (!gpu::isBackgroundDepth(d)) geometry.push_back(glm::uvec3(px, py, std::bit_cast<uint32_t>(d)));
                 }
             }
-            for (; cells; cells &= cells - 1) {
-                glm::uvec4& r = depthCellRect[size_t(tile) * PUNCTUAL_DEPTH_MASK_CELLS + uint32_t(std::countr_zero(cells))];
-                r = glm::uvec4(std::min(r.x, x), std::min(r.y, y), std::max(r.z, x1), std::max(r.w, y1));
+            auto depthOf = [](const glm::uvec3& p) { return std::bit_cast<float>(p.z); };
+            if (depthCellRects) {
+                const float scale = gpu::depthMaskScale(tileNear[tile], tileFar[tile]);
+                uint32_t cells = 0;
+                for (const glm::uvec3& p : geometry) {
+                    cells |= 1u << gpu::depthMaskCell(gpu::viewDistanceFromDepth(depthOf(p), depthToView), tileNear[tile], scale);
+                }
+                for (; cells; cells &= cells - 1) markRect(size_t(tile) * PUNCTUAL_DEPTH_MASK_CELLS + std::countr_zero(cells), x, y, x1, y1);
+                continue;
             }
+            if (geometry.empty()) continue;
+            float nearest = 0.0f, farthest = 2.0f;
+            for (const glm::uvec3& p : geometry) {
+                nearest = std::max(nearest, depthOf(p));
+                farthest = std::min(farthest, depthOf(p));
+            }
+            const size_t tileCell = size_t(tile) * layout.slices;
+            if (sliceOf(nearest) == sliceOf(farthest)) {
+                markRect(tileCell + sliceOf(nearest), x, y, x1, y1);
+                continue;
+            }
+            for (const glm::uvec3& p : geometry) markRect(tileCell + sliceOf(depthOf(p)), p.x, p.y, p.x, p.y);
         }
     }
     // The NDC rectangle of a pixel rectangle (first x, y; last x, y), as the kernel computes it.
@@ -241,7 +226,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
                         for (; cells && !meets; cells &= cells - 1) {
                             const uint32_t depthCell = uint32_t(std::countr_zero(cells));
                             glm::vec2 rectMin = ndcMin, rectMax = ndcMax;
-                            if (depthCellRects) pixelRectNdc(depthCellRect[size_t(tile) * PUNCTUAL_DEPTH_MASK_CELLS + depthCell], rectMin, rectMax);
+                            if (depthCellRects) pixelRectNdc(cellRect[size_t(tile) * PUNCTUAL_DEPTH_MASK_CELLS + depthCell], rectMin, rectMax);
                             meets = gpu::lightMayTouchTile(
                                 cullLights[light], gpu::makeDepthCellVolume(rectMin, rectMax, depthCell, tileNear[tile], tileFar[tile], ndcToView));
                         }
