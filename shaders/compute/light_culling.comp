@@ -393,7 +393,7 @@ void main() {
 
     // 2. Clustered: list the occupied slices with their frustum segments, and the whole tile's.
     //    Tiled (one slice): every thread makes the tile's segment itself, which costs less than a
-    //    barrier (zbin: the tile's whole column, the bins holding depth).
+    //    barrier (zbin-2d: the tile's whole column, the bins holding depth).
     bool occupied = SLICE_COUNT == 1u && (DEPTHLESS_TILES || sliceMaxDistance[0] != 0u);
     TileVolume wholeTile;
     if (SLICE_COUNT == 1u) {
