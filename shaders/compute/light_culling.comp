@@ -20,6 +20,9 @@
 // the tile's side planes anywhere between the near and far planes, and no depth is read at all:
 // the z-bins (lights/z_bins.h, built on the CPU) hold depth, and forward.frag ANDs the two masks.
 // (--culling zbin builds its tile masks as tiled does, within the tile's depth extent.)
+// Tiled, zbin and zbin-2d run tile_culling.comp instead (one subgroup a tile, no shared memory)
+// where the device has compute subgroup arithmetic; this kernel's one-slice paths serve the devices
+// without it and --subgroup-tiles off, and write the same masks (tests/gpu/test_culling.cpp).
 // COARSE_TILES > 0: the coarse pass (coarse_culling.comp) has culled the lights to this tile's
 // big tile, and steps 1-3 test only those (the candidates), listed while the depths are read.
 #extension GL_GOOGLE_include_directive : require
@@ -50,6 +53,8 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer 
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
     uint transparentDepth[];
 };
+
+#include "depth_blocks.glsl"
 
 const uint kThreads = 64u;
 const uint kSide = 8u;
@@ -89,31 +94,8 @@ void setLightBit(uint slice, uint light) {
     atomicOr(sliceMasks[slice * PUNCTUAL_GRID_WORDS + word], 1u << bit);
 }
 
-// Pixels read four at a time: one gather fetches a 2x2 block (fewer fetches and address
-// computations than four single-texel reads).
+// Pixels read four at a time: a 2x2 block per gather (quadExtent, depth_blocks.glsl).
 const uint kBlocks = (TILE_SIZE + 1u) / 2u;  // blocks a side of a tile (an odd size's last is half outside)
-
-// `extent` (nearest depth, farthest depth) widened by the geometry of the 2x2 block whose top-left
-// pixel is `corner`, its pixels at or past `tileEnd` left out. The gather samples the block's
-// centre, (corner + 1) / size: u * width - 0.5 = corner + 0.5, whose floor is the corner, half a
-// texel from any rounding; texels past the image's edge read the edge (clamp-to-edge sampler) and
-// are left out with the rest past tileEnd. Its result's order (the Vulkan specification's): x (0,1),
-// y (1,1), z (1,0), w (0,0) from the corner. Written out rather than looped: lavapipe keeps a
-// dynamically indexed vector in memory.
-vec2 quadExtent(uvec2 corner, uvec2 tileEnd, vec2 extent) {
-    if (corner.x >= tileEnd.x || corner.y >= tileEnd.y) return extent;
-    vec4 quad = textureGather(depthImage, (vec2(corner) + 1.0) * frame.viewport.zw);
-    bool right = corner.x + 1u < tileEnd.x;
-    bool below = corner.y + 1u < tileEnd.y;
-    // Background texels (depth 0) never raise the nearest; they are kept out of the farthest.
-    const float kNone = 2.0;  // above any depth: min() ignores it
-    vec4 geometry = vec4(below && !isBackgroundDepth(quad.x) ? quad.x : kNone,
-                         right && below && !isBackgroundDepth(quad.y) ? quad.y : kNone,
-                         right && !isBackgroundDepth(quad.z) ? quad.z : kNone, !isBackgroundDepth(quad.w) ? quad.w : kNone);
-    vec4 nearest = vec4(below ? quad.x : 0.0, right && below ? quad.y : 0.0, right ? quad.z : 0.0, quad.w);
-    return vec2(max(extent.x, max(max(nearest.x, nearest.y), max(nearest.z, nearest.w))),
-                min(extent.y, min(min(geometry.x, geometry.y), min(geometry.z, geometry.w))));
-}
 
 // A thread's run of pixels in one slice, `run` = (slice, min, max distance bits): extended by a
 // slice's distances [minBits, maxBits], or flushed to shared memory when the slice changes.

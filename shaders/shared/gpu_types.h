@@ -125,6 +125,10 @@
 #define PUNCTUAL_SPEC_DEPTH_MASK 13
 #define PUNCTUAL_SPEC_DEPTHLESS_TILES 14
 #define PUNCTUAL_SPEC_COARSE_TILES 15  // culling: fine tiles a side of a coarse tile (0: no coarse pass)
+#define PUNCTUAL_SPEC_TILE_THREADS 16  // tile_culling.comp: invocations per tile (the device's subgroup size)
+// tile_culling.comp's workgroups: at most this many invocations (a power of two, at least the 32 or
+// 64 of GPU subgroups; one lane per 2x2 block of a 16-pixel tile).
+#define PUNCTUAL_MAX_TILE_THREADS 64u
 
 PUNCTUAL_NAMESPACE_BEGIN
 

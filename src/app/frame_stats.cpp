@@ -91,6 +91,7 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
         json["slices"] = grid.slices;
         json["cells"] = grid.cellCount();
         json["coarse_tiles"] = grid.coarseTiles;  // fine tiles a side of a coarse tile; 0: no coarse pass
+        json["tile_threads"] = grid.tileThreads;  // invocations per tile of the one-subgroup kernel; 0: not used
     }
     if (render::methodInfo(settings.method).objectLists) {
         json["per_object"] = {{"objects_over_cap", renderer.perObjectLists().objectsOverCap},

@@ -31,6 +31,7 @@ struct RenderOptions {
     uint32_t tileSize = 16;                // --tile-size N
     uint32_t slices = 16;                  // --slices N (clustered)
     bool coarseTiles = true;               // --coarse-tiles on|off (the grid methods)
+    bool subgroupTiles = true;             // --subgroup-tiles on|off (tiled, zbin, zbin-2d)
     std::optional<std::string> heatmapPath;  // --heatmap FILE.png
     std::optional<std::string> shadowDensityPath;  // --shadow-density FILE.png
     ShadowSettings shadows;                // --shadows, --shadow-res, --shadow-filter, ...

@@ -1,12 +1,14 @@
 #pragma once
 // Tiled and clustered light culling (compute). With the coarse pass on, one workgroup per big tile
 // first culls the lights to its frustum column (coarse_culling.comp), and the kernels below start
-// from those. Tiled: one workgroup per tile tests every light
-// against the tile's depth extent (tiled-2.5d: and against its depth mask; zbin: against the tile
-// at every depth, the z-bins uploaded here holding depth). Clustered: a depth-range pass first finds the frame's nearest
-// and farthest geometry, then the same kernel splits each tile into logarithmic depth slices
-// fitted to that range. The light grid holds PUNCTUAL_GRID_WORDS words per cell and is sized to
-// the frame's real tile count (times the slices for clustered).
+// from those. Tiled: one workgroup per tile tests every light against the tile's depth extent
+// (zbin: the same, its z-bins uploaded here for the forward pass; zbin-2d: against the tile at every
+// depth, the bins holding depth), one subgroup a tile (tile_culling.comp) where the device has
+// compute subgroup arithmetic, else 64 invocations through shared memory (light_culling.comp).
+// tiled-2.5d: light_culling.comp, also against the tile's depth mask. Clustered: a depth-range pass
+// first finds the frame's nearest and farthest geometry, then light_culling.comp splits each tile
+// into logarithmic depth slices fitted to that range. The light grid holds PUNCTUAL_GRID_WORDS
+// words per cell and is sized to the frame's real tile count (times the slices for clustered).
 #include <cstdint>
 #include <vector>
 
@@ -30,6 +32,10 @@ struct LightGridLayout {
     bool zBins = false;      // zbin, zbin-2d: the forward pass ANDs the tile's mask with its z-bin's
     bool depthlessTiles = false;  // zbin-2d: two-dimensional tile masks (no depth read), the bins hold depth
     uint32_t coarseTiles = 0;  // fine tiles a side of a coarse tile; 0: no coarse pass
+    // Invocations per tile of tile_culling.comp, the one-subgroup kernel of the methods with one
+    // depth extent per tile (tiled, zbin, zbin-2d); 0: light_culling.comp culls them (a device
+    // without compute subgroup arithmetic, or RenderSettings::subgroupTiles off).
+    uint32_t tileThreads = 0;
 
     uint32_t cellCount() const { return tilesX * tilesY * slices; }
     uint32_t coarseTilesX() const { return coarseTiles ? (tilesX + coarseTiles - 1) / coarseTiles : 0; }
@@ -37,9 +43,10 @@ struct LightGridLayout {
     // The grid `method` culls to: `clusterSlices` depth slices where it has them (clustered), one
     // otherwise; its depth mask and z-bins flags (the culling kernel's specialization constants);
     // with `coarse`, kCoarseTilePixels / tileSize fine tiles a side per coarse tile where that is
-    // at least two.
+    // at least two. `subgroupThreads`: the device's compute subgroup size where it has subgroup
+    // arithmetic and tile_culling.comp may be used, else 0.
     static LightGridLayout forMethod(const LightListMethodInfo& method, uint32_t width, uint32_t height,
-                                     uint32_t tileSize, uint32_t clusterSlices, bool coarse);
+                                     uint32_t tileSize, uint32_t clusterSlices, bool coarse, uint32_t subgroupThreads);
 };
 
 class LightCullingPass final : public Pass {
@@ -75,10 +82,10 @@ private:
     vk::Buffer cullLights_;
     vk::Buffer zBins_;  // gpu::GpuZBins, or one word for the methods without bins
     vk::Buffer coarseGrid_;  // coarse tiles x PUNCTUAL_GRID_WORDS words, or one word without the coarse pass
+    vk::Handle<VkPipeline> cullingPipeline_;           // tile_culling.comp or light_culling.comp
     vk::Handle<VkPipeline> coarsePipeline_;            // the coarse pass (coarse_culling.comp)
     vk::Handle<VkPipeline> depthRangePipeline_;        // clustered: nearest/farthest geometry
     vk::Handle<VkPipeline> sliceBoundariesPipeline_;   // clustered: slice start depths
-    vk::Handle<VkPipeline> cullingPipeline_;
 };
 
 }  // namespace punctual::render

@@ -29,6 +29,14 @@ struct RenderSettings {
     // The coarse pass (--coarse-tiles): big tiles of about kCoarseTilePixels a side cull the
     // lights first, and the fine culling kernel tests only those. The grid methods only.
     bool coarseTiles = true;
+    // Tiled, zbin and zbin-2d cull with one subgroup per tile (tile_culling.comp) where the device
+    // has compute subgroup arithmetic. False: with light_culling.comp's shared-memory workgroups,
+    // as a device without it does (the tests compare the two; the grids are the same).
+    bool subgroupTiles = true;
+    // For tests: that kernel's invocations per tile instead of the device's subgroup size (a power
+    // of two up to PUNCTUAL_MAX_TILE_THREADS; 0: the subgroup size). More than a subgroup runs the
+    // kernel's several-subgroup path, which a device may take with its own default size.
+    uint32_t tileThreads = 0;
     bool collectLightStats = false;  // allocate what readLightStats() needs
     bool collectShadowFactors = false;  // allocate what readShadowFactors() needs
     ShadowSettings shadows;

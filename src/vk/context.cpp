@@ -191,6 +191,17 @@ Context::Context(const ContextOptions& options)
         }
         physicalDevice_ = devices[size_t(chosen)];
         vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
+        {
+            VkPhysicalDeviceSubgroupProperties subgroup{};
+            subgroup.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
+            VkPhysicalDeviceProperties2 properties2{};
+            properties2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+            properties2.pNext = &subgroup;
+            vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
+            subgroupSize_ = std::max(subgroup.subgroupSize, 1u);
+            computeSubgroupArithmetic_ = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
+                                         (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT) != 0;
+        }
         std::string ignored;
         queueFamily_ = pickQueueFamily(physicalDevice_, ignored);
         {

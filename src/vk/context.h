@@ -48,6 +48,10 @@ public:
     VkCommandPool commandPool() const { return commandPool_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     const VkPhysicalDeviceFeatures& enabledFeatures() const { return enabledFeatures_; }
+    // The device's subgroup size, and whether compute shaders have the subgroup arithmetic
+    // operations (subgroupMin, subgroupOr, ...: Vulkan 1.1 core, optional but near universal).
+    uint32_t subgroupSize() const { return subgroupSize_; }
+    bool computeSubgroupArithmetic() const { return computeSubgroupArithmetic_; }
     std::string deviceName() const { return properties_.deviceName; }
     // Nanoseconds per timestamp tick, and the mask of valid timestamp bits on our queue.
     double timestampPeriodNs() const { return double(properties_.limits.timestampPeriod); }
@@ -89,6 +93,8 @@ private:
     Handle<VkCommandPool> commandPool_;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceFeatures enabledFeatures_{};
+    uint32_t subgroupSize_ = 1;
+    bool computeSubgroupArithmetic_ = false;
     uint64_t timestampMask_ = ~0ull;
 
     mutable std::mutex messagesMutex_;

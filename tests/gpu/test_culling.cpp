@@ -8,12 +8,15 @@
 #include <bit>
 #include <map>
 #include <memory>
+#include <set>
+#include <tuple>
 
 #include "culling.h"
 #include "culling_test_scenes.h"
 #include "gpu_test_support.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
+#include "scene/study_scenes.h"
 #include "shading.h"
 
 namespace punctual {
@@ -350,6 +353,63 @@ TEST(Culling, NoLightReachingAPixelIsCulled) {
             }
         }
     }
+    testing::expectNoValidationMessages(*context);
+}
+
+TEST(Culling, SubgroupTileKernelWritesTheSharedMemoryKernelsGrids) {
+    // tiled, zbin and zbin-2d cull with one subgroup per tile (tile_culling.comp) where the device
+    // has subgroup arithmetic; light_culling.comp's shared-memory workgroups are what a device
+    // without it runs. Both must write the same masks, word for word: on the default scene at tile
+    // sizes 8, 16 (with and without the coarse pass) and 13 (odd: half blocks), and with 64
+    // invocations a tile, more than a subgroup on most devices (the kernel's several-subgroup
+    // path); on glass panes (transparent spans) and on the near posts (foreground before
+    // background in one tile). (Renderers are costly to make on lavapipe: the cases are few.)
+    auto context = testing::makeValidatedContext();
+    if (!context->computeSubgroupArithmetic()) GTEST_SKIP() << "the device has no compute subgroup arithmetic";
+    using Case = std::tuple<uint32_t, bool, uint32_t>;  // tile size, coarse pass, invocations (0: the subgroup size)
+    const std::vector<std::pair<testing::NamedScene, std::vector<Case>>> runs = {
+        {{"default scene", makeDefaultScene()}, {{8u, true, 0u}, {16u, true, 0u}, {16u, false, 0u}, {13u, false, 0u}, {16u, true, 64u}}},
+        {{"glass panes", study::glassPanesScene(9.0f)}, {{16u, true, 0u}}},
+        {testing::adversarialCullingScenes()[3], {{13u, false, 0u}}},
+    };
+    size_t comparedWords = 0;
+    size_t setWords = 0;
+    std::set<LightListMethod> subgroupMethods;
+    for (const auto& [named, cases] : runs) {
+        for (LightListMethod method : render::gridMethods()) {
+            const render::LightListMethodInfo& info = render::methodInfo(method);
+            if (info.depthSlices || info.depthMask) continue;  // clustered, tiled-2.5d: shared-memory cells
+            for (const auto& [tileSize, coarse, threads] : cases) {
+                SCOPED_TRACE(named.name + " / " + info.name + " tile " + std::to_string(tileSize) +
+                             (coarse ? "" : ", no coarse pass") + (threads ? ", 64 invocations" : ""));
+                render::RenderSettings settings = settingsFor(method);
+                settings.tileSize = tileSize;
+                settings.coarseTiles = coarse;
+                settings.tileThreads = threads;
+                render::Renderer subgroup(*context, named.scene, settings);
+                EXPECT_EQ(subgroup.gridLayout().tileThreads, threads ? threads : std::min(context->subgroupSize(), 64u));
+                subgroupMethods.insert(method);
+                subgroup.render(1, 0);
+                settings.subgroupTiles = false;
+                render::Renderer workgroup(*context, named.scene, settings);
+                EXPECT_EQ(workgroup.gridLayout().tileThreads, 0u);
+                workgroup.render(1, 0);
+                const std::vector<uint32_t> expected = workgroup.readLightGrid();
+                const std::vector<uint32_t> actual = subgroup.readLightGrid();
+                ASSERT_EQ(actual.size(), expected.size());
+                size_t differing = 0;
+                for (size_t i = 0; i < actual.size(); ++i) {
+                    differing += actual[i] != expected[i] ? 1 : 0;
+                    setWords += expected[i] != 0 ? 1 : 0;
+                }
+                EXPECT_EQ(differing, 0u);
+                comparedWords += actual.size();
+            }
+        }
+    }
+    // Not vacuous: the three one-extent methods ran the subgroup kernel, on grids with lights.
+    EXPECT_EQ(subgroupMethods, (std::set<LightListMethod>{LightListMethod::Tiled, LightListMethod::ZBin, LightListMethod::ZBin2D}));
+    EXPECT_GT(setWords, comparedWords / 10);
     testing::expectNoValidationMessages(*context);
 }
 
