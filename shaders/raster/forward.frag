@@ -178,17 +178,6 @@ vec3 shadeSun(Surface surface) {
     return shadeDirectionalLight(surface, frame.sun) * shadow;
 }
 
-// The lights of one mask word, lowest bit first, from packed light `firstLight`.
-// Added to `radiance` one by one, in the brute-force loop's order and association.
-void shadeGridWord(Surface surface, uint bits, uint firstLight, precise inout vec3 radiance, inout uint tested) {
-    while (bits != 0u) {
-        uint bit = uint(findLSB(bits));
-        bits &= bits - 1u;  // clear the lowest set bit: ascending order
-        radiance += shadeLight(surface, lights[firstLight + bit]);
-        ++tested;
-    }
-}
-
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 void main() {
@@ -270,11 +259,25 @@ void main() {
             unknownVariant = true;
             break;
     }
-    // The grid methods' lights: the set bits of the three words, ascending (spots, then points).
+    // The grid methods' lights: the set bits of the three words, ascending (spots, then points),
+    // added to `radiance` one by one in the brute-force loop's order and association. One loop
+    // over the three words, each step taking the lowest set bit of the first word with any, by
+    // selects rather than branches. Measured on lavapipe, default scene at 1280x720 (A/B, four
+    // rounds): a loop per word 40.3 ms with no lights (brute force 32) and 82.8 with the default
+    // lights, this one 34.2 and 76.4; the same single loop with an if/else chain picking the word
+    // was twice as slow with lights. (Evidently a loop there costs about a pass over its body even
+    // when it takes no step, as SIMD lanes run under masks.)
     if (walkGridWords) {
-        shadeGridWord(surface, gridWords.x, lightGridFirstLight(0u, spotCount), radiance, tested);
-        shadeGridWord(surface, gridWords.y, lightGridFirstLight(1u, spotCount), radiance, tested);
-        shadeGridWord(surface, gridWords.z, lightGridFirstLight(2u, spotCount), radiance, tested);
+        uvec3 words = gridWords;
+        while ((words.x | words.y | words.z) != 0u) {
+            uint word = words.x != 0u ? 0u : (words.y != 0u ? 1u : 2u);
+            uint bits = word == 0u ? words.x : (word == 1u ? words.y : words.z);
+            uint light = lightGridFirstLight(word, spotCount) + uint(findLSB(bits));
+            bits &= bits - 1u;  // clear the lowest set bit: ascending order
+            words = uvec3(word == 0u ? bits : words.x, word == 1u ? bits : words.y, word == 2u ? bits : words.z);
+            radiance += shadeLight(surface, lights[light]);
+            ++tested;
+        }
     }
     // Emission last, after every light, in the reference's order. It lights nothing else.
     radiance += emission;
