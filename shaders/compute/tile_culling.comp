@@ -150,14 +150,19 @@ void main() {
         uvec2 coarseTile = tile / COARSE_TILES;
         uint coarseTilesAcross = (frame.lightGrid.y + COARSE_TILES - 1u) / COARSE_TILES;
         uint coarseBase = (coarseTile.y * coarseTilesAcross + coarseTile.x) * PUNCTUAL_GRID_WORDS;
-        for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) {
-            uint first = lightGridFirstLight(word, spotCount);
-            uint found = 0u;
-            for (uint bits = coarseGrid[coarseBase + word] & laneBitsOfWord(word, lane, threads); bits != 0u; bits &= bits - 1u) {
-                uint bit = uint(findLSB(bits));
-                if (lightMayTouchTile(frameCullLights[first + bit], segment)) found |= 1u << bit;
+        uvec3 mine = uvec3(coarseGrid[coarseBase] & laneBitsOfWord(0u, lane, threads),
+                           coarseGrid[coarseBase + 1u] & laneBitsOfWord(1u, lane, threads),
+                           coarseGrid[coarseBase + 2u] & laneBitsOfWord(2u, lane, threads));
+        // One loop over the three words, each step the lowest bit of the first word with any,
+        // by selects (forward.frag walks its masks so, and why).
+        while ((mine.x | mine.y | mine.z) != 0u) {
+            uint word = mine.x != 0u ? 0u : (mine.y != 0u ? 1u : 2u);
+            uint bits = word == 0u ? mine.x : (word == 1u ? mine.y : mine.z);
+            uint bit = 1u << uint(findLSB(bits));
+            mine &= ~uvec3(word == 0u ? bit : 0u, word == 1u ? bit : 0u, word == 2u ? bit : 0u);
+            if (lightMayTouchTile(frameCullLights[lightGridFirstLight(word, spotCount) + uint(findLSB(bits))], segment)) {
+                masks |= uvec3(word == 0u ? bit : 0u, word == 1u ? bit : 0u, word == 2u ? bit : 0u);
             }
-            masks |= uvec3(word == 0u ? found : 0u, word == 1u ? found : 0u, word == 2u ? found : 0u);
         }
     }
     masks = workgroupMasks(masks);
