@@ -29,10 +29,13 @@
 #include "gpu_types.h"
 #include "culling.h"
 
-// 64 threads, each covering (TILE_SIZE / 8)^2 pixels of the tile: a thread folds its pixels'
-// depths in registers and touches shared memory only when its slice changes, which keeps the
-// shared atomics (the cost that dominates this pass on CPU drivers) few.
-layout(local_size_x = 8, local_size_y = 8) in;
+// TILE_THREADS invocations a tile, the device's subgroup size (at most 64): each folds the depths of
+// every TILE_THREADS-th 2x2 block in registers and touches shared memory only when its slice
+// changes, which keeps the shared atomics (the cost that dominates this pass on CPU drivers) few.
+// One subgroup a workgroup also makes the barriers cheap where they cost most: lavapipe runs a
+// workgroup's subgroups as coroutines switched at every barrier, and 64 invocations (8 of its
+// subgroups) took the clustered pass 34.9 ms at 1280x720, one subgroup 20.2 (A/B, bench/RESULTS.md).
+layout(local_size_x_id = PUNCTUAL_SPEC_TILE_THREADS) in;
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
 layout(constant_id = PUNCTUAL_SPEC_DEPTH_MASK) const bool DEPTH_MASK = false;  // tiled only
@@ -56,8 +59,7 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly b
 
 #include "depth_blocks.glsl"
 
-const uint kThreads = 64u;
-const uint kSide = 8u;
+const uint kThreads = gl_WorkGroupSize.x;
 
 shared uint sliceMinDistance[SLICE_COUNT];  // float bits of view distances (positive: bits sort like values)
 shared uint sliceMaxDistance[SLICE_COUNT];
@@ -209,10 +211,8 @@ void main() {
     bool foldDepths = SLICE_COUNT == 1u && !DEPTHLESS_TILES && frame.lightCounts.w == 0u;
     if (foldDepths) {
         vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) geometry depth; x = 0: none
-        for (uint by = gl_LocalInvocationID.y; by < kBlocks; by += kSide) {
-            for (uint bx = gl_LocalInvocationID.x; bx < kBlocks; bx += kSide) {
-                extent = quadExtent(tile * TILE_SIZE + 2u * uvec2(bx, by), tileEnd, extent);
-            }
+        for (uint block = thread; block < kBlocks * kBlocks; block += kThreads) {
+            extent = quadExtent(tile * TILE_SIZE + 2u * uvec2(block % kBlocks, block / kBlocks), tileEnd, extent);
         }
         if (extent.x > 0.0) {
             atomicMin(sliceMinDistance[0], floatBitsToUint(viewDistanceFromDepth(extent.x, frame.depthToView.xy)));
@@ -226,86 +226,83 @@ void main() {
     // 1280x720: the clustered culling pass 13% faster, A/B under load.)
     bool clusterBlocks = SLICE_COUNT > 1u && !DEPTHLESS_TILES && frame.lightCounts.w == 0u;
     uvec3 run = uvec3(0xFFFFFFFFu, 0xFFFFFFFFu, 0u);  // the thread's current slice, its min and max distance bits
-    for (uint by = gl_LocalInvocationID.y; clusterBlocks && by < kBlocks; by += kSide) {
-        for (uint bx = gl_LocalInvocationID.x; bx < kBlocks; bx += kSide) {
-            uvec2 corner = tile * TILE_SIZE + 2u * uvec2(bx, by);
-            vec2 extent = quadExtent(corner, tileEnd, vec2(0.0, 1.0));
-            if (extent.x == 0.0) continue;  // background only, or past the viewport
-            uint nearSlice, farSlice;
-            PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(nearSlice, extent.x, sliceStart, SLICE_COUNT);
-            PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(farSlice, extent.y, sliceStart, SLICE_COUNT);
-            uint nearBits = floatBitsToUint(viewDistanceFromDepth(extent.x, frame.depthToView.xy));
-            uint farBits = floatBitsToUint(viewDistanceFromDepth(extent.y, frame.depthToView.xy));
-            threadMin = min(threadMin, nearBits);
-            threadMax = max(threadMax, farBits);
-            uvec2 local = 2u * uvec2(bx, by);
-            bool right = corner.x + 1u < tileEnd.x;
-            bool below = corner.y + 1u < tileEnd.y;
-            if (nearSlice == farSlice) {
-                run = addToSliceRun(run, nearSlice, nearBits, farBits);
-                // (The whole block: a background pixel in it only widens the rectangle.)
-                markCellRect(nearSlice, local, local + uvec2(right ? 1u : 0u, below ? 1u : 0u));
-                continue;
-            }
-            vec4 quad = textureGather(depthImage, (vec2(corner) + 1.0) * frame.viewport.zw);
-            run = addPixelToSliceRun(run, quad.w, local);
-            if (right) run = addPixelToSliceRun(run, quad.z, local + uvec2(1u, 0u));
-            if (below) run = addPixelToSliceRun(run, quad.x, local + uvec2(0u, 1u));
-            if (right && below) run = addPixelToSliceRun(run, quad.y, local + uvec2(1u, 1u));
+    for (uint block = thread; clusterBlocks && block < kBlocks * kBlocks; block += kThreads) {
+        uvec2 local = 2u * uvec2(block % kBlocks, block / kBlocks);  // the block's top-left pixel in the tile
+        uvec2 corner = tile * TILE_SIZE + local;
+        vec2 extent = quadExtent(corner, tileEnd, vec2(0.0, 1.0));
+        if (extent.x == 0.0) continue;  // background only, or past the viewport
+        uint nearSlice, farSlice;
+        PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(nearSlice, extent.x, sliceStart, SLICE_COUNT);
+        PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(farSlice, extent.y, sliceStart, SLICE_COUNT);
+        uint nearBits = floatBitsToUint(viewDistanceFromDepth(extent.x, frame.depthToView.xy));
+        uint farBits = floatBitsToUint(viewDistanceFromDepth(extent.y, frame.depthToView.xy));
+        threadMin = min(threadMin, nearBits);
+        threadMax = max(threadMax, farBits);
+        bool right = corner.x + 1u < tileEnd.x;
+        bool below = corner.y + 1u < tileEnd.y;
+        if (nearSlice == farSlice) {
+            run = addToSliceRun(run, nearSlice, nearBits, farBits);
+            // (The whole block: a background pixel in it only widens the rectangle.)
+            markCellRect(nearSlice, local, local + uvec2(right ? 1u : 0u, below ? 1u : 0u));
+            continue;
         }
+        vec4 quad = textureGather(depthImage, (vec2(corner) + 1.0) * frame.viewport.zw);
+        run = addPixelToSliceRun(run, quad.w, local);
+        if (right) run = addPixelToSliceRun(run, quad.z, local + uvec2(1u, 0u));
+        if (below) run = addPixelToSliceRun(run, quad.x, local + uvec2(0u, 1u));
+        if (right && below) run = addPixelToSliceRun(run, quad.y, local + uvec2(1u, 1u));
     }
     if (run.x != 0xFFFFFFFFu) {
         atomicMin(sliceMinDistance[run.x], run.y);
         atomicMax(sliceMaxDistance[run.x], run.z);
     }
-    for (uint y = gl_LocalInvocationID.y; !foldDepths && !clusterBlocks && !DEPTHLESS_TILES && y < TILE_SIZE; y += kSide) {
-        for (uint x = gl_LocalInvocationID.x; x < TILE_SIZE; x += kSide) {
-            uvec2 pixel = tile * TILE_SIZE + uvec2(x, y);
-            if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
-            float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
-            if (frame.lightCounts.w != 0u) {
-                uint index = pixel.y * viewport.x + pixel.x;
-                uint nearestBits = transparentDepth[index];
-                if (nearestBits != 0u) {
-                    float nearest = uintBitsToFloat(nearestBits);
-                    float farthest = isBackgroundDepth(depth) ? uintBitsToFloat(transparentDepth[viewport.x * viewport.y + index])
-                                                              : depth;
-                    uint nearSlice, farSlice;
-                    PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(nearSlice, nearest, sliceStart, SLICE_COUNT);
-                    PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(farSlice, farthest, sliceStart, SLICE_COUNT);
-                    // Each crossed slice gets the part of the span inside it: from its start (or the
-                    // span's near end) to the next slice's start (or the span's far end).
-                    for (uint slice = nearSlice; slice <= farSlice; ++slice) {
-                        float top = slice == nearSlice ? nearest : sliceStart[slice];
-                        float bottom = slice == farSlice ? farthest : sliceStart[slice + 1u];
-                        atomicMin(sliceMinDistance[slice], floatBitsToUint(viewDistanceFromDepth(top, frame.depthToView.xy)));
-                        atomicMax(sliceMaxDistance[slice], floatBitsToUint(viewDistanceFromDepth(bottom, frame.depthToView.xy)));
-                    }
-                    threadMin = min(threadMin, floatBitsToUint(viewDistanceFromDepth(nearest, frame.depthToView.xy)));
-                    threadMax = max(threadMax, floatBitsToUint(viewDistanceFromDepth(farthest, frame.depthToView.xy)));
-                    continue;
+    for (uint tilePixel = thread; !foldDepths && !clusterBlocks && !DEPTHLESS_TILES && tilePixel < TILE_SIZE * TILE_SIZE;
+         tilePixel += kThreads) {
+        uvec2 pixel = tile * TILE_SIZE + uvec2(tilePixel % TILE_SIZE, tilePixel / TILE_SIZE);
+        if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
+        float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
+        if (frame.lightCounts.w != 0u) {
+            uint index = pixel.y * viewport.x + pixel.x;
+            uint nearestBits = transparentDepth[index];
+            if (nearestBits != 0u) {
+                float nearest = uintBitsToFloat(nearestBits);
+                float farthest = isBackgroundDepth(depth) ? uintBitsToFloat(transparentDepth[viewport.x * viewport.y + index])
+                                                          : depth;
+                uint nearSlice, farSlice;
+                PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(nearSlice, nearest, sliceStart, SLICE_COUNT);
+                PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(farSlice, farthest, sliceStart, SLICE_COUNT);
+                // Each crossed slice gets the part of the span inside it: from its start (or the
+                // span's near end) to the next slice's start (or the span's far end).
+                for (uint slice = nearSlice; slice <= farSlice; ++slice) {
+                    float top = slice == nearSlice ? nearest : sliceStart[slice];
+                    float bottom = slice == farSlice ? farthest : sliceStart[slice + 1u];
+                    atomicMin(sliceMinDistance[slice], floatBitsToUint(viewDistanceFromDepth(top, frame.depthToView.xy)));
+                    atomicMax(sliceMaxDistance[slice], floatBitsToUint(viewDistanceFromDepth(bottom, frame.depthToView.xy)));
                 }
+                threadMin = min(threadMin, floatBitsToUint(viewDistanceFromDepth(nearest, frame.depthToView.xy)));
+                threadMax = max(threadMax, floatBitsToUint(viewDistanceFromDepth(farthest, frame.depthToView.xy)));
+                continue;
             }
-            if (isBackgroundDepth(depth)) continue;  // nothing to shade
-            // The pixel's slice: the same search as pixelGridCell() in forward.frag (culling.h),
-            // so both pick the same slice.
-            uint slice;
-            PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, depth, sliceStart, SLICE_COUNT);
-            uint distanceBits = floatBitsToUint(viewDistanceFromDepth(depth, frame.depthToView.xy));
-            threadMin = min(threadMin, distanceBits);
-            threadMax = max(threadMax, distanceBits);
-            if (slice != runSlice) {
-                if (runSlice != 0xFFFFFFFFu) {
-                    atomicMin(sliceMinDistance[runSlice], runMin);
-                    atomicMax(sliceMaxDistance[runSlice], runMax);
-                }
-                runSlice = slice;
-                runMin = distanceBits;
-                runMax = distanceBits;
-            } else {
-                runMin = min(runMin, distanceBits);
-                runMax = max(runMax, distanceBits);
+        }
+        if (isBackgroundDepth(depth)) continue;  // nothing to shade
+        // The pixel's slice: the same search as pixelGridCell() in forward.frag (culling.h),
+        // so both pick the same slice.
+        uint slice;
+        PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, depth, sliceStart, SLICE_COUNT);
+        uint distanceBits = floatBitsToUint(viewDistanceFromDepth(depth, frame.depthToView.xy));
+        threadMin = min(threadMin, distanceBits);
+        threadMax = max(threadMax, distanceBits);
+        if (slice != runSlice) {
+            if (runSlice != 0xFFFFFFFFu) {
+                atomicMin(sliceMinDistance[runSlice], runMin);
+                atomicMax(sliceMaxDistance[runSlice], runMax);
             }
+            runSlice = slice;
+            runMin = distanceBits;
+            runMax = distanceBits;
+        } else {
+            runMin = min(runMin, distanceBits);
+            runMax = max(runMax, distanceBits);
         }
     }
     if (runSlice != 0xFFFFFFFFu) {
@@ -329,46 +326,44 @@ void main() {
     vec2 ndcB = min(vec2((tile + 1u) * TILE_SIZE), frame.viewport.xy) * pixelToNdc - 1.0;
     if (DEPTH_MASK && SLICE_COUNT == 1u && sliceMaxDistance[0] != 0u) {
         uint threadMask = 0u;
-        for (uint by = gl_LocalInvocationID.y; foldDepths && by < kBlocks; by += kSide) {
-            for (uint bx = gl_LocalInvocationID.x; bx < kBlocks; bx += kSide) {
-                uvec2 corner = tile * TILE_SIZE + 2u * uvec2(bx, by);
-                uint cells = quadDepthCells(corner, tileEnd, maskNear, maskScale);
-                threadMask |= cells;
-                // Each of the block's cells gets the whole block's rectangle.
-                uvec2 last = 2u * uvec2(bx, by) + uvec2(corner.x + 1u < tileEnd.x ? 1u : 0u, corner.y + 1u < tileEnd.y ? 1u : 0u);
-                for (; cells != 0u; cells &= cells - 1u) markCellRect(uint(findLSB(cells)), 2u * uvec2(bx, by), last);
-            }
+        for (uint block = thread; foldDepths && block < kBlocks * kBlocks; block += kThreads) {
+            uvec2 local = 2u * uvec2(block % kBlocks, block / kBlocks);  // the block's top-left pixel in the tile
+            uvec2 corner = tile * TILE_SIZE + local;
+            uint cells = quadDepthCells(corner, tileEnd, maskNear, maskScale);
+            threadMask |= cells;
+            // Each of the block's cells gets the whole block's rectangle.
+            uvec2 last = local + uvec2(corner.x + 1u < tileEnd.x ? 1u : 0u, corner.y + 1u < tileEnd.y ? 1u : 0u);
+            for (; cells != 0u; cells &= cells - 1u) markCellRect(uint(findLSB(cells)), local, last);
         }
-        for (uint y = gl_LocalInvocationID.y; !foldDepths && y < TILE_SIZE; y += kSide) {
-            for (uint x = gl_LocalInvocationID.x; x < TILE_SIZE; x += kSide) {
-                uvec2 pixel = tile * TILE_SIZE + uvec2(x, y);
-                if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
-                float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
-                if (frame.lightCounts.w != 0u) {
-                    uint index = pixel.y * viewport.x + pixel.x;
-                    uint nearestBits = transparentDepth[index];
-                    if (nearestBits != 0u) {
-                        float farthest = isBackgroundDepth(depth) ? uintBitsToFloat(transparentDepth[viewport.x * viewport.y + index])
-                                                                  : depth;
-                        float top = viewDistanceFromDepth(uintBitsToFloat(nearestBits), frame.depthToView.xy);
-                        float bottom = viewDistanceFromDepth(farthest, frame.depthToView.xy);
-                        threadMask |= depthMaskBits(depthMaskCell(top, maskNear, maskScale),
-                                                    depthMaskCell(bottom, maskNear, maskScale));
-                        continue;
-                    }
+        for (uint tilePixel = thread; !foldDepths && tilePixel < TILE_SIZE * TILE_SIZE; tilePixel += kThreads) {
+            uvec2 pixel = tile * TILE_SIZE + uvec2(tilePixel % TILE_SIZE, tilePixel / TILE_SIZE);
+            if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
+            float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
+            if (frame.lightCounts.w != 0u) {
+                uint index = pixel.y * viewport.x + pixel.x;
+                uint nearestBits = transparentDepth[index];
+                if (nearestBits != 0u) {
+                    float farthest = isBackgroundDepth(depth) ? uintBitsToFloat(transparentDepth[viewport.x * viewport.y + index])
+                                                              : depth;
+                    float top = viewDistanceFromDepth(uintBitsToFloat(nearestBits), frame.depthToView.xy);
+                    float bottom = viewDistanceFromDepth(farthest, frame.depthToView.xy);
+                    threadMask |= depthMaskBits(depthMaskCell(top, maskNear, maskScale),
+                                                depthMaskCell(bottom, maskNear, maskScale));
+                    continue;
                 }
-                if (isBackgroundDepth(depth)) continue;
-                threadMask |= 1u << depthMaskCell(viewDistanceFromDepth(depth, frame.depthToView.xy), maskNear, maskScale);
             }
+            if (isBackgroundDepth(depth)) continue;
+            threadMask |= 1u << depthMaskCell(viewDistanceFromDepth(depth, frame.depthToView.xy), maskNear, maskScale);
         }
         if (threadMask != 0u) atomicOr(tileDepthMask, threadMask);
         barrier();
-        if (thread < PUNCTUAL_DEPTH_MASK_CELLS) {
-            // The rectangle of the cell's pixels where marked (an unoccupied cell is never tested).
-            bool marked = foldDepths && TILE_SIZE <= 32u && cellColumns[thread] != 0u;
-            vec4 rect = marked ? cellRectNdc(tile, thread, pixelToNdc) : vec4(min(ndcA, ndcB), max(ndcA, ndcB));
-            cellVolumes[thread] = makeDepthCellVolume(rect.xy, rect.zw, thread, maskNear, uintBitsToFloat(sliceMaxDistance[0]),
-                                                      frame.ndcToView);
+        for (uint cell = thread; cell < PUNCTUAL_DEPTH_MASK_CELLS; cell += kThreads) {
+            if ((tileDepthMask & (1u << cell)) == 0u) continue;  // an unoccupied cell is never tested
+            // The rectangle of the cell's pixels where marked.
+            bool marked = foldDepths && TILE_SIZE <= 32u && cellColumns[cell] != 0u;
+            vec4 rect = marked ? cellRectNdc(tile, cell, pixelToNdc) : vec4(min(ndcA, ndcB), max(ndcA, ndcB));
+            cellVolumes[cell] = makeDepthCellVolume(rect.xy, rect.zw, cell, maskNear, uintBitsToFloat(sliceMaxDistance[0]),
+                                                    frame.ndcToView);
         }
     }
     if (DEPTH_MASK) barrier();

@@ -22,8 +22,8 @@ constexpr uint32_t kDepthRangeGroup = 32;  // pixels a side covered by one depth
 }
 
 LightGridLayout LightGridLayout::forMethod(const LightListMethodInfo& method, uint32_t width, uint32_t height,
-                                           uint32_t tileSize, uint32_t clusterSlices, bool coarse,
-                                           uint32_t subgroupThreads) {
+                                           uint32_t tileSize, uint32_t clusterSlices, bool coarse, uint32_t threads,
+                                           bool subgroupArithmetic) {
     LightGridLayout layout;
     layout.tileSize = tileSize;
     layout.tilesX = (width + tileSize - 1) / tileSize;
@@ -34,12 +34,12 @@ LightGridLayout LightGridLayout::forMethod(const LightListMethodInfo& method, ui
     layout.depthlessTiles = method.depthlessTiles;
     const uint32_t perCoarseTile = kCoarseTilePixels / tileSize;
     layout.coarseTiles = coarse && method.usesLightGrid && perCoarseTile >= 2 ? perCoarseTile : 0u;
-    // One subgroup a tile where the method has one depth extent per tile. Subgroup sizes are powers
-    // of two (the Vulkan specification); a larger one than the kernel's cap is cut to it, and the
-    // workgroup is then part of one subgroup.
-    const bool oneExtent = layout.slices == 1 && !layout.depthMask;
-    const bool powerOfTwo = subgroupThreads != 0 && (subgroupThreads & (subgroupThreads - 1)) == 0;
-    layout.tileThreads = oneExtent && powerOfTwo ? std::min<uint32_t>(subgroupThreads, PUNCTUAL_MAX_TILE_THREADS) : 0u;
+    // One subgroup a tile: subgroup sizes are powers of two (the Vulkan specification); one above
+    // the cap is cut to it (the workgroup is then part of a subgroup), one under 4 raised to it (the
+    // kernels write the three mask words with one invocation each).
+    const bool powerOfTwo = threads != 0 && (threads & (threads - 1)) == 0;
+    layout.tileThreads = powerOfTwo ? std::clamp<uint32_t>(threads, 4, PUNCTUAL_MAX_TILE_THREADS) : PUNCTUAL_MAX_TILE_THREADS;
+    layout.subgroupKernel = subgroupArithmetic && layout.slices == 1 && !layout.depthMask;
     return layout;
 }
 
@@ -95,7 +95,7 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
     // VkBool32 for the bool constant, as the specification asks.
     const std::array<uint32_t, 6> values = {layout_.tileSize, layout_.slices, VkBool32(layout_.depthMask),
                                             VkBool32(layout_.depthlessTiles), layout_.coarseTiles, layout_.tileThreads};
-    if (layout_.tileThreads) {
+    if (layout_.subgroupKernel) {
         const std::array<VkSpecializationMapEntry, 4> entries = {{
             {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
             {PUNCTUAL_SPEC_DEPTHLESS_TILES, 3 * sizeof(uint32_t), sizeof(VkBool32)},
@@ -106,12 +106,13 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
         cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
                                                      compute_tile_culling_comp_spv, &specialization);
     } else {
-        const std::array<VkSpecializationMapEntry, 5> entries = {{
+        const std::array<VkSpecializationMapEntry, 6> entries = {{
             {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
             {PUNCTUAL_SPEC_SLICE_COUNT, sizeof(uint32_t), sizeof(uint32_t)},
             {PUNCTUAL_SPEC_DEPTH_MASK, 2 * sizeof(uint32_t), sizeof(VkBool32)},
             {PUNCTUAL_SPEC_DEPTHLESS_TILES, 3 * sizeof(uint32_t), sizeof(VkBool32)},
             {PUNCTUAL_SPEC_COARSE_TILES, 4 * sizeof(uint32_t), sizeof(uint32_t)},
+            {PUNCTUAL_SPEC_TILE_THREADS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
         }};
         const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};
         cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),

@@ -32,21 +32,25 @@ struct LightGridLayout {
     bool zBins = false;      // zbin, zbin-2d: the forward pass ANDs the tile's mask with its z-bin's
     bool depthlessTiles = false;  // zbin-2d: two-dimensional tile masks (no depth read), the bins hold depth
     uint32_t coarseTiles = 0;  // fine tiles a side of a coarse tile; 0: no coarse pass
-    // Invocations per tile of tile_culling.comp, the one-subgroup kernel of the methods with one
-    // depth extent per tile (tiled, zbin, zbin-2d); 0: light_culling.comp culls them (a device
-    // without compute subgroup arithmetic, or RenderSettings::subgroupTiles off).
-    uint32_t tileThreads = 0;
-
+    // Invocations per tile of the culling kernel: the device's compute subgroup size, at least 4
+    // and at most PUNCTUAL_MAX_TILE_THREADS (one subgroup a tile where the device's size fits).
+    uint32_t tileThreads = 64;
+    // Whether tile_culling.comp, the one-subgroup kernel of the methods with one depth extent per
+    // tile (tiled, zbin, zbin-2d), culls: where the device has compute subgroup arithmetic and
+    // RenderSettings::subgroupTiles is on. Otherwise light_culling.comp (shared memory) does.
+    bool subgroupKernel = false;
     uint32_t cellCount() const { return tilesX * tilesY * slices; }
     uint32_t coarseTilesX() const { return coarseTiles ? (tilesX + coarseTiles - 1) / coarseTiles : 0; }
     uint32_t coarseTilesY() const { return coarseTiles ? (tilesY + coarseTiles - 1) / coarseTiles : 0; }
     // The grid `method` culls to: `clusterSlices` depth slices where it has them (clustered), one
     // otherwise; its depth mask and z-bins flags (the culling kernel's specialization constants);
     // with `coarse`, kCoarseTilePixels / tileSize fine tiles a side per coarse tile where that is
-    // at least two. `subgroupThreads`: the device's compute subgroup size where it has subgroup
-    // arithmetic and tile_culling.comp may be used, else 0.
+    // at least two. `threads`: invocations per tile (the device's subgroup size; a size that is not
+    // a power of two, never a Vulkan one, gets 64); `subgroupArithmetic`: whether tile_culling.comp
+    // may cull the methods with one depth extent per tile.
     static LightGridLayout forMethod(const LightListMethodInfo& method, uint32_t width, uint32_t height,
-                                     uint32_t tileSize, uint32_t clusterSlices, bool coarse, uint32_t subgroupThreads);
+                                     uint32_t tileSize, uint32_t clusterSlices, bool coarse, uint32_t threads,
+                                     bool subgroupArithmetic);
 };
 
 class LightCullingPass final : public Pass {

@@ -33,9 +33,9 @@ struct RenderSettings {
     // has compute subgroup arithmetic. False: with light_culling.comp's shared-memory workgroups,
     // as a device without it does (the tests compare the two; the grids are the same).
     bool subgroupTiles = true;
-    // For tests: that kernel's invocations per tile instead of the device's subgroup size (a power
-    // of two up to PUNCTUAL_MAX_TILE_THREADS; 0: the subgroup size). More than a subgroup runs the
-    // kernel's several-subgroup path, which a device may take with its own default size.
+    // For tests: the culling kernels' invocations per tile instead of the device's subgroup size (a
+    // power of two up to PUNCTUAL_MAX_TILE_THREADS; 0: the subgroup size). More than a subgroup
+    // runs tile_culling.comp's several-subgroup path, which a device may take with its own sizes.
     uint32_t tileThreads = 0;
     bool collectLightStats = false;  // allocate what readLightStats() needs
     bool collectShadowFactors = false;  // allocate what readShadowFactors() needs

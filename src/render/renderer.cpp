@@ -317,9 +317,8 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     if (method.objectLists) perObjectLists_ = buildPerObjectLightLists(scene, lights_);
     gridLayout_ = LightGridLayout::forMethod(method, settings.width, settings.height, settings.tileSize,
                                              settings.clusterSlices, settings.coarseTiles,
-                                             settings.subgroupTiles && context.computeSubgroupArithmetic()
-                                                 ? (settings.tileThreads ? settings.tileThreads : context.subgroupSize())
-                                                 : 0u);
+                                             settings.tileThreads ? settings.tileThreads : context.subgroupSize(),
+                                             settings.subgroupTiles && context.computeSubgroupArithmetic());
     if (method.zBins) {
         zBins_ = buildZBins(viewCullLights(lights_, view_), lights_.spotCount,
                             glm::vec2(projection_[3][2], projection_[2][2]));
