@@ -35,7 +35,8 @@ std::vector<std::string> benchColumns(const std::vector<std::string>& passes) {
                                         "pixels",        "scene",           "scene_triangles", "objects",
                                         "shadows",       "shadow_res",      "shadow_budget_mib", "shadow_format",
                                         "shadow_filter", "point_layout",    "cascades",       "shadowed_spots",
-                                        "shadowed_points", "coarse_tiles",  "rounds",         "best_of"};
+                                        "shadowed_points", "coarse_tiles",  "tile_kernel",    "tile_threads",
+                                        "rounds",        "best_of"};
     std::vector<std::string> timed = passes;
     timed.emplace_back("total");
     for (const char* statistic : {"_ms", "_iqr_ms", "_cv"}) {
@@ -66,6 +67,12 @@ void addConfiguration(BenchRow& row, const BenchConfig& config, const Scene& sce
     row["method"] = render::methodName(config.method);
     // Fine tiles a side of the coarse pass's big tiles; 0: none (methods without a grid, or off).
     row["coarse_tiles"] = std::to_string(renderer.gridLayout().coarseTiles);
+    // The grid methods' culling kernel (README: tile_culling.comp or light_culling.comp) and its
+    // invocations a tile; empty for the methods without a grid.
+    if (render::usesLightGrid(config.method)) {
+        row["tile_kernel"] = renderer.gridLayout().subgroupKernel ? "subgroup" : "shared-memory";
+        row["tile_threads"] = std::to_string(renderer.gridLayout().tileThreads);
+    }
     row["spot"] = std::to_string(lightsOfType(scene, LightType::Spot));
     row["point"] = std::to_string(lightsOfType(scene, LightType::Point));
     if (!config.scene) row["light_range"] = benchNumber(config.lightRange);

@@ -4,7 +4,8 @@
 // from those. Tiled: one workgroup per tile tests every light against the tile's depth extent
 // (zbin: the same, its z-bins uploaded here for the forward pass; zbin-2d: against the tile at every
 // depth, the bins holding depth), one subgroup a tile (tile_culling.comp) where the device has
-// compute subgroup arithmetic, else 64 invocations through shared memory (light_culling.comp).
+// compute subgroup arithmetic, else through shared memory (light_culling.comp). Both kernels run
+// one subgroup a tile (LightGridLayout::tileThreads).
 // tiled-2.5d: light_culling.comp, also against the tile's depth mask. Clustered: a depth-range pass
 // first finds the frame's nearest and farthest geometry, then light_culling.comp splits each tile
 // into logarithmic depth slices fitted to that range. The light grid holds PUNCTUAL_GRID_WORDS

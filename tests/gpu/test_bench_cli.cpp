@@ -40,7 +40,7 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     EXPECT_EQ(header,
               "config,series,method,spot,point,light_range,width,height,pixels,scene,scene_triangles,objects,shadows,"
               "shadow_res,shadow_budget_mib,shadow_format,shadow_filter,point_layout,cascades,shadowed_spots,"
-              "shadowed_points,coarse_tiles,rounds,best_of,depth_ms,transparent_depth_ms,culling_ms,shadows_ms,forward_ms,transparent_ms,"
+              "shadowed_points,coarse_tiles,tile_kernel,tile_threads,rounds,best_of,depth_ms,transparent_depth_ms,culling_ms,shadows_ms,forward_ms,transparent_ms,"
               "tonemap_ms,total_ms,depth_iqr_ms,transparent_depth_iqr_ms,culling_iqr_ms,shadows_iqr_ms,forward_iqr_ms,"
               "transparent_iqr_ms,tonemap_iqr_ms,total_iqr_ms,depth_cv,transparent_depth_cv,culling_cv,shadows_cv,"
               "forward_cv,transparent_cv,tonemap_cv,total_cv,flagged,flag_reason,tested_per_pixel,affecting_per_pixel,"
@@ -111,6 +111,13 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
         // The coarse pass: 4 fine tiles a side for the grid methods (64 / 16 pixels), none otherwise.
         const bool grid = row["method"] == "tiled" || row["method"] == "clustered";
         EXPECT_EQ(row["coarse_tiles"], grid ? "4" : "0") << config;
+        // Which culling kernel ran: the subgroup one for tiled where the device has subgroup
+        // arithmetic, the shared-memory one for clustered; none without a grid.
+        EXPECT_EQ(row["tile_kernel"] != "", grid) << config;
+        if (row["method"] == "clustered") {
+            EXPECT_EQ(row["tile_kernel"], "shared-memory") << config;
+        }
+        EXPECT_EQ(row["tile_threads"] != "", grid) << config;
         const bool shadows = row["shadows"] == "1";
         EXPECT_EQ(std::stod(row["shadow_lookups_per_pixel"].get<std::string>()) > 0.0, shadows) << config;
         // Brute force tests every light at every pixel: the nested generated sets' counts.
