@@ -1,15 +1,18 @@
 #version 450
 // The depth range of the frame's geometry, for clustered culling's depth slices: with the
 // reversed depth (culling.h) the largest depth is the nearest geometry, the smallest the
-// farthest. Background pixels (depth 0, the clear value) are ignored. Each of a group's 64 threads folds a 4x4 block in
-// registers (few invocations: their count, not the reads, is what costs on CPU drivers), the group
-// reduces in shared memory, and one thread merges into the global pair. Depths are non-negative
-// floats, whose bit patterns sort like the values, so integer atomicMin/Max order them correctly.
+// farthest. Background pixels (depth 0, the clear value) are ignored. Each invocation folds a
+// square of PUNCTUAL_DEPTH_RANGE_SIDE pixels a side in registers, 2x2 blocks a gather
+// (quadExtent), and merges it into the global pair with two atomics: no shared memory and no
+// barriers (a 64-invocation workgroup reducing through shared memory behind two barriers cost
+// lavapipe, which switches coroutines at every barrier, about 2 ms more at 1280x720; the atomics
+// are one pair per 256 pixels). Depths are non-negative floats, whose bit patterns sort like the
+// values, so integer atomicMin/Max order them correctly.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_types.h"
 #include "culling.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;  // one group covers 32x32 pixels
+layout(local_size_x_id = PUNCTUAL_SPEC_TILE_THREADS) in;  // the device's subgroup size
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
@@ -20,41 +23,36 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly b
     uint transparentDepth[];
 };
 
-shared uint groupMin;
-shared uint groupMax;
+#include "depth_blocks.glsl"
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) {
-        groupMin = 0xFFFFFFFFu;
-        groupMax = 0u;
+    const uint kSide = PUNCTUAL_DEPTH_RANGE_SIDE;
+    uvec2 viewport = uvec2(frame.viewport.xy);
+    // Invocation x of workgroup row y: square (x, y); the rows of workgroups are the squares' rows.
+    uvec2 square = uvec2(gl_GlobalInvocationID.x, gl_WorkGroupID.y);
+    if (square.x >= (viewport.x + kSide - 1u) / kSide) return;
+    uvec2 origin = square * kSide;
+    uvec2 end = min(origin + kSide, viewport);
+    vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) geometry depth; x = 0: none
+    for (uint block = 0u; block < (kSide / 2u) * (kSide / 2u); ++block) {
+        extent = quadExtent(origin + 2u * uvec2(block % (kSide / 2u), block / (kSide / 2u)), end, extent);
     }
-    barrier();
-    uint threadMin = 0xFFFFFFFFu;
-    uint threadMax = 0u;
-    for (uint i = 0u; i < 16u; ++i) {
-        uvec2 pixel = gl_GlobalInvocationID.xy * 4u + uvec2(i & 3u, i >> 2u);
-        if (pixel.x >= uint(frame.viewport.x) || pixel.y >= uint(frame.viewport.y)) continue;
-        float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
-        if (!isBackgroundDepth(depth)) {
-            threadMin = min(threadMin, floatBitsToUint(depth));
-            threadMax = max(threadMax, floatBitsToUint(depth));
-        }
-        if (frame.lightCounts.w != 0u) {
-            uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
-            uint nearestBits = transparentDepth[index];
-            if (nearestBits != 0u) {
-                threadMax = max(threadMax, nearestBits);
-                threadMin = min(threadMin, transparentDepth[uint(frame.viewport.x * frame.viewport.y) + index]);
+    uint threadMin = extent.x > 0.0 ? floatBitsToUint(extent.y) : 0xFFFFFFFFu;
+    uint threadMax = extent.x > 0.0 ? floatBitsToUint(extent.x) : 0u;
+    if (frame.lightCounts.w != 0u) {
+        for (uint y = origin.y; y < end.y; ++y) {
+            for (uint x = origin.x; x < end.x; ++x) {
+                uint index = y * viewport.x + x;
+                uint nearestBits = transparentDepth[index];
+                if (nearestBits != 0u) {
+                    threadMax = max(threadMax, nearestBits);
+                    threadMin = min(threadMin, transparentDepth[viewport.x * viewport.y + index]);
+                }
             }
         }
     }
     if (threadMin <= threadMax) {
-        atomicMin(groupMin, threadMin);
-        atomicMax(groupMax, threadMax);
-    }
-    barrier();
-    if (gl_LocalInvocationIndex == 0u && groupMin <= groupMax) {
-        atomicMin(depthRange.minDepthBits, groupMin);
-        atomicMax(depthRange.maxDepthBits, groupMax);
+        atomicMin(depthRange.minDepthBits, threadMin);
+        atomicMax(depthRange.maxDepthBits, threadMax);
     }
 }

@@ -17,10 +17,6 @@
 
 namespace punctual::render {
 
-namespace {
-constexpr uint32_t kDepthRangeGroup = 32;  // pixels a side covered by one depth_range.comp group
-}
-
 LightGridLayout LightGridLayout::forMethod(const LightListMethodInfo& method, uint32_t width, uint32_t height,
                                            uint32_t tileSize, uint32_t clusterSlices, bool coarse, uint32_t threads,
                                            bool subgroupArithmetic) {
@@ -130,8 +126,11 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
                                                     compute_coarse_culling_comp_spv, &coarseSpecialization);
     }
     if (layout_.slices > 1) {
-        depthRangePipeline_ =
-            vk::createComputePipeline(context.device(), bindings.pipelineLayout(), compute_depth_range_comp_spv);
+        // Its workgroups are the culling kernel's size (the device's subgroup size).
+        const VkSpecializationMapEntry threadsEntry{PUNCTUAL_SPEC_TILE_THREADS, 5 * sizeof(uint32_t), sizeof(uint32_t)};
+        const VkSpecializationInfo threadsSpecialization{1, &threadsEntry, sizeof(values), values.data()};
+        depthRangePipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
+                                                        compute_depth_range_comp_spv, &threadsSpecialization);
         const VkSpecializationMapEntry sliceEntry{PUNCTUAL_SPEC_SLICE_COUNT, 0, sizeof(uint32_t)};
         const VkSpecializationInfo sliceSpecialization{1, &sliceEntry, sizeof(uint32_t), &layout_.slices};
         sliceBoundariesPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
@@ -151,8 +150,10 @@ void LightCullingPass::record(const FrameContext& frame) const {
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     if (depthRangePipeline_) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, depthRangePipeline_);
-        vkCmdDispatch(cmd, (width_ + kDepthRangeGroup - 1) / kDepthRangeGroup,
-                      (height_ + kDepthRangeGroup - 1) / kDepthRangeGroup, 1);
+        // One invocation a square of PUNCTUAL_DEPTH_RANGE_SIDE pixels, a row of workgroups a row of squares.
+        const uint32_t squaresAcross = (width_ + PUNCTUAL_DEPTH_RANGE_SIDE - 1) / PUNCTUAL_DEPTH_RANGE_SIDE;
+        vkCmdDispatch(cmd, (squaresAcross + layout_.tileThreads - 1) / layout_.tileThreads,
+                      (height_ + PUNCTUAL_DEPTH_RANGE_SIDE - 1) / PUNCTUAL_DEPTH_RANGE_SIDE, 1);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sliceBoundariesPipeline_);
