@@ -99,15 +99,37 @@ void setLightBit(uint slice, uint light) {
 // Pixels read four at a time: a 2x2 block per gather (quadExtent, depth_blocks.glsl).
 const uint kBlocks = (TILE_SIZE + 1u) / 2u;  // blocks a side of a tile (an odd size's last is half outside)
 
-// A thread's run of pixels in one slice, `run` = (slice, min, max distance bits): extended by a
-// slice's distances [minBits, maxBits], or flushed to shared memory when the slice changes.
-uvec3 addToSliceRun(uvec3 run, uint slice, uint minBits, uint maxBits) {
-    if (slice == run.x) return uvec3(slice, min(run.y, minBits), max(run.z, maxBits));
-    if (run.x != 0xFFFFFFFFu) {
-        atomicMin(sliceMinDistance[run.x], run.y);
-        atomicMax(sliceMaxDistance[run.x], run.z);
+// A thread's run of pixels in one slice: their distances' extent and (tiles of at most 32 pixels)
+// the columns and rows they cover, kept in registers and flushed to shared memory when the slice
+// changes (the shared atomics are per run, not per block).
+struct SliceRun {
+    uint slice;  // 0xFFFFFFFF: no run yet
+    uint minBits;
+    uint maxBits;
+    uint columns;
+    uint rows;
+};
+
+void flushSliceRun(SliceRun run) {
+    if (run.slice == 0xFFFFFFFFu) return;
+    atomicMin(sliceMinDistance[run.slice], run.minBits);
+    atomicMax(sliceMaxDistance[run.slice], run.maxBits);
+    if (TILE_SIZE <= 32u) {
+        atomicOr(cellColumns[run.slice], run.columns);
+        atomicOr(cellRows[run.slice], run.rows);
     }
-    return uvec3(slice, minBits, maxBits);
+}
+
+// The run extended by pixels of `slice` at distances [minBits, maxBits] covering tile-local
+// columns first.x .. last.x and rows first.y .. last.y, or flushed and restarted with them.
+SliceRun addToSliceRun(SliceRun run, uint slice, uint minBits, uint maxBits, uvec2 first, uvec2 last) {
+    uint columns = TILE_SIZE <= 32u ? depthMaskBits(first.x, last.x) : 0u;
+    uint rows = TILE_SIZE <= 32u ? depthMaskBits(first.y, last.y) : 0u;
+    if (slice == run.slice) {
+        return SliceRun(slice, min(run.minBits, minBits), max(run.maxBits, maxBits), run.columns | columns, run.rows | rows);
+    }
+    flushSliceRun(run);
+    return SliceRun(slice, minBits, maxBits, columns, rows);
 }
 
 // Marks the tile-local pixel columns first.x .. last.x and rows first.y .. last.y as holding
@@ -130,13 +152,12 @@ vec4 cellRectNdc(uvec2 tile, uint cell, vec2 pixelToNdc) {
 
 // One pixel at `depth` (tile-local position `local`) into the run, in its slice (the search
 // forward.frag makes); background pixels add nothing.
-uvec3 addPixelToSliceRun(uvec3 run, float depth, uvec2 local) {
+SliceRun addPixelToSliceRun(SliceRun run, float depth, uvec2 local) {
     if (isBackgroundDepth(depth)) return run;
     uint slice;
     PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, depth, sliceStart, SLICE_COUNT);
-    markCellRect(slice, local, local);
     uint bits = floatBitsToUint(viewDistanceFromDepth(depth, frame.depthToView.xy));
-    return addToSliceRun(run, slice, bits, bits);
+    return addToSliceRun(run, slice, bits, bits, local, local);
 }
 
 // The depth-mask cells (culling.h) the geometry of a 2x2 block occupies: quadExtent's block.
@@ -225,7 +246,7 @@ void main() {
     // across a slice boundary adds its pixels one by one. (Measured on lavapipe, default scene at
     // 1280x720: the clustered culling pass 13% faster, A/B under load.)
     bool clusterBlocks = SLICE_COUNT > 1u && !DEPTHLESS_TILES && frame.lightCounts.w == 0u;
-    uvec3 run = uvec3(0xFFFFFFFFu, 0xFFFFFFFFu, 0u);  // the thread's current slice, its min and max distance bits
+    SliceRun run = SliceRun(0xFFFFFFFFu, 0xFFFFFFFFu, 0u, 0u, 0u);
     for (uint block = thread; clusterBlocks && block < kBlocks * kBlocks; block += kThreads) {
         uvec2 local = 2u * uvec2(block % kBlocks, block / kBlocks);  // the block's top-left pixel in the tile
         uvec2 corner = tile * TILE_SIZE + local;
@@ -241,9 +262,8 @@ void main() {
         bool right = corner.x + 1u < tileEnd.x;
         bool below = corner.y + 1u < tileEnd.y;
         if (nearSlice == farSlice) {
-            run = addToSliceRun(run, nearSlice, nearBits, farBits);
             // (The whole block: a background pixel in it only widens the rectangle.)
-            markCellRect(nearSlice, local, local + uvec2(right ? 1u : 0u, below ? 1u : 0u));
+            run = addToSliceRun(run, nearSlice, nearBits, farBits, local, local + uvec2(right ? 1u : 0u, below ? 1u : 0u));
             continue;
         }
         vec4 quad = textureGather(depthImage, (vec2(corner) + 1.0) * frame.viewport.zw);
@@ -252,10 +272,7 @@ void main() {
         if (below) run = addPixelToSliceRun(run, quad.x, local + uvec2(0u, 1u));
         if (right && below) run = addPixelToSliceRun(run, quad.y, local + uvec2(1u, 1u));
     }
-    if (run.x != 0xFFFFFFFFu) {
-        atomicMin(sliceMinDistance[run.x], run.y);
-        atomicMax(sliceMaxDistance[run.x], run.z);
-    }
+    flushSliceRun(run);
     for (uint tilePixel = thread; !foldDepths && !clusterBlocks && !DEPTHLESS_TILES && tilePixel < TILE_SIZE * TILE_SIZE;
          tilePixel += kThreads) {
         uvec2 pixel = tile * TILE_SIZE + uvec2(tilePixel % TILE_SIZE, tilePixel / TILE_SIZE);
