@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <span>
 
 #include "gpu_types.h"
 #include "render/frame_bindings.h"
@@ -88,32 +89,24 @@ uint64_t LightCullingPass::memoryBytes() const {
 
 void LightCullingPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
     if (!culled_) return;
-    // VkBool32 for the bool constant, as the specification asks.
+    // VkBool32 for the bool constants, as the specification asks. One map for both kernels: an
+    // entry whose constant a shader lacks does not affect it (the Vulkan specification), and
+    // tile_culling.comp lacks SLICE_COUNT and DEPTH_MASK.
     const std::array<uint32_t, 6> values = {layout_.tileSize, layout_.slices, VkBool32(layout_.depthMask),
                                             VkBool32(layout_.depthlessTiles), layout_.coarseTiles, layout_.tileThreads};
-    if (layout_.subgroupKernel) {
-        const std::array<VkSpecializationMapEntry, 4> entries = {{
-            {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
-            {PUNCTUAL_SPEC_DEPTHLESS_TILES, 3 * sizeof(uint32_t), sizeof(VkBool32)},
-            {PUNCTUAL_SPEC_COARSE_TILES, 4 * sizeof(uint32_t), sizeof(uint32_t)},
-            {PUNCTUAL_SPEC_TILE_THREADS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
-        }};
-        const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};
-        cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
-                                                     compute_tile_culling_comp_spv, &specialization);
-    } else {
-        const std::array<VkSpecializationMapEntry, 6> entries = {{
-            {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
-            {PUNCTUAL_SPEC_SLICE_COUNT, sizeof(uint32_t), sizeof(uint32_t)},
-            {PUNCTUAL_SPEC_DEPTH_MASK, 2 * sizeof(uint32_t), sizeof(VkBool32)},
-            {PUNCTUAL_SPEC_DEPTHLESS_TILES, 3 * sizeof(uint32_t), sizeof(VkBool32)},
-            {PUNCTUAL_SPEC_COARSE_TILES, 4 * sizeof(uint32_t), sizeof(uint32_t)},
-            {PUNCTUAL_SPEC_TILE_THREADS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
-        }};
-        const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};
-        cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
-                                                     compute_light_culling_comp_spv, &specialization);
-    }
+    const std::array<VkSpecializationMapEntry, 6> entries = {{
+        {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_SLICE_COUNT, sizeof(uint32_t), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_DEPTH_MASK, 2 * sizeof(uint32_t), sizeof(VkBool32)},
+        {PUNCTUAL_SPEC_DEPTHLESS_TILES, 3 * sizeof(uint32_t), sizeof(VkBool32)},
+        {PUNCTUAL_SPEC_COARSE_TILES, 4 * sizeof(uint32_t), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_TILE_THREADS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
+    }};
+    const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};
+    cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
+                                                 layout_.subgroupKernel ? std::span<const uint32_t>(compute_tile_culling_comp_spv)
+                                                                        : std::span<const uint32_t>(compute_light_culling_comp_spv),
+                                                 &specialization);
     if (layout_.coarseTiles) {
         // The coarse kernel reads the tile size and the coarse-tile side: the first and last entries.
         const std::array<VkSpecializationMapEntry, 2> coarseEntries = {{
