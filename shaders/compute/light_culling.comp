@@ -20,9 +20,10 @@
 // the tile's side planes anywhere between the near and far planes, and no depth is read at all:
 // the z-bins (lights/z_bins.h, built on the CPU) hold depth, and forward.frag ANDs the two masks.
 // (--culling zbin builds its tile masks as tiled does, within the tile's depth extent.)
-// Tiled, zbin and zbin-2d run tile_culling.comp instead (one subgroup a tile, no shared memory)
-// where the device has compute subgroup arithmetic; this kernel's one-slice paths serve the devices
-// without it and --subgroup-tiles off, and write the same masks (tests/gpu/test_culling.cpp).
+// Tiled, zbin and zbin-2d run tile_culling.comp instead, clustered cluster_culling.comp (one
+// subgroup a tile, no shared-memory atomics) where the device has compute subgroup arithmetic;
+// this kernel serves them on devices without it and with --subgroup-tiles off, and writes the same
+// masks (tests/gpu/test_culling.cpp). Tiled-2.5d always runs here.
 // COARSE_TILES > 0: the coarse pass (coarse_culling.comp) has culled the lights to this tile's
 // big tile, and steps 1-3 test only those (the candidates), listed while the depths are read.
 #extension GL_GOOGLE_include_directive : require

@@ -205,6 +205,10 @@ struct GpuDepthRange {
     uint reserved;
     // Depth where slice s begins; slice 0 = nearest (depth 1), starts falling with s.
     float sliceStartDepth[PUNCTUAL_MAX_CLUSTER_SLICES];
+    // Per slice, PUNCTUAL_GRID_WORDS mask words (lightGridWord in culling.h) of the lights whose
+    // view-distance extent meets the slice's distances: the only lights a segment of that slice
+    // can meet (cluster_culling.comp tests no other).
+    uint sliceLights[PUNCTUAL_MAX_CLUSTER_SLICES * PUNCTUAL_GRID_WORDS];
 };
 
 // The z-bin method's bins (URP Forward+ after Drobot 2017; lights/z_bins.h builds them on the

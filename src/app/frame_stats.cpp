@@ -92,7 +92,7 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
         json["cells"] = grid.cellCount();
         json["coarse_tiles"] = grid.coarseTiles;  // fine tiles a side of a coarse tile; 0: no coarse pass
         json["tile_threads"] = grid.tileThreads;  // the culling kernel's invocations per tile
-        json["tile_kernel"] = grid.subgroupKernel ? "subgroup" : "shared-memory";  // tile_culling.comp or light_culling.comp
+        json["tile_kernel"] = grid.subgroupKernel ? "subgroup" : "shared-memory";  // tile_/cluster_culling.comp or light_culling.comp
     }
     if (render::methodInfo(settings.method).objectLists) {
         json["per_object"] = {{"objects_over_cap", renderer.perObjectLists().objectsOverCap},

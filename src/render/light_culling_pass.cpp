@@ -7,6 +7,7 @@
 #include "gpu_types.h"
 #include "render/frame_bindings.h"
 #include "render/render_settings.h"
+#include "shaders/compute_cluster_culling_comp_spv.h"
 #include "shaders/compute_cluster_slices_comp_spv.h"
 #include "shaders/compute_coarse_culling_comp_spv.h"
 #include "shaders/compute_depth_range_comp_spv.h"
@@ -36,7 +37,7 @@ LightGridLayout LightGridLayout::forMethod(const LightListMethodInfo& method, ui
     // kernels write the three mask words with one invocation each).
     const bool powerOfTwo = threads != 0 && (threads & (threads - 1)) == 0;
     layout.tileThreads = powerOfTwo ? std::clamp<uint32_t>(threads, 4, PUNCTUAL_MAX_TILE_THREADS) : PUNCTUAL_MAX_TILE_THREADS;
-    layout.subgroupKernel = subgroupArithmetic && layout.slices == 1 && !layout.depthMask;
+    layout.subgroupKernel = subgroupArithmetic && !layout.depthMask;
     return layout;
 }
 
@@ -103,10 +104,10 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
         {PUNCTUAL_SPEC_TILE_THREADS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};
-    cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
-                                                 layout_.subgroupKernel ? std::span<const uint32_t>(compute_tile_culling_comp_spv)
-                                                                        : std::span<const uint32_t>(compute_light_culling_comp_spv),
-                                                 &specialization);
+    const std::span<const uint32_t> kernel = !layout_.subgroupKernel ? std::span<const uint32_t>(compute_light_culling_comp_spv)
+                                             : layout_.slices > 1      ? std::span<const uint32_t>(compute_cluster_culling_comp_spv)
+                                                                       : std::span<const uint32_t>(compute_tile_culling_comp_spv);
+    cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(), kernel, &specialization);
     if (layout_.coarseTiles) {
         // The coarse kernel reads the tile size and the coarse-tile side: the first and last entries.
         const std::array<VkSpecializationMapEntry, 2> coarseEntries = {{

@@ -7,8 +7,10 @@
 // compute subgroup arithmetic, else through shared memory (light_culling.comp). Both kernels run
 // one subgroup a tile (LightGridLayout::tileThreads).
 // tiled-2.5d: light_culling.comp, also against the tile's depth mask. Clustered: a depth-range pass
-// first finds the frame's nearest and farthest geometry, then light_culling.comp splits each tile
-// into logarithmic depth slices fitted to that range. The light grid holds PUNCTUAL_GRID_WORDS
+// first finds the frame's nearest and farthest geometry, cluster_slices.comp fits logarithmic depth
+// slices to that range (and lists each slice's lights by depth), then cluster_culling.comp (one
+// subgroup a tile, where the device allows; else light_culling.comp) culls each tile's occupied
+// slices. The light grid holds PUNCTUAL_GRID_WORDS
 // words per cell and is sized to the frame's real tile count (times the slices for clustered).
 #include <cstdint>
 #include <vector>
@@ -36,9 +38,10 @@ struct LightGridLayout {
     // Invocations per tile of the culling kernel: the device's compute subgroup size, at least 4
     // and at most PUNCTUAL_MAX_TILE_THREADS (one subgroup a tile where the device's size fits).
     uint32_t tileThreads = 64;
-    // Whether tile_culling.comp, the one-subgroup kernel of the methods with one depth extent per
-    // tile (tiled, zbin, zbin-2d), culls: where the device has compute subgroup arithmetic and
-    // RenderSettings::subgroupTiles is on. Otherwise light_culling.comp (shared memory) does.
+    // Whether a one-subgroup kernel culls, where the device has compute subgroup arithmetic and
+    // RenderSettings::subgroupTiles is on: tile_culling.comp for the methods with one depth extent
+    // per tile (tiled, zbin, zbin-2d), cluster_culling.comp for clustered. Otherwise (and always
+    // for tiled-2.5d) light_culling.comp, with shared memory.
     bool subgroupKernel = false;
     uint32_t cellCount() const { return tilesX * tilesY * slices; }
     uint32_t coarseTilesX() const { return coarseTiles ? (tilesX + coarseTiles - 1) / coarseTiles : 0; }
@@ -47,8 +50,8 @@ struct LightGridLayout {
     // otherwise; its depth mask and z-bins flags (the culling kernel's specialization constants);
     // with `coarse`, kCoarseTilePixels / tileSize fine tiles a side per coarse tile where that is
     // at least two. `threads`: invocations per tile (the device's subgroup size; a size that is not
-    // a power of two, never a Vulkan one, gets 64); `subgroupArithmetic`: whether tile_culling.comp
-    // may cull the methods with one depth extent per tile.
+    // a power of two, never a Vulkan one, gets 64); `subgroupArithmetic`: whether the one-subgroup
+    // kernels (tile_culling.comp, cluster_culling.comp) may cull.
     static LightGridLayout forMethod(const LightListMethodInfo& method, uint32_t width, uint32_t height,
                                      uint32_t tileSize, uint32_t clusterSlices, bool coarse, uint32_t threads,
                                      bool subgroupArithmetic);
@@ -87,7 +90,7 @@ private:
     vk::Buffer cullLights_;
     vk::Buffer zBins_;  // gpu::GpuZBins, or one word for the methods without bins
     vk::Buffer coarseGrid_;  // coarse tiles x PUNCTUAL_GRID_WORDS words, or one word without the coarse pass
-    vk::Handle<VkPipeline> cullingPipeline_;           // tile_culling.comp or light_culling.comp
+    vk::Handle<VkPipeline> cullingPipeline_;           // tile_, cluster_ or light_culling.comp
     vk::Handle<VkPipeline> coarsePipeline_;            // the coarse pass (coarse_culling.comp)
     vk::Handle<VkPipeline> depthRangePipeline_;        // clustered: nearest/farthest geometry
     vk::Handle<VkPipeline> sliceBoundariesPipeline_;   // clustered: slice start depths

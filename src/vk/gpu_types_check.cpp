@@ -39,7 +39,8 @@ static_assert(offsetof(GpuShadowView, params) == 64);
 static_assert(offsetof(GpuShadowView, atlasRect) == 80);
 static_assert(offsetof(GpuShadowView, texel) == 96);
 
-static_assert(sizeof(GpuDepthRange) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES);
+static_assert(sizeof(GpuDepthRange) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES * (1 + PUNCTUAL_GRID_WORDS));
+static_assert(offsetof(GpuDepthRange, sliceLights) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES);
 static_assert(offsetof(GpuDepthRange, sliceStartDepth) == 16);
 static_assert(sizeof(GpuZBins) == 4 * PUNCTUAL_ZBIN_COUNT + 16 * PUNCTUAL_ZBIN_COUNT);
 static_assert(offsetof(GpuZBins, binMask) == 4 * PUNCTUAL_ZBIN_COUNT);  // 256: a multiple of uvec4's 16

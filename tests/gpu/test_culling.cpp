@@ -15,6 +15,7 @@
 #include "gpu_test_support.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
+#include "scene/outdoor_scene.h"
 #include "scene/study_scenes.h"
 #include "shading.h"
 
@@ -357,14 +358,15 @@ TEST(Culling, NoLightReachingAPixelIsCulled) {
 
 TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
     // The culling kernels run one subgroup a tile (the device's subgroup size, 8 invocations on
-    // lavapipe): tiled, zbin and zbin-2d in tile_culling.comp where the device has subgroup
-    // arithmetic, the others (and those with --subgroup-tiles off) in light_culling.comp. Each
-    // must write the masks of light_culling.comp at 64 invocations a tile, word for word: on the
+    // lavapipe): tiled, zbin and zbin-2d in tile_culling.comp and clustered in cluster_culling.comp
+    // where the device has subgroup arithmetic, tiled-2.5d (and all with --subgroup-tiles off) in
+    // light_culling.comp. Each must write the masks of light_culling.comp at 64 invocations a tile,
+    // word for word (for clustered, also in the cells no pixel reads: the same cells written): on the
     // default scene at tile sizes 8, 16 (with and without the coarse pass) and 13 (odd: half
-    // blocks), and with 64 invocations in tile_culling.comp, more than a subgroup on most devices
-    // (its several-subgroup path); on glass panes (transparent spans) and on the near posts
-    // (foreground before background in one tile). (Renderers are costly to make on lavapipe: the
-    // cases are few.)
+    // blocks), and with 64 invocations in the subgroup kernels, more than a subgroup on most
+    // devices (their several-subgroup paths); on glass panes (transparent spans), on the near posts
+    // (foreground before background in one tile) and on the outdoor street (sky between objects).
+    // (Renderers are costly to make on lavapipe: the cases are few.)
     auto context = testing::makeValidatedContext();
     const bool subgroupArithmetic = context->computeSubgroupArithmetic();
     struct Case {
@@ -376,6 +378,9 @@ TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
         {{"default scene", makeDefaultScene()}, {{8u, true, 0u}, {16u, true, 0u}, {16u, false, 0u}, {13u, false, 0u}, {16u, true, 64u}}},
         {{"glass panes", study::glassPanesScene(9.0f)}, {{16u, true, 0u}}},
         {testing::adversarialCullingScenes()[3], {{13u, false, 0u}}},
+        // Sky between the street's objects: blocks holding background pixels, which give their
+        // slice (clustered) the whole block's rectangle when their geometry lies in one slice.
+        {{"outdoor", makeOutdoorScene()}, {{16u, true, 0u}}},
     };
     size_t comparedWords = 0;
     size_t setWords = 0;
@@ -402,7 +407,7 @@ TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
                     if (!subgroupTiles && !layout.subgroupKernel && subgroupArithmetic) {
                         // (A method the subgroup kernel never runs ran its only kernel already.)
                         const render::LightListMethodInfo& info = render::methodInfo(method);
-                        if (info.depthSlices || info.depthMask) break;
+                        if (info.depthMask) break;
                     }
                     if (c.threads == 64 && !layout.subgroupKernel) break;  // that is the reference
                     SCOPED_TRACE(named.name + " / " + render::methodName(method) + " tile " + std::to_string(c.tileSize) +
@@ -422,10 +427,11 @@ TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
         }
     }
     // Not vacuous: grids with lights were compared, and where the device has subgroup arithmetic
-    // the three one-extent methods (and only they) ran the subgroup kernel.
+    // the one-extent methods and clustered (and only they) ran a subgroup kernel.
     EXPECT_GT(setWords, comparedWords / 20);
     if (subgroupArithmetic) {
-        EXPECT_EQ(subgroupMethods, (std::set<LightListMethod>{LightListMethod::Tiled, LightListMethod::ZBin, LightListMethod::ZBin2D}));
+        EXPECT_EQ(subgroupMethods, (std::set<LightListMethod>{LightListMethod::Tiled, LightListMethod::Clustered,
+                                                              LightListMethod::ZBin, LightListMethod::ZBin2D}));
     }
     testing::expectNoValidationMessages(*context);
 }

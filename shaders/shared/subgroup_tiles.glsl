@@ -1,0 +1,117 @@
+// What the one-subgroup-a-tile culling kernels (tile_culling.comp, cluster_culling.comp) share:
+// combining a workgroup's values with subgroup operations, spreading a tile's candidate lights over
+// the lanes, reading a pixel's depth span and testing a set of lights against a frustum segment.
+// GLSL only; include after culling.h and the declarations of `frame` (GpuFrame), `depthImage`,
+// `transparentDepth` and `frameCullLights`, with GL_KHR_shader_subgroup_arithmetic enabled.
+//
+// A workgroup is one subgroup on the devices these kernels are sized for (LightGridLayout::
+// tileThreads is the device's subgroup size), and then needs no shared memory and no barrier. A
+// device whose compute subgroups come out smaller (the size is the default, not a promise) still
+// gets the right answers: the subgroups then combine through shared memory, behind barriers,
+// which is why every function here that combines must be called in uniform control flow.
+
+// One slot per subgroup, for workgroups of several subgroups only.
+shared uvec4 subgroupResults[PUNCTUAL_MAX_TILE_THREADS];
+
+// (nearest, farthest) depth over the workgroup: the largest x and the smallest y.
+vec2 workgroupExtent(vec2 extent) {
+    extent = vec2(subgroupMax(extent.x), subgroupMin(extent.y));
+    if (gl_NumSubgroups == 1u) return extent;  // uniform over the workgroup
+    if (subgroupElect()) subgroupResults[gl_SubgroupID] = uvec4(floatBitsToUint(extent), 0u, 0u);
+    barrier();
+    for (uint i = 0u; i < gl_NumSubgroups; ++i) {
+        vec2 other = uintBitsToFloat(subgroupResults[i].xy);
+        extent = vec2(max(extent.x, other.x), min(extent.y, other.y));
+    }
+    barrier();  // every slot read before the next call writes them again
+    return extent;
+}
+
+// The largest value over the workgroup.
+float workgroupMax(float value) {
+    value = subgroupMax(value);
+    if (gl_NumSubgroups == 1u) return value;
+    if (subgroupElect()) subgroupResults[gl_SubgroupID] = uvec4(floatBitsToUint(value), 0u, 0u, 0u);
+    barrier();
+    for (uint i = 0u; i < gl_NumSubgroups; ++i) value = max(value, uintBitsToFloat(subgroupResults[i].x));
+    barrier();  // every slot read before the next call writes them again
+    return value;
+}
+
+// The union of the invocations' mask words.
+uvec3 workgroupMasks(uvec3 masks) {
+    masks = subgroupOr(masks);
+    if (gl_NumSubgroups == 1u) return masks;
+    if (subgroupElect()) subgroupResults[gl_SubgroupID] = uvec4(masks, 0u);
+    barrier();
+    for (uint i = 0u; i < gl_NumSubgroups; ++i) masks |= subgroupResults[i].xyz;
+    barrier();  // every slot read before the next call writes them again
+    return masks;
+}
+
+// The bits of a mask word `word` that invocation `lane` of `threads` (a power of two, at most 64)
+// tests: candidate 32 word + bit goes to lane (32 word + bit) mod threads, which spreads the
+// candidates of any word evenly. For threads <= 32, every threads-th bit from bit `lane`:
+// 0xFFFFFFFF / (2^threads - 1) has a one every `threads` bits (8: 0x01010101). For 64, a word's
+// 32 candidates go to one half of the lanes.
+uint laneBitsOfWord(uint word, uint lane, uint threads) {
+    if (threads >= 32u) return (32u * word) % threads == (lane & ~31u) ? 1u << (lane & 31u) : 0u;
+    return (0xFFFFFFFFu / ((1u << threads) - 1u)) << lane;
+}
+
+// The three mask words (culling.h, lightGridWord) of the tile's candidate lights that lane `lane`
+// of `threads` tests: with the coarse pass (coarseTiles > 0), those its big tile kept; else all of
+// the frame's lights.
+uvec3 laneCandidates(uvec2 tile, uint coarseTiles, uint lane, uint threads) {
+    uvec3 candidates;
+    if (coarseTiles > 0u) {
+        uvec2 coarseTile = tile / coarseTiles;
+        uint coarseTilesAcross = (frame.lightGrid.y + coarseTiles - 1u) / coarseTiles;
+        uint coarseBase = (coarseTile.y * coarseTilesAcross + coarseTile.x) * PUNCTUAL_GRID_WORDS;
+        candidates = uvec3(coarseGrid[coarseBase], coarseGrid[coarseBase + 1u], coarseGrid[coarseBase + 2u]);
+    } else {
+        // Spots fill words 0-1 from bit 0, points word 2 (lightGridWord).
+        uint spots = frame.lightCounts.x;
+        uint points = frame.lightCounts.y;
+        candidates = uvec3(spots >= 32u ? 0xFFFFFFFFu : (1u << spots) - 1u,
+                           spots >= 64u ? 0xFFFFFFFFu : (spots <= 32u ? 0u : (1u << (spots - 32u)) - 1u),
+                           points >= 32u ? 0xFFFFFFFFu : (1u << points) - 1u);
+    }
+    return candidates & uvec3(laneBitsOfWord(0u, lane, threads), laneBitsOfWord(1u, lane, threads),
+                              laneBitsOfWord(2u, lane, threads));
+}
+
+// The lights of `lights` (three mask words) whose shapes may touch `segment` (culling.h). One loop
+// over the three words, each step the lowest bit of the first word with any, by selects (forward.frag
+// walks its masks so, and why).
+uvec3 lightsMeetingSegment(uvec3 lights, TileVolume segment) {
+    uint spotCount = frame.lightCounts.x;
+    uvec3 meeting = uvec3(0u);
+    while ((lights.x | lights.y | lights.z) != 0u) {
+        uint word = lights.x != 0u ? 0u : (lights.y != 0u ? 1u : 2u);
+        uint bits = word == 0u ? lights.x : (word == 1u ? lights.y : lights.z);
+        uint bit = 1u << uint(findLSB(bits));
+        uvec3 wordBit = uvec3(word == 0u ? bit : 0u, word == 1u ? bit : 0u, word == 2u ? bit : 0u);
+        lights &= ~wordBit;
+        if (lightMayTouchTile(frameCullLights[lightGridFirstLight(word, spotCount) + uint(findLSB(bits))], segment)) {
+            meeting |= wordBit;
+        }
+    }
+    return meeting;
+}
+
+// The geometry a pixel shades, as a depth span (nearest, farthest): a pixel under transparent
+// surfaces spans from its nearest transparent depth to its opaque depth (over the background, its
+// farthest transparent depth); any other pixel its opaque depth alone; a background pixel nothing,
+// (0, 2), which max() and min() pass over.
+vec2 pixelSpan(uvec2 pixel) {
+    float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
+    uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
+    uint nearestBits = frame.lightCounts.w != 0u ? transparentDepth[index] : 0u;
+    if (nearestBits != 0u) {
+        float farthest = isBackgroundDepth(depth) ? uintBitsToFloat(transparentDepth[uint(frame.viewport.x * frame.viewport.y) + index])
+                                                  : depth;
+        return vec2(uintBitsToFloat(nearestBits), farthest);
+    }
+    return isBackgroundDepth(depth) ? vec2(0.0, 2.0) : vec2(depth);
+}
