@@ -94,6 +94,7 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     EXPECT_EQ(json["noise"]["flag_limit"], 0.15);
     EXPECT_GE(json["noise"]["median_cv"].get<double>(), 0.0);
     uint32_t flaggedRows = 0;
+    std::string gridKernel;  // the first grid row's
     for (const auto& row : json["configurations"]) {
         const std::string config = row["config"];
         EXPECT_EQ(row["rounds"], "3") << config;
@@ -111,11 +112,14 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
         // The coarse pass: 4 fine tiles a side for the grid methods (64 / 16 pixels), none otherwise.
         const bool grid = row["method"] == "tiled" || row["method"] == "clustered";
         EXPECT_EQ(row["coarse_tiles"], grid ? "4" : "0") << config;
-        // Which culling kernel ran: the subgroup one for tiled where the device has subgroup
-        // arithmetic, the shared-memory one for clustered; none without a grid.
+        // Which culling kernel ran: for tiled and clustered alike, the subgroup ones where the
+        // device has subgroup arithmetic, else the shared-memory one; none without a grid.
         EXPECT_EQ(row["tile_kernel"] != "", grid) << config;
-        if (row["method"] == "clustered") {
-            EXPECT_EQ(row["tile_kernel"], "shared-memory") << config;
+        if (grid) {
+            const std::string kernel = row["tile_kernel"];
+            EXPECT_TRUE(kernel == "subgroup" || kernel == "shared-memory") << config;
+            if (gridKernel.empty()) gridKernel = kernel;
+            EXPECT_EQ(kernel, gridKernel) << config;
         }
         EXPECT_EQ(row["tile_threads"] != "", grid) << config;
         const bool shadows = row["shadows"] == "1";
