@@ -12,7 +12,10 @@
 #include "gpu_types.h"
 #include "culling.h"
 
-layout(local_size_x = 64) in;
+// Sized to the device's subgroup, as the fine kernels (LightGridLayout::tileThreads): lavapipe runs
+// a workgroup's subgroups as coroutines switched at every barrier, so one subgroup a workgroup makes
+// its two barriers cheap there, and on a GPU a big tile's at most 96 light tests fill a subgroup.
+layout(local_size_x_id = PUNCTUAL_SPEC_TILE_THREADS) in;
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_COARSE_TILES) const uint COARSE_TILES = 4u;  // fine tiles a side
 
@@ -37,7 +40,7 @@ void main() {
     }
     barrier();
     uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
-    for (uint light = thread; light < lightCount; light += 64u) {
+    for (uint light = thread; light < lightCount; light += gl_WorkGroupSize.x) {
         if (!lightMayTouchTile(frameCullLights[light], column)) continue;
         atomicOr(coarseMask[lightGridWord(light, frame.lightCounts.x)], 1u << lightGridBit(light, frame.lightCounts.x));
     }

@@ -109,10 +109,11 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
                                                                        : std::span<const uint32_t>(compute_tile_culling_comp_spv);
     cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(), kernel, &specialization);
     if (layout_.coarseTiles) {
-        // The coarse kernel reads the tile size and the coarse-tile side: the first and last entries.
-        const std::array<VkSpecializationMapEntry, 2> coarseEntries = {{
+        // The coarse kernel reads the tile size, the coarse-tile side and its workgroup size.
+        const std::array<VkSpecializationMapEntry, 3> coarseEntries = {{
             {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
             {PUNCTUAL_SPEC_COARSE_TILES, 4 * sizeof(uint32_t), sizeof(uint32_t)},
+            {PUNCTUAL_SPEC_TILE_THREADS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
         }};
         const VkSpecializationInfo coarseSpecialization{uint32_t(coarseEntries.size()), coarseEntries.data(),
                                                         sizeof(values), values.data()};
