@@ -3,14 +3,18 @@
 // shared-memory atomics and, where the workgroup is one subgroup, no barriers. Its lanes
 //  1. fold the depths of the tile's 2x2 blocks (quadExtent, depth_blocks.glsl; with transparent
 //     spans, every pixel's span) into the tile's nearest and farthest depth, combined with
-//     subgroupMax / subgroupMin, and test their share of the candidate lights (laneCandidates)
-//     against the tile's whole segment, keeping the ones that pass as three mask words each;
-//  2. walk the slices from the nearest depth's to the farthest's (two searches a tile; slices are
-//     monotone in depth, so no pixel lies outside them), and for each read their blocks again:
-//     the depths inside the slice, (lo, hi], give its nearest and farthest depth and the columns
-//     and rows of its pixels, each combined over the workgroup. A slice with no pixel is skipped;
-//     an occupied one gets its frustum segment (cut to that rectangle of the tile) and each lane
-//     tests its passing lights against it; the masks are combined with subgroupOr and written.
+//     subgroupMax / subgroupMin; each takes its share of the candidate lights (laneCandidates);
+//  2. walk the occupied slices nearest first: the slice of the tile's nearest depth, then each
+//     time the slice of the nearest depth past the last one (one search each; empty slices are
+//     never read). Each pass reads the tile's blocks again: the depths inside the slice, (lo, hi],
+//     give its nearest and farthest depth and the columns and rows of its pixels, each combined
+//     over the workgroup. The slice gets its frustum segment (cut to that rectangle of the tile);
+//     each lane tests its candidates whose depth extent meets the slice's (sliceLights, listed by
+//     cluster_slices.comp) against it, and the masks are combined with subgroupOr and written.
+// A light is kept in a cluster where its shapes meet the cluster's segment (culling.h,
+// lightMayTouchTile). There is no whole-tile test first: on the default scene it changed no list
+// (the coarse pass and the slices' depth lists already keep the tests to lights near the tile), and
+// it cost lavapipe 1.1 ms of the pass's 8 (bench/RESULTS.md).
 // The masks are those light_culling.comp writes, bit for bit (tests/gpu/test_culling.cpp): the
 // same lights against the same segments, whose distances come from the same extreme depths (view
 // distance falls monotonically with depth, also as rounded), with the same rectangles: a block
@@ -22,7 +26,7 @@
 // 1280x720 that made clustered culling 4.7x tiled's (bench/RESULTS.md). Here a pixel's slice is
 // never searched: within the uniform slice loop, two comparisons with the slice's bounds tell
 // whether it lies inside, and the extents are subgroup reductions. The depths are read once more
-// per slice the tile spans, which the texture cache serves.
+// per occupied slice, which the texture cache serves.
 // A slice's bounds come from cluster_slices.comp, which makes them non-increasing, so that "inside
 // slice s" (sliceStart[s] >= depth > sliceStart[s + 1]) is exactly what the search in forward.frag
 // (PUNCTUAL_CLUSTER_SLICE_OF_DEPTH) picks.
@@ -113,7 +117,7 @@ void main() {
     vec2 tileMax = max(ndcA, ndcB);
     bool spans = frame.lightCounts.w != 0u;  // transparent spans: read pixel by pixel
 
-    // 1. The tile's extent, and this lane's candidates that meet the tile's whole segment.
+    // 1. The tile's extent.
     vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) depth; x = 0: none
     if (!spans) {
         for (uint block = lane; block < kBlocks * kBlocks; block += threads) {
@@ -130,9 +134,7 @@ void main() {
     extent = workgroupExtent(extent);
     if (extent.x == 0.0) return;  // no geometry: no cell of this tile is read (uniform)
     vec2 toView = frame.depthToView.xy;
-    TileVolume wholeTile = makeTileVolume(tileMin, tileMax, viewDistanceFromDepth(extent.x, toView),
-                                          viewDistanceFromDepth(extent.y, toView), frame.ndcToView);
-    uvec3 passing = lightsMeetingSegment(laneCandidates(tile, COARSE_TILES, lane, threads), wholeTile);
+    uvec3 candidates = laneCandidates(tile, COARSE_TILES, lane, threads);
 
     // 2. The occupied slices, nearest first: the nearest depth's, then each time the slice of the
     //    nearest depth past the last one (one search each; slices with no pixel are never read).
@@ -187,7 +189,7 @@ void main() {
         uint sliceBase = slice * PUNCTUAL_GRID_WORDS;
         uvec3 sliceLights = uvec3(depthRange.sliceLights[sliceBase], depthRange.sliceLights[sliceBase + 1u],
                                   depthRange.sliceLights[sliceBase + 2u]);
-        uvec3 masks = workgroupMasks(lightsMeetingSegment(passing & sliceLights, segment));
+        uvec3 masks = workgroupMasks(lightsMeetingSegment(candidates & sliceLights, segment));
         if (lane < PUNCTUAL_GRID_WORDS) {
             lightGrid[(tileIndex * SLICE_COUNT + slice) * PUNCTUAL_GRID_WORDS + lane] =
                 lane == 0u ? masks.x : (lane == 1u ? masks.y : masks.z);

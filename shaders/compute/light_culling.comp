@@ -8,8 +8,9 @@
 //     the pixels really in it and, for tiles of up to 32 pixels without transparent spans, by the
 //     rectangle of their columns and rows (computed once per slice, not per light);
 //  3. each (occupied slice, light) pair is tested: the light's conservative shapes against the
-//     segment. Empty slices test nothing, and a light reaching only the foreground of a tile
-//     never lands in a slice that holds only background.
+//     segment (for the lights whose depth extent meets the tile's). Empty slices test nothing, and
+//     a light reaching only the foreground of a tile never lands in a slice that holds only
+//     background.
 //  4. the masks (64-bit spot, 32-bit point) of every occupied slice are written out.
 // Tiled with DEPTH_MASK (--culling tiled-2.5d) adds Harada's 2.5D test to step 3: the tile's
 // 32-cell depth mask (culling.h) is built from its pixels once their min..max extent is known,
@@ -76,9 +77,9 @@ shared uint candidateCount;  // COARSE_TILES: the lights of this tile's coarse t
 shared uint candidateLights[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
 shared float sliceStart[SLICE_COUNT];  // copy of depthRange.sliceStartDepth for the pixel loop
 shared uint occupiedCount;
-shared uint tileLightCount;  // lights passing the whole-tile test (clustered: tested again per slice)
+shared uint tileLightCount;  // lights passing the whole-tile step (clustered: its depth; tested per slice)
 shared uint tileLights[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
-// Clustered: the shapes of the lights that passed the whole-tile test, read again per slice.
+// Clustered: the shapes of the lights whose depth extent meets the tile's, read again per slice.
 // (Tiled reads each light once, straight from the buffer.)
 shared CullLight tileLightShapes[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
 shared TileVolume tileVolume;
@@ -416,13 +417,16 @@ void main() {
 
     // 3. Test every candidate light against the tile's whole depth extent (for tiled, the only
     //    test; tiled-2.5d then asks for an occupied depth cell the light meets). For clustered,
-    //    the lights that pass are then tested against each occupied slice: a two-level hierarchy
-    //    that keeps the slice tests to the few lights near the tile.
+    //    a light is kept where it meets an occupied slice's segment, each tested below; here only
+    //    the lights whose depth extent meets the tile's are listed for them (the rest would fail
+    //    every slice's test at its first step, lightDepthMeetsSegment).
     uint candidates = COARSE_TILES > 0u ? candidateCount : lightCount;
     for (uint k = thread; occupied && k < candidates; k += kThreads) {
         uint light = COARSE_TILES > 0u ? candidateLights[k] : k;
         CullLight shape = frameCullLights[light];
-        if (!lightMayTouchTile(shape, wholeTile)) continue;
+        if (SLICE_COUNT == 1u ? !lightMayTouchTile(shape, wholeTile) : !lightDepthMeetsSegment(lightDistanceExtent(shape), wholeTile)) {
+            continue;
+        }
         if (DEPTH_MASK && SLICE_COUNT == 1u) {
             // Harada's test, then the light's own shapes against each occupied cell it spans.
             uint cells = lightDepthMask(shape, maskNear, maskScale) & tileDepthMask;

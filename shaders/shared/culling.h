@@ -370,6 +370,13 @@ PUNCTUAL_FN bool coneMayTouchSegment(CullLight light, TileVolume v) {
     return segmentMinAlong(v, n) - dot(n, light.position) <= pad;
 }
 
+// Whether a light's view-distance extent (lightDistanceExtent) overlaps the segment's distances:
+// the tile test's first step, and all of it that depends on depth alone (a light failing it fails
+// the tile test of every segment within these distances).
+PUNCTUAL_FN bool lightDepthMeetsSegment(vec2 lightExtent, TileVolume segment) {
+    return !(lightExtent.y < segment.nearDistance || lightExtent.x > segment.farDistance);
+}
+
 // The tile test. A light meets the segment only within its own depth extent
 // (lightDistanceExtent), so the tests run on that part of the segment (clipSegment): the light's
 // bounding sphere against its planes and box; for spots also the sector's range sphere (around
@@ -378,7 +385,7 @@ PUNCTUAL_FN bool coneMayTouchSegment(CullLight light, TileVolume v) {
 // corners (coneMayTouchSegment). Each is conservative; the light is culled when any says it misses.
 PUNCTUAL_FN bool lightMayTouchTile(CullLight light, TileVolume segment) {
     vec2 extent = lightDistanceExtent(light);
-    if (extent.y < segment.nearDistance || extent.x > segment.farDistance) return false;
+    if (!lightDepthMeetsSegment(extent, segment)) return false;
     TileVolume v = clipSegment(segment, max(segment.nearDistance, extent.x), min(segment.farDistance, extent.y));
     if (!sphereMayTouchTile(light.sphereCenter, light.sphereRadius, v)) return false;
     if (light.cosOuter <= -1.0f) return true;

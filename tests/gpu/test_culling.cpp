@@ -203,8 +203,6 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
             if (tileFar[tile] == 0.0f) continue;
             const size_t coarseBase =
                 layout.coarseTiles ? (size_t(ty / layout.coarseTiles) * coarseTilesX + tx / layout.coarseTiles) * PUNCTUAL_GRID_WORDS : 0;
-            // Clustered tests each light against the whole tile first, then against each slice.
-            const gpu::TileVolume tileVolume = gpu::makeTileVolume(ndcMin, ndcMax, tileNear[tile], tileFar[tile], ndcToView);
             const float maskScale = gpu::depthMaskScale(tileNear[tile], tileFar[tile]);
             for (uint32_t slice = 0; slice < layout.slices; ++slice) {
                 const uint32_t cell = tile * layout.slices + slice;
@@ -220,7 +218,6 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
                     uint32_t word = 0;
                     const uint32_t bit = bitOf(light, word);
                     if (layout.coarseTiles && !(coarse[coarseBase + word] & bit)) continue;
-                    if (layout.slices > 1 && !gpu::lightMayTouchTile(cullLights[light], tileVolume)) continue;
                     if (!gpu::lightMayTouchTile(cullLights[light], volume)) continue;
                     if (layout.depthMask) {
                         // An occupied depth cell within the light's extent whose segment it meets.

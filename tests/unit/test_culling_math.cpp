@@ -452,5 +452,31 @@ TEST(SpotExtent, TheSectorTestCullsAWideSpotBesideATileThatItsSpheresPass) {
     EXPECT_TRUE(gpu::lightMayTouchTile(light, tile));
 }
 
+TEST(SpotExtent, DepthAloneSeparatesALightFromASegmentWhoseDistancesItMisses) {
+    // A segment between distances 10 and 42, widened by the culling margin (1e-3 of each: 9.99 to
+    // 42.042): a light extent overlaps it when it reaches 9.99 and starts by 42.042, touching ends
+    // included (lightDepthMeetsSegment, the tile test's first step).
+    const gpu::TileVolume segment = gpu::makeTileVolume(glm::vec2(-0.1f), glm::vec2(0.1f), 10.0f, 42.0f, glm::vec4(1, 1, 0, 0));
+    EXPECT_FLOAT_EQ(segment.nearDistance, 9.99f);
+    EXPECT_FLOAT_EQ(segment.farDistance, 42.042f);
+    EXPECT_FALSE(gpu::lightDepthMeetsSegment(glm::vec2(2.0f, 9.98f), segment));
+    EXPECT_TRUE(gpu::lightDepthMeetsSegment(glm::vec2(2.0f, segment.nearDistance), segment));
+    EXPECT_TRUE(gpu::lightDepthMeetsSegment(glm::vec2(20.0f, 30.0f), segment));
+    EXPECT_TRUE(gpu::lightDepthMeetsSegment(glm::vec2(1.0f, 100.0f), segment));
+    EXPECT_TRUE(gpu::lightDepthMeetsSegment(glm::vec2(segment.farDistance, 50.0f), segment));
+    EXPECT_FALSE(gpu::lightDepthMeetsSegment(glm::vec2(42.05f, 50.0f), segment));
+    // A point 5 m wide at distance 50 misses it by depth, so the whole tile test rejects it.
+    gpu::CullLight point{};
+    point.cosOuter = -1.0f;
+    point.position = point.sphereCenter = glm::vec3(0.0f, 0.0f, -50.0f);
+    point.range = point.sphereRadius = 5.0f;
+    EXPECT_FALSE(gpu::lightDepthMeetsSegment(gpu::lightDistanceExtent(point), segment));
+    EXPECT_FALSE(gpu::lightMayTouchTile(point, segment));
+    // At distance 45 it reaches 40: both pass (it sits on the axis, inside the side planes).
+    point.position = point.sphereCenter = glm::vec3(0.0f, 0.0f, -45.0f);
+    EXPECT_TRUE(gpu::lightDepthMeetsSegment(gpu::lightDistanceExtent(point), segment));
+    EXPECT_TRUE(gpu::lightMayTouchTile(point, segment));
+}
+
 }  // namespace
 }  // namespace punctual
