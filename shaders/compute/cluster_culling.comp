@@ -167,8 +167,8 @@ void main() {
                 if (span.y <= lo) part.beyond = max(part.beyond, min(span.x, lo));
             }
         }
-        // The slice is occupied (its nearest slice holds its nearest depth, and each next one the
-        // nearest depth past the last).
+        // Every slice visited is occupied: the first holds the tile's nearest depth, each next one
+        // the nearest depth past the last.
         vec2 sliceExtent = workgroupExtent(part.extent);
         vec2 rectMin = tileMin;
         vec2 rectMax = tileMax;
