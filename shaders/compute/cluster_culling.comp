@@ -170,20 +170,13 @@ void main() {
         // Every slice visited is occupied: the first holds the tile's nearest depth, each next one
         // the nearest depth past the last.
         vec2 sliceExtent = workgroupExtent(part.extent);
-        vec2 rectMin = tileMin;
-        vec2 rectMax = tileMax;
+        // The rectangle of the slice's pixels (tiles of at most 32 pixels without spans), else the tile.
+        vec4 rect = vec4(tileMin, tileMax);
         if (!spans && TILE_SIZE <= 32u) {
-            // The rectangle of the slice's pixels, from its first column's left edge to its last
-            // column's right edge, cut at the viewport.
             uvec2 columnsRows = workgroupMasks(uvec3(part.columnsRows, 0u)).xy;
-            uvec2 first = tile * TILE_SIZE + uvec2(findLSB(columnsRows.x), findLSB(columnsRows.y));
-            uvec2 last = tile * TILE_SIZE + uvec2(findMSB(columnsRows.x), findMSB(columnsRows.y)) + 1u;
-            vec2 a = vec2(first) * pixelToNdc - 1.0;
-            vec2 b = min(vec2(last), frame.viewport.xy) * pixelToNdc - 1.0;
-            rectMin = min(a, b);
-            rectMax = max(a, b);
+            rect = columnsRowsRectNdc(tile * TILE_SIZE, columnsRows.x, columnsRows.y, pixelToNdc);
         }
-        TileVolume segment = makeTileVolume(rectMin, rectMax, viewDistanceFromDepth(sliceExtent.x, toView),
+        TileVolume segment = makeTileVolume(rect.xy, rect.zw, viewDistanceFromDepth(sliceExtent.x, toView),
                                             viewDistanceFromDepth(sliceExtent.y, toView), frame.ndcToView);
         // Only the lights whose depth extent meets the slice's (cluster_slices.comp) can pass.
         uint sliceBase = slice * PUNCTUAL_GRID_WORDS;

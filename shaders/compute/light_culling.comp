@@ -145,11 +145,7 @@ void markCellRect(uint cell, uvec2 first, uvec2 last) {
 // The NDC rectangle (min corner in xy, max corner in zw) of cell `cell`'s marked pixels, from its
 // first column's left edge to its last column's right edge, cut at the viewport.
 vec4 cellRectNdc(uvec2 tile, uint cell, vec2 pixelToNdc) {
-    uvec2 first = tile * TILE_SIZE + uvec2(findLSB(cellColumns[cell]), findLSB(cellRows[cell]));
-    uvec2 last = tile * TILE_SIZE + uvec2(findMSB(cellColumns[cell]), findMSB(cellRows[cell])) + 1u;
-    vec2 a = vec2(first) * pixelToNdc - 1.0;
-    vec2 b = min(vec2(last), frame.viewport.xy) * pixelToNdc - 1.0;
-    return vec4(min(a, b), max(a, b));
+    return columnsRowsRectNdc(tile * TILE_SIZE, cellColumns[cell], cellRows[cell], pixelToNdc);
 }
 
 // One pixel at `depth` (tile-local position `local`) into the run, in its slice (the search

@@ -1,6 +1,7 @@
-// The prepass depth read 2x2 pixels at a time, for the culling kernels (light_culling.comp,
-// tile_culling.comp). GLSL only (it gathers); include in a shader that declares `depthImage`
-// (the prepass depth, clamp-to-edge) and `frame` (GpuFrame), after culling.h.
+// The prepass depth read 2x2 pixels at a time, and the rectangle of marked columns and rows, for
+// the culling kernels (light_culling.comp, tile_culling.comp, cluster_culling.comp). GLSL only (it
+// gathers); include in a shader that declares `depthImage` (the prepass depth, clamp-to-edge) and
+// `frame` (GpuFrame), after culling.h.
 
 // `extent` (nearest depth, farthest depth) widened by the geometry of the 2x2 block whose top-left
 // pixel is `corner`, its pixels at or past `tileEnd` left out. One gather fetches the block (fewer
@@ -23,4 +24,16 @@ vec2 quadExtent(uvec2 corner, uvec2 tileEnd, vec2 extent) {
     vec4 nearest = vec4(below ? quad.x : 0.0, right && below ? quad.y : 0.0, right ? quad.z : 0.0, quad.w);
     return vec2(max(extent.x, max(max(nearest.x, nearest.y), max(nearest.z, nearest.w))),
                 min(extent.y, min(min(geometry.x, geometry.y), min(geometry.z, geometry.w))));
+}
+
+// The NDC rectangle (min corner in xy, max corner in zw) of the pixels of a tile whose top-left
+// pixel is `tileOrigin` that lie in the tile-local columns set in `columns` and rows set in `rows`
+// (bit i: column or row i): from the first column's left edge to the last one's right edge, cut at
+// the viewport. The culling kernels cut a slice's or depth cell's segment to it.
+vec4 columnsRowsRectNdc(uvec2 tileOrigin, uint columns, uint rows, vec2 pixelToNdc) {
+    uvec2 first = tileOrigin + uvec2(findLSB(columns), findLSB(rows));
+    uvec2 last = tileOrigin + uvec2(findMSB(columns), findMSB(rows)) + 1u;
+    vec2 a = vec2(first) * pixelToNdc - 1.0;
+    vec2 b = min(vec2(last), frame.viewport.xy) * pixelToNdc - 1.0;
+    return vec4(min(a, b), max(a, b));
 }
