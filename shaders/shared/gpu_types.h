@@ -129,8 +129,10 @@
 // tile_culling.comp's workgroups: at most this many invocations (a power of two, at least the 32 or
 // 64 of GPU subgroups; one lane per 2x2 block of a 16-pixel tile).
 #define PUNCTUAL_MAX_TILE_THREADS 64u
-// depth_range.comp: pixels a side of the square each invocation folds (even: whole 2x2 blocks).
-#define PUNCTUAL_DEPTH_RANGE_SIDE 16u
+// depth_range.comp: pixels a side of the square each invocation folds (even: whole 2x2 blocks),
+// and invocations a workgroup (no shared memory, no barriers: the size only groups the work).
+#define PUNCTUAL_DEPTH_RANGE_SIDE 8u
+#define PUNCTUAL_DEPTH_RANGE_THREADS 64u
 
 PUNCTUAL_NAMESPACE_BEGIN
 

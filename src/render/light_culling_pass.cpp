@@ -121,11 +121,8 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
                                                     compute_coarse_culling_comp_spv, &coarseSpecialization);
     }
     if (layout_.slices > 1) {
-        // Its workgroups are the culling kernel's size (the device's subgroup size).
-        const VkSpecializationMapEntry threadsEntry{PUNCTUAL_SPEC_TILE_THREADS, 5 * sizeof(uint32_t), sizeof(uint32_t)};
-        const VkSpecializationInfo threadsSpecialization{1, &threadsEntry, sizeof(values), values.data()};
         depthRangePipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
-                                                        compute_depth_range_comp_spv, &threadsSpecialization);
+                                                        compute_depth_range_comp_spv, nullptr);
         const VkSpecializationMapEntry sliceEntry{PUNCTUAL_SPEC_SLICE_COUNT, 0, sizeof(uint32_t)};
         const VkSpecializationInfo sliceSpecialization{1, &sliceEntry, sizeof(uint32_t), &layout_.slices};
         sliceBoundariesPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
@@ -147,7 +144,7 @@ void LightCullingPass::record(const FrameContext& frame) const {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, depthRangePipeline_);
         // One invocation a square of PUNCTUAL_DEPTH_RANGE_SIDE pixels, a row of workgroups a row of squares.
         const uint32_t squaresAcross = (width_ + PUNCTUAL_DEPTH_RANGE_SIDE - 1) / PUNCTUAL_DEPTH_RANGE_SIDE;
-        vkCmdDispatch(cmd, (squaresAcross + layout_.tileThreads - 1) / layout_.tileThreads,
+        vkCmdDispatch(cmd, (squaresAcross + PUNCTUAL_DEPTH_RANGE_THREADS - 1) / PUNCTUAL_DEPTH_RANGE_THREADS,
                       (height_ + PUNCTUAL_DEPTH_RANGE_SIDE - 1) / PUNCTUAL_DEPTH_RANGE_SIDE, 1);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
