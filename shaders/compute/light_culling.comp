@@ -21,10 +21,10 @@
 // the tile's side planes anywhere between the near and far planes, and no depth is read at all:
 // the z-bins (lights/z_bins.h, built on the CPU) hold depth, and forward.frag ANDs the two masks.
 // (--culling zbin builds its tile masks as tiled does, within the tile's depth extent.)
-// Tiled, zbin and zbin-2d run tile_culling.comp instead, clustered cluster_culling.comp (one
-// subgroup a tile, no shared-memory atomics) where the device has compute subgroup arithmetic;
-// this kernel serves them on devices without it and with --subgroup-tiles off, and writes the same
-// masks (tests/gpu/test_culling.cpp). Tiled-2.5d always runs here.
+// Tiled, tiled-2.5d, zbin and zbin-2d run tile_culling.comp instead, clustered cluster_culling.comp
+// (one subgroup a tile, no shared-memory atomics) where the device has compute subgroup
+// arithmetic; this kernel serves them on devices without it and with --subgroup-tiles off, and
+// writes the same masks (tests/gpu/test_culling.cpp).
 // COARSE_TILES > 0: the coarse pass (coarse_culling.comp) has culled the lights to this tile's
 // big tile, and steps 1-3 test only those (the candidates), listed while the depths are read.
 #extension GL_GOOGLE_include_directive : require
@@ -156,23 +156,6 @@ SliceRun addPixelToSliceRun(SliceRun run, float depth, uvec2 local) {
     PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, depth, sliceStart, SLICE_COUNT);
     uint bits = floatBitsToUint(viewDistanceFromDepth(depth, frame.depthToView.xy));
     return addToSliceRun(run, slice, bits, bits, local, local);
-}
-
-// The depth-mask cells (culling.h) the geometry of a 2x2 block occupies: quadExtent's block.
-uint quadDepthCells(uvec2 corner, uvec2 tileEnd, float maskNear, float maskScale) {
-    if (corner.x >= tileEnd.x || corner.y >= tileEnd.y) return 0u;
-    vec4 quad = textureGather(depthImage, (vec2(corner) + 1.0) * frame.viewport.zw);
-    bool right = corner.x + 1u < tileEnd.x;
-    bool below = corner.y + 1u < tileEnd.y;
-    vec2 toView = frame.depthToView.xy;
-    uint cells = 0u;
-    if (!isBackgroundDepth(quad.w)) cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.w, toView), maskNear, maskScale);
-    if (right && !isBackgroundDepth(quad.z)) cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.z, toView), maskNear, maskScale);
-    if (below && !isBackgroundDepth(quad.x)) cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.x, toView), maskNear, maskScale);
-    if (right && below && !isBackgroundDepth(quad.y)) {
-        cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.y, toView), maskNear, maskScale);
-    }
-    return cells;
 }
 
 void main() {

@@ -1,17 +1,24 @@
 #version 450
 // Tile culling for the methods with one depth extent per tile: tiled and zbin (culled against the
-// tile's depth extent) and zbin-2d (DEPTHLESS_TILES: the tile's whole column, no depth read; its
-// z-bins hold depth). One workgroup per screen tile, sized to the device's subgroup
-// (TILE_THREADS): its lanes
+// tile's depth extent), tiled-2.5d (DEPTH_MASK: that, then Harada's depth mask) and zbin-2d
+// (DEPTHLESS_TILES: the tile's whole column, no depth read; its z-bins hold depth). One workgroup
+// per screen tile, sized to the device's subgroup (TILE_THREADS): its lanes
 //  1. fold the depths of the tile's 2x2 blocks (quadExtent, depth_blocks.glsl) into the nearest
 //     and farthest geometry depth, or with transparent spans every pixel's span, and combine them
 //     with subgroupMax / subgroupMin;
 //  2. build the tile's frustum segment (culling.h), each lane the same one;
 //  3. test the lights, each lane its share of the candidates (laneCandidates: the frame's lights,
 //     or with the coarse pass its coarse tile's), collecting the passing ones in three mask words
-//     (culling.h, lightGridWord), combined with subgroupOr and written by lanes 0-2.
+//     (culling.h, lightGridWord);
+//  3b. DEPTH_MASK: read the blocks again for the 32 depth cells of the tile's extent that its
+//     pixels occupy (each cell with the columns and rows of its blocks, in the lane's registers),
+//     then visit the occupied cells nearest first: each gets its frustum segment (cut to its
+//     blocks' rectangle, combined over the workgroup) and each lane keeps those of its lights
+//     whose depth cells include it and whose shapes meet its segment (until none is left to keep);
+//  4. combine the masks with subgroupOr; lanes 0-2 write them.
 // The masks are those of light_culling.comp's one-slice case bit for bit: the same lights are
-// tested against the same segment, whose distances come from the same extreme depths.
+// tested against the same segments, whose distances come from the same extreme depths, with the
+// same cells and rectangles.
 //
 // Why a kernel of its own: light_culling.comp's 64-invocation workgroups combine through shared
 // memory, three barriers and shared atomics per tile, and that fixed cost was most of the pass on
@@ -21,7 +28,9 @@
 // A device whose compute subgroups are smaller than the workgroup (subgroupSize is the default
 // size, not a promise) still gets the right masks: the subgroups then combine through shared
 // memory (workgroupExtent, workgroupMasks in subgroup_tiles.glsl), behind barriers in uniform
-// control flow. Clustered has a kernel of the same kind, cluster_culling.comp.
+// control flow. Clustered has a kernel of the same kind, cluster_culling.comp. Tiled-2.5d ran the
+// shared-memory kernel until it had a path here: 12.5 ms of culling on lavapipe at 1280x720
+// (bench/RESULTS.md).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "gpu_types.h"
@@ -29,6 +38,7 @@
 
 layout(local_size_x_id = PUNCTUAL_SPEC_TILE_THREADS) in;
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
+layout(constant_id = PUNCTUAL_SPEC_DEPTH_MASK) const bool DEPTH_MASK = false;  // tiled-2.5d
 layout(constant_id = PUNCTUAL_SPEC_DEPTHLESS_TILES) const bool DEPTHLESS_TILES = false;
 layout(constant_id = PUNCTUAL_SPEC_COARSE_TILES) const uint COARSE_TILES = 0u;  // 0: no coarse pass
 
@@ -60,12 +70,14 @@ void main() {
     // 1-2. The tile's segment: its depth extent, or (DEPTHLESS_TILES) its whole column.
     TileVolume segment;
     bool occupied = true;
+    const uint kBlocks = (TILE_SIZE + 1u) / 2u;  // 2x2 blocks a side (an odd size's last is half outside)
+    bool spans = frame.lightCounts.w != 0u;  // transparent spans: read pixel by pixel
+    vec2 distances = vec2(0.0);  // the tile's nearest and farthest view distance
     if (DEPTHLESS_TILES) {
         segment = makeTileColumn(min(ndcA, ndcB), max(ndcA, ndcB), frame.depthToView.xy, frame.ndcToView);
     } else {
         vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) depth; x = 0: none
-        const uint kBlocks = (TILE_SIZE + 1u) / 2u;  // 2x2 blocks a side (an odd size's last is half outside)
-        if (frame.lightCounts.w == 0u) {
+        if (!spans) {
             for (uint block = lane; block < kBlocks * kBlocks; block += threads) {
                 extent = quadExtent(tile * TILE_SIZE + 2u * uvec2(block % kBlocks, block / kBlocks), tileEnd, extent);
             }
@@ -81,12 +93,73 @@ void main() {
         occupied = extent.x > 0.0;
         // View distance falls monotonically with depth, also as rounded (viewDistanceFromDepth), so
         // the extreme depths give exactly the extreme distances.
-        segment = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), viewDistanceFromDepth(extent.x, frame.depthToView.xy),
-                                 viewDistanceFromDepth(extent.y, frame.depthToView.xy), frame.ndcToView);
+        distances = vec2(viewDistanceFromDepth(extent.x, frame.depthToView.xy), viewDistanceFromDepth(extent.y, frame.depthToView.xy));
+        segment = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), distances.x, distances.y, frame.ndcToView);
     }
 
     // 3. The lights against the segment: this lane's share of the candidates.
     uvec3 masks = occupied ? lightsMeetingSegment(laneCandidates(tile, COARSE_TILES, lane, threads), segment) : uvec3(0u);
+
+    // 3b. Tiled-2.5d: Harada's depth mask, then each passing light's shapes against the segments
+    //     of the occupied cells its depth extent spans (culling.h, makeDepthCellVolume).
+    // (A tile none of whose lights passed reads no depth again.)
+    bool anyPassed = DEPTH_MASK && occupied && workgroupMasks(uvec3(any(notEqual(masks, uvec3(0u))) ? 1u : 0u, 0u, 0u)).x != 0u;
+    if (anyPassed) {  // (uniform)
+        float maskNear = distances.x;
+        float maskScale = depthMaskScale(distances.x, distances.y);
+        // The cells this lane's pixels occupy and, tiles of at most 32 pixels without spans, the
+        // columns and rows of the blocks in each (each of a block's cells gets its whole rectangle).
+        uint laneCells = 0u;
+        uint cellColumns[PUNCTUAL_DEPTH_MASK_CELLS];
+        uint cellRows[PUNCTUAL_DEPTH_MASK_CELLS];
+        bool rects = !spans && TILE_SIZE <= 32u;
+        if (rects) {
+            for (uint cell = 0u; cell < PUNCTUAL_DEPTH_MASK_CELLS; ++cell) cellColumns[cell] = cellRows[cell] = 0u;
+        }
+        if (!spans) {
+            for (uint block = lane; block < kBlocks * kBlocks; block += threads) {
+                uvec2 local = 2u * uvec2(block % kBlocks, block / kBlocks);  // the block's top-left pixel in the tile
+                uvec2 corner = tile * TILE_SIZE + local;
+                uint cells = quadDepthCells(corner, tileEnd, maskNear, maskScale);
+                laneCells |= cells;
+                if (!rects) continue;
+                uvec2 last = local + uvec2(corner.x + 1u < tileEnd.x ? 1u : 0u, corner.y + 1u < tileEnd.y ? 1u : 0u);
+                uint columns = depthMaskBits(local.x, last.x);
+                uint rows = depthMaskBits(local.y, last.y);
+                for (; cells != 0u; cells &= cells - 1u) {
+                    uint cell = uint(findLSB(cells));
+                    cellColumns[cell] |= columns;
+                    cellRows[cell] |= rows;
+                }
+            }
+        } else {
+            // A pixel under transparent surfaces occupies every cell from its span's near end to
+            // its far end.
+            for (uint index = lane; index < TILE_SIZE * TILE_SIZE; index += threads) {
+                uvec2 pixel = tile * TILE_SIZE + uvec2(index % TILE_SIZE, index / TILE_SIZE);
+                if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
+                vec2 span = pixelSpan(pixel);
+                if (span.x == 0.0) continue;  // background
+                laneCells |= depthMaskBits(depthMaskCell(viewDistanceFromDepth(span.x, frame.depthToView.xy), maskNear, maskScale),
+                                           depthMaskCell(viewDistanceFromDepth(span.y, frame.depthToView.xy), maskNear, maskScale));
+            }
+        }
+        uint tileCells = workgroupMasks(uvec3(laneCells, 0u, 0u)).x;
+        uvec3 unkept = masks;  // this lane's lights that passed the tile and meet no cell yet
+        masks = uvec3(0u);
+        for (uint cells = tileCells; cells != 0u; cells &= cells - 1u) {  // (uniform)
+            uint cell = uint(findLSB(cells));
+            uvec3 combined = workgroupMasks(uvec3(rects ? cellColumns[cell] : 0u, rects ? cellRows[cell] : 0u,
+                                                  any(notEqual(unkept, uvec3(0u))) ? 1u : 0u));
+            if (combined.z == 0u) break;  // every lane's lights are decided (uniform)
+            vec4 rect = rects ? columnsRowsRectNdc(tile * TILE_SIZE, combined.x, combined.y, pixelToNdc)
+                              : vec4(min(ndcA, ndcB), max(ndcA, ndcB));
+            TileVolume cellSegment = makeDepthCellVolume(rect.xy, rect.zw, cell, maskNear, distances.y, frame.ndcToView);
+            uvec3 kept = lightsMeetingDepthCell(unkept, cell, maskNear, maskScale, cellSegment);
+            masks |= kept;
+            unkept &= ~kept;
+        }
+    }
     masks = workgroupMasks(masks);
 
     // 4. The tile's cell, always written (an empty tile's masks are zero).

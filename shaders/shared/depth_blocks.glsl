@@ -37,3 +37,21 @@ vec4 columnsRowsRectNdc(uvec2 tileOrigin, uint columns, uint rows, vec2 pixelToN
     vec2 b = min(vec2(last), frame.viewport.xy) * pixelToNdc - 1.0;
     return vec4(min(a, b), max(a, b));
 }
+
+// The depth-mask cells (culling.h, tiled-2.5d) the geometry of the 2x2 block whose top-left pixel
+// is `corner` occupies, its pixels at or past `tileEnd` left out (quadExtent's block and gather).
+uint quadDepthCells(uvec2 corner, uvec2 tileEnd, float maskNear, float maskScale) {
+    if (corner.x >= tileEnd.x || corner.y >= tileEnd.y) return 0u;
+    vec4 quad = textureGather(depthImage, (vec2(corner) + 1.0) * frame.viewport.zw);
+    bool right = corner.x + 1u < tileEnd.x;
+    bool below = corner.y + 1u < tileEnd.y;
+    vec2 toView = frame.depthToView.xy;
+    uint cells = 0u;
+    if (!isBackgroundDepth(quad.w)) cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.w, toView), maskNear, maskScale);
+    if (right && !isBackgroundDepth(quad.z)) cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.z, toView), maskNear, maskScale);
+    if (below && !isBackgroundDepth(quad.x)) cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.x, toView), maskNear, maskScale);
+    if (right && below && !isBackgroundDepth(quad.y)) {
+        cells |= 1u << depthMaskCell(viewDistanceFromDepth(quad.y, toView), maskNear, maskScale);
+    }
+    return cells;
+}

@@ -100,6 +100,26 @@ uvec3 lightsMeetingSegment(uvec3 lights, TileVolume segment) {
     return meeting;
 }
 
+// The lights of `lights` (three mask words) whose depth cells (lightDepthMask, the tile's mask of
+// near distance `maskNear` and `maskScale`) include `cell` and whose shapes may touch the cell's
+// segment: tiled-2.5d's per-cell test, walked as lightsMeetingSegment walks.
+uvec3 lightsMeetingDepthCell(uvec3 lights, uint cell, float maskNear, float maskScale, TileVolume cellSegment) {
+    uint spotCount = frame.lightCounts.x;
+    uvec3 meeting = uvec3(0u);
+    while ((lights.x | lights.y | lights.z) != 0u) {
+        uint word = lights.x != 0u ? 0u : (lights.y != 0u ? 1u : 2u);
+        uint bits = word == 0u ? lights.x : (word == 1u ? lights.y : lights.z);
+        uint bit = 1u << uint(findLSB(bits));
+        uvec3 wordBit = uvec3(word == 0u ? bit : 0u, word == 1u ? bit : 0u, word == 2u ? bit : 0u);
+        lights &= ~wordBit;
+        CullLight shape = frameCullLights[lightGridFirstLight(word, spotCount) + uint(findLSB(bits))];
+        if ((lightDepthMask(shape, maskNear, maskScale) & (1u << cell)) != 0u && lightMayTouchTile(shape, cellSegment)) {
+            meeting |= wordBit;
+        }
+    }
+    return meeting;
+}
+
 // The geometry a pixel shades, as a depth span (nearest, farthest): a pixel under transparent
 // surfaces spans from its nearest transparent depth to its opaque depth (over the background, its
 // farthest transparent depth); any other pixel its opaque depth alone; a background pixel nothing,

@@ -276,9 +276,9 @@ options:
   --slices N           depth slices for clustered culling, 1 to 32 (default 16)
   --coarse-tiles on|off  on (default): the grid methods cull the lights to 64x64-pixel big
                        tiles first, and the tile (or cluster) tests start from those
-  --subgroup-tiles on|off  on (default): tiled, clustered, zbin and zbin-2d cull each tile with
-                       one subgroup (no shared memory, no barriers) where the device has subgroup
-                       arithmetic; off: with the shared-memory kernel tiled-2.5d uses (same lists)
+  --subgroup-tiles on|off  on (default): the grid methods cull each tile with one subgroup (no
+                       shared-memory atomics, no barriers) where the device has subgroup
+                       arithmetic; off: with the shared-memory kernel (same lists)
   --heatmap FILE.png   draw the lights tested per pixel as a colour map with a legend
   --shadow-density FILE.png  draw the shadow texels per screen pixel (1 is the target of auto
                        resolution) where shadowed lights reach, with a legend

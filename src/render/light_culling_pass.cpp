@@ -37,7 +37,7 @@ LightGridLayout LightGridLayout::forMethod(const LightListMethodInfo& method, ui
     // kernels write the three mask words with one invocation each).
     const bool powerOfTwo = threads != 0 && (threads & (threads - 1)) == 0;
     layout.tileThreads = powerOfTwo ? std::clamp<uint32_t>(threads, 4, PUNCTUAL_MAX_TILE_THREADS) : PUNCTUAL_MAX_TILE_THREADS;
-    layout.subgroupKernel = subgroupArithmetic && !layout.depthMask;
+    layout.subgroupKernel = subgroupArithmetic;
     return layout;
 }
 
@@ -92,7 +92,7 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
     if (!culled_) return;
     // VkBool32 for the bool constants, as the specification asks. One map for both kernels: an
     // entry whose constant a shader lacks does not affect it (the Vulkan specification), and
-    // tile_culling.comp lacks SLICE_COUNT and DEPTH_MASK.
+    // tile_culling.comp lacks SLICE_COUNT, cluster_culling.comp DEPTH_MASK and DEPTHLESS_TILES.
     const std::array<uint32_t, 6> values = {layout_.tileSize, layout_.slices, VkBool32(layout_.depthMask),
                                             VkBool32(layout_.depthlessTiles), layout_.coarseTiles, layout_.tileThreads};
     const std::array<VkSpecializationMapEntry, 6> entries = {{

@@ -40,8 +40,8 @@ struct LightGridLayout {
     uint32_t tileThreads = 64;
     // Whether a one-subgroup kernel culls, where the device has compute subgroup arithmetic and
     // RenderSettings::subgroupTiles is on: tile_culling.comp for the methods with one depth extent
-    // per tile (tiled, zbin, zbin-2d), cluster_culling.comp for clustered. Otherwise (and always
-    // for tiled-2.5d) light_culling.comp, with shared memory.
+    // per tile (tiled, tiled-2.5d, zbin, zbin-2d), cluster_culling.comp for clustered. Otherwise
+    // light_culling.comp, with shared memory.
     bool subgroupKernel = false;
     uint32_t cellCount() const { return tilesX * tilesY * slices; }
     uint32_t coarseTilesX() const { return coarseTiles ? (tilesX + coarseTiles - 1) / coarseTiles : 0; }
