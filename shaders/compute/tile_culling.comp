@@ -156,7 +156,7 @@ void main() {
             vec4 rect = rects ? columnsRowsRectNdc(tile * TILE_SIZE, combined.x, combined.y, pixelToNdc)
                               : vec4(min(ndcA, ndcB), max(ndcA, ndcB));
             TileVolume cellSegment = makeDepthCellVolume(rect.xy, rect.zw, cell, maskNear, distances.y, frame.ndcToView);
-            uvec3 kept = lightsMeetingDepthCell(unkept, cell, maskNear, maskScale, cellSegment);
+            uvec3 kept = lightsMeetingDepthCell(unkept, cellSegment, cell, maskNear, maskScale);
             masks |= kept;
             unkept &= ~kept;
         }

@@ -81,29 +81,13 @@ uvec3 laneCandidates(uvec2 tile, uint coarseTiles, uint lane, uint threads) {
                               laneBitsOfWord(2u, lane, threads));
 }
 
-// The lights of `lights` (three mask words) whose shapes may touch `segment` (culling.h). One loop
-// over the three words, each step the lowest bit of the first word with any, by selects (forward.frag
+// The lights of `lights` (three mask words) whose shapes may touch `segment` (culling.h) and, for a
+// `cell` other than kAnyDepthCell, whose depth cells (lightDepthMask, the tile's mask of near
+// distance `maskNear` and `maskScale`) include it: tiled-2.5d's per-cell test. One loop over the
+// three words, each step the lowest bit of the first word with any, by selects (forward.frag
 // walks its masks so, and why).
-uvec3 lightsMeetingSegment(uvec3 lights, TileVolume segment) {
-    uint spotCount = frame.lightCounts.x;
-    uvec3 meeting = uvec3(0u);
-    while ((lights.x | lights.y | lights.z) != 0u) {
-        uint word = lights.x != 0u ? 0u : (lights.y != 0u ? 1u : 2u);
-        uint bits = word == 0u ? lights.x : (word == 1u ? lights.y : lights.z);
-        uint bit = 1u << uint(findLSB(bits));
-        uvec3 wordBit = uvec3(word == 0u ? bit : 0u, word == 1u ? bit : 0u, word == 2u ? bit : 0u);
-        lights &= ~wordBit;
-        if (lightMayTouchTile(frameCullLights[lightGridFirstLight(word, spotCount) + uint(findLSB(bits))], segment)) {
-            meeting |= wordBit;
-        }
-    }
-    return meeting;
-}
-
-// The lights of `lights` (three mask words) whose depth cells (lightDepthMask, the tile's mask of
-// near distance `maskNear` and `maskScale`) include `cell` and whose shapes may touch the cell's
-// segment: tiled-2.5d's per-cell test, walked as lightsMeetingSegment walks.
-uvec3 lightsMeetingDepthCell(uvec3 lights, uint cell, float maskNear, float maskScale, TileVolume cellSegment) {
+const uint kAnyDepthCell = 0xFFFFFFFFu;
+uvec3 lightsMeetingDepthCell(uvec3 lights, TileVolume segment, uint cell, float maskNear, float maskScale) {
     uint spotCount = frame.lightCounts.x;
     uvec3 meeting = uvec3(0u);
     while ((lights.x | lights.y | lights.z) != 0u) {
@@ -113,11 +97,15 @@ uvec3 lightsMeetingDepthCell(uvec3 lights, uint cell, float maskNear, float mask
         uvec3 wordBit = uvec3(word == 0u ? bit : 0u, word == 1u ? bit : 0u, word == 2u ? bit : 0u);
         lights &= ~wordBit;
         CullLight shape = frameCullLights[lightGridFirstLight(word, spotCount) + uint(findLSB(bits))];
-        if ((lightDepthMask(shape, maskNear, maskScale) & (1u << cell)) != 0u && lightMayTouchTile(shape, cellSegment)) {
-            meeting |= wordBit;
-        }
+        bool spansCell = cell == kAnyDepthCell || (lightDepthMask(shape, maskNear, maskScale) & (1u << cell)) != 0u;
+        if (spansCell && lightMayTouchTile(shape, segment)) meeting |= wordBit;
     }
     return meeting;
+}
+
+// The lights of `lights` whose shapes may touch `segment`, whatever their depth cells.
+uvec3 lightsMeetingSegment(uvec3 lights, TileVolume segment) {
+    return lightsMeetingDepthCell(lights, segment, kAnyDepthCell, 0.0, 0.0);
 }
 
 // The geometry a pixel shades, as a depth span (nearest, farthest): a pixel under transparent
