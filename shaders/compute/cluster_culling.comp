@@ -10,7 +10,7 @@
 //     give its nearest and farthest depth and the columns and rows of its pixels, each combined
 //     over the workgroup. The slice gets its frustum segment (cut to that rectangle of the tile);
 //     each lane tests its candidates whose depth extent meets the slice's (sliceLights, listed by
-//     cluster_slices.comp) against it, and the masks are combined with subgroupOr and written.
+//     depth_range.comp) against it, and the masks are combined with subgroupOr and written.
 // A light is kept in a cluster where its shapes meet the cluster's segment (culling.h,
 // lightMayTouchTile). There is no whole-tile test first: on the default scene it changed no list
 // (the coarse pass and the slices' depth lists already keep the tests to lights near the tile), and
@@ -27,7 +27,7 @@
 // never searched: within the uniform slice loop, two comparisons with the slice's bounds tell
 // whether it lies inside, and the extents are subgroup reductions. The depths are read once more
 // per occupied slice, which the texture cache serves.
-// A slice's bounds come from cluster_slices.comp, which makes them non-increasing, so that "inside
+// A slice's bounds come from depth_range.comp (its last subgroup), which makes them non-increasing, so that "inside
 // slice s" (sliceStart[s] >= depth > sliceStart[s + 1]) is exactly what the search in forward.frag
 // (PUNCTUAL_CLUSTER_SLICE_OF_DEPTH) picks.
 #extension GL_GOOGLE_include_directive : require
@@ -178,7 +178,7 @@ void main() {
         }
         TileVolume segment = makeTileVolume(rect.xy, rect.zw, viewDistanceFromDepth(sliceExtent.x, toView),
                                             viewDistanceFromDepth(sliceExtent.y, toView), frame.ndcToView);
-        // Only the lights whose depth extent meets the slice's (cluster_slices.comp) can pass.
+        // Only the lights whose depth extent meets the slice's (depth_range.comp) can pass.
         uint sliceBase = slice * PUNCTUAL_GRID_WORDS;
         uvec3 sliceLights = uvec3(depthRange.sliceLights[sliceBase], depthRange.sliceLights[sliceBase + 1u],
                                   depthRange.sliceLights[sliceBase + 2u]);

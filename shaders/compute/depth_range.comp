@@ -12,15 +12,28 @@
 // no less); lavapipe, for which fewer and longer invocations are cheaper, pays 0.89 -> 1.02 ms for
 // the 8 (4: 2.0). Depths are non-negative floats, whose bit patterns sort like the values, so
 // integer atomicMin/Max order them correctly.
+//
+// The last subgroup of the dispatch to finish then cuts the frame's cluster slices from that range
+// (below): the slice starts and each slice's lights, which every later reader compares against.
+// They were a dispatch of their own (cluster_slices.comp) behind a barrier; on an NVIDIA H200 that
+// second dependent dispatch cost 11.3 us of clustered culling's 54, with tiled's whole culling 27
+// (bench/RESULTS.md, sixth part). A counter of finished subgroups (GpuDepthRange) finds the last
+// one, as single-pass reductions do (AMD's FidelityFX SPD): each subgroup's invocations make their
+// atomics, then a memory barrier, and one of them counts the subgroup; the one that counts last
+// knows every other subgroup's atomics came before its own count. Subgroup basic operations only
+// (elect, barrier), which every Vulkan 1.1 device has in compute shaders.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
 #include "gpu_types.h"
 #include "culling.h"
 
 layout(local_size_x = PUNCTUAL_DEPTH_RANGE_THREADS) in;  // a row of squares a workgroup row
+layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
-layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) buffer DepthRangeBlock { GpuDepthRange depthRange; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_CULL_LIGHTS) readonly buffer CullLightBlock { CullLight frameCullLights[]; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) coherent buffer DepthRangeBlock { GpuDepthRange depthRange; };
 // The transparent surfaces' depth span per pixel, when the frame has any (frame.lightCounts.w):
 // the range covers them too, so that their depths fall inside the slices.
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
@@ -29,14 +42,88 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly b
 
 #include "depth_blocks.glsl"
 
+// The start of slice `slice` (1 .. SLICE_COUNT - 1) between the given distances. The starts fall
+// with the slice, and are made to even where rounding (pow, the division in depthFromViewDistance)
+// might not: each is the smallest of its own and its predecessors'. Then "slice s holds depth d" is
+// exactly sliceStart[s] >= d > sliceStart[s + 1], both for the search (PUNCTUAL_CLUSTER_SLICE_OF_DEPTH,
+// which assumes it) and for cluster_culling.comp's per-slice comparisons.
+float sliceStart(uint slice, float nearDistance, float farDistance) {
+    float start = 1.0;
+    for (uint s = 1u; s <= slice; ++s) {
+        start = min(start, depthFromViewDistance(sliceStartDistance(s, nearDistance, farDistance, SLICE_COUNT),
+                                                 frame.depthToView.xy));
+    }
+    return start;
+}
+
+// The lights' view-distance extents, for the last subgroup's slices. Only that subgroup touches
+// them, so a subgroup barrier orders its writes and reads (no workgroup barrier: the other
+// subgroups of its workgroup have left).
+shared vec2 lightExtents[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
+// Each subgroup's place in the count of finished subgroups (1 = first, gl_NumSubgroups x the
+// workgroups = last).
+shared uint subgroupCounts[PUNCTUAL_DEPTH_RANGE_THREADS];
+
+// The slices of the depth range now complete, by the dispatch's last subgroup: each of its
+// invocations finds the extents of its share of the lights, then cuts its share of the slices.
+// Slice s: sliceStartDepth[s] = depth of D_s = Dnear (Dfar / Dnear)^(s / S) (culling.h), and its
+// lights: those whose view-distance extent meets the slice's distances.
+void cutSlices(uint minDepthBits, uint maxDepthBits) {
+    uint spotCount = frame.lightCounts.x;
+    uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
+    for (uint light = gl_SubgroupInvocationID; light < lightCount; light += gl_SubgroupSize) {
+        lightExtents[light] = lightDistanceExtent(frameCullLights[light]);
+    }
+    subgroupMemoryBarrierShared();
+    subgroupBarrier();
+    if (gl_SubgroupInvocationID == 0u) depthRange.sliceCount = SLICE_COUNT;
+    bool empty = minDepthBits > maxDepthBits;
+    for (uint slice = gl_SubgroupInvocationID; slice < PUNCTUAL_MAX_CLUSTER_SLICES; slice += gl_SubgroupSize) {
+        for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) depthRange.sliceLights[slice * PUNCTUAL_GRID_WORDS + word] = 0u;
+        // Depth is reversed (culling.h): slice starts fall from 1 (the near plane) towards 0. An
+        // empty frame (no geometry) leaves min > max: every slice starts at depth 1 and has no
+        // light (no pixel reads one). Slices past SLICE_COUNT start at -1, below every depth, so
+        // the search never picks them.
+        if (empty || slice >= SLICE_COUNT) {
+            depthRange.sliceStartDepth[slice] = slice == 0u || empty ? 1.0 : -1.0;
+            continue;
+        }
+        float nearDistance = viewDistanceFromDepth(uintBitsToFloat(maxDepthBits), frame.depthToView.xy);
+        float farDistance = viewDistanceFromDepth(uintBitsToFloat(minDepthBits), frame.depthToView.xy);
+        float start = sliceStart(slice, nearDistance, farDistance);
+        depthRange.sliceStartDepth[slice] = start;
+
+        // The slice's distances: from its start's to the next slice's start's (view distance
+        // falls monotonically with depth, also as rounded, so every segment culling makes in the
+        // slice lies within), the first slice from 0 and the last to infinity. Widened by 1e-5 of
+        // themselves, so that a light whose extent comes out an ulp apart here and in the culling
+        // kernel is kept: the kernel's own test (lightMayTouchTile) decides.
+        float sliceNear = slice == 0u ? 0.0 : viewDistanceFromDepth(start, frame.depthToView.xy) * (1.0 - 1e-5);
+        float sliceFar = slice + 1u < SLICE_COUNT
+                             ? viewDistanceFromDepth(sliceStart(slice + 1u, nearDistance, farDistance), frame.depthToView.xy) * (1.0 + 1e-5)
+                             : 3.4e38;
+        uvec3 lights = uvec3(0u);
+        for (uint light = 0u; light < lightCount; ++light) {
+            vec2 extent = lightExtents[light];
+            if (extent.y < sliceNear || extent.x > sliceFar) continue;
+            uint bit = 1u << lightGridBit(light, spotCount);
+            uint word = lightGridWord(light, spotCount);
+            lights |= uvec3(word == 0u ? bit : 0u, word == 1u ? bit : 0u, word == 2u ? bit : 0u);
+        }
+        depthRange.sliceLights[slice * PUNCTUAL_GRID_WORDS] = lights.x;
+        depthRange.sliceLights[slice * PUNCTUAL_GRID_WORDS + 1u] = lights.y;
+        depthRange.sliceLights[slice * PUNCTUAL_GRID_WORDS + 2u] = lights.z;
+    }
+}
+
 void main() {
     const uint kSide = PUNCTUAL_DEPTH_RANGE_SIDE;
     uvec2 viewport = uvec2(frame.viewport.xy);
     // Invocation x of workgroup row y: square (x, y); the rows of workgroups are the squares' rows.
     uvec2 square = uvec2(gl_GlobalInvocationID.x, gl_WorkGroupID.y);
-    if (square.x >= (viewport.x + kSide - 1u) / kSide) return;
+    // Invocations past the last square stay, for their subgroup's count, with an empty square.
     uvec2 origin = square * kSide;
-    uvec2 end = min(origin + kSide, viewport);
+    uvec2 end = square.x < (viewport.x + kSide - 1u) / kSide ? min(origin + kSide, viewport) : origin;
     vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) geometry depth; x = 0: none
     for (uint block = 0u; block < (kSide / 2u) * (kSide / 2u); ++block) {
         extent = quadExtent(origin + 2u * uvec2(block % (kSide / 2u), block / (kSide / 2u)), end, extent);
@@ -59,4 +146,19 @@ void main() {
         atomicMin(depthRange.minDepthBits, threadMin);
         atomicMax(depthRange.maxDepthBits, threadMax);
     }
+    if (SLICE_COUNT <= 1u) return;  // no slices to cut (not used so: tiled culling runs no range pass)
+
+    // Count this subgroup once its atomics are made; the last one counted cuts the slices. The
+    // count reaches the subgroup's other invocations through shared memory (a broadcast would need
+    // the ballot operations, which Vulkan does not promise).
+    memoryBarrierBuffer();
+    subgroupBarrier();
+    uint subgroups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumSubgroups;
+    if (subgroupElect()) subgroupCounts[gl_SubgroupID] = atomicAdd(depthRange.finishedSubgroups, 1u) + 1u;
+    subgroupMemoryBarrierShared();
+    subgroupBarrier();
+    if (subgroupCounts[gl_SubgroupID] != subgroups) return;  // (uniform in the subgroup)
+    memoryBarrierBuffer();
+    // Read the finished range as atomics do (coherent, and after the count).
+    cutSlices(atomicOr(depthRange.minDepthBits, 0u), atomicOr(depthRange.maxDepthBits, 0u));
 }

@@ -1,5 +1,5 @@
 // Light-culling geometry, written once for GLSL and C++ (see glsl_cpp.h): the cluster slices and
-// the light grid's layout (cluster_slices.comp, light_culling.comp, forward.frag), the lights'
+// the light grid's layout (depth_range.comp, light_culling.comp, forward.frag), the lights'
 // culling shapes (made on the CPU each frame, tested by light_culling.comp), the spot light's
 // bounding sphere (also the CPU's frustum culling and per-object lists), and the CPU reference of
 // the culling tests.

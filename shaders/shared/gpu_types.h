@@ -204,7 +204,9 @@ struct GpuDepthRange {
     uint minDepthBits;
     uint maxDepthBits;
     uint sliceCount;
-    uint reserved;
+    // Subgroups of depth_range.comp done with their atomics (0 at the frame's start): the last one
+    // cuts the slices.
+    uint finishedSubgroups;
     // Depth where slice s begins; slice 0 = nearest (depth 1), starts falling with s.
     float sliceStartDepth[PUNCTUAL_MAX_CLUSTER_SLICES];
     // Per slice, PUNCTUAL_GRID_WORDS mask words (lightGridWord in culling.h) of the lights whose

@@ -8,7 +8,6 @@
 #include "render/frame_bindings.h"
 #include "render/render_settings.h"
 #include "shaders/compute_cluster_culling_comp_spv.h"
-#include "shaders/compute_cluster_slices_comp_spv.h"
 #include "shaders/compute_coarse_culling_comp_spv.h"
 #include "shaders/compute_depth_range_comp_spv.h"
 #include "shaders/compute_light_culling_comp_spv.h"
@@ -121,12 +120,11 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
                                                     compute_coarse_culling_comp_spv, &coarseSpecialization);
     }
     if (layout_.slices > 1) {
-        depthRangePipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
-                                                        compute_depth_range_comp_spv, nullptr);
+        // The range pass's last subgroup also cuts the slices: it reads the slice count.
         const VkSpecializationMapEntry sliceEntry{PUNCTUAL_SPEC_SLICE_COUNT, 0, sizeof(uint32_t)};
         const VkSpecializationInfo sliceSpecialization{1, &sliceEntry, sizeof(uint32_t), &layout_.slices};
-        sliceBoundariesPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
-                                                             compute_cluster_slices_comp_spv, &sliceSpecialization);
+        depthRangePipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
+                                                        compute_depth_range_comp_spv, &sliceSpecialization);
     }
 }
 
@@ -134,28 +132,28 @@ void LightCullingPass::record(const FrameContext& frame) const {
     if (!culled_) return;
     const VkCommandBuffer cmd = frame.cmd;
     frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_COMPUTE);
-    // Start from an empty range: min = all ones, max = 0 (each fill writes one repeated word).
-    // Tiled culling never reads it, but it stays defined.
+    // Start from an empty range: min = all ones, max = 0, and no subgroup of the range pass
+    // finished (each fill writes one repeated word). Tiled culling never reads it, but it stays
+    // defined.
     vkCmdFillBuffer(cmd, depthRange_.handle(), 0, sizeof(uint32_t), 0xFFFFFFFFu);
-    vkCmdFillBuffer(cmd, depthRange_.handle(), sizeof(uint32_t), sizeof(uint32_t), 0u);
+    vkCmdFillBuffer(cmd, depthRange_.handle(), sizeof(uint32_t), 3 * sizeof(uint32_t), 0u);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    // The depth range (with the slices its last subgroup cuts) and the coarse pass read nothing of
+    // each other's: one barrier after both, so that a GPU may run them side by side (on the H200
+    // they took 9.1 and 7.6 us one after the other, bench/RESULTS.md).
     if (depthRangePipeline_) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, depthRangePipeline_);
         // One invocation a square of PUNCTUAL_DEPTH_RANGE_SIDE pixels, a row of workgroups a row of squares.
         const uint32_t squaresAcross = (width_ + PUNCTUAL_DEPTH_RANGE_SIDE - 1) / PUNCTUAL_DEPTH_RANGE_SIDE;
         vkCmdDispatch(cmd, (squaresAcross + PUNCTUAL_DEPTH_RANGE_THREADS - 1) / PUNCTUAL_DEPTH_RANGE_THREADS,
                       (height_ + PUNCTUAL_DEPTH_RANGE_SIDE - 1) / PUNCTUAL_DEPTH_RANGE_SIDE, 1);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sliceBoundariesPipeline_);
-        vkCmdDispatch(cmd, 1, 1, 1);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     }
     if (coarsePipeline_) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, coarsePipeline_);
         vkCmdDispatch(cmd, layout_.coarseTilesX(), layout_.coarseTilesY(), 1);
+    }
+    if (depthRangePipeline_ || coarsePipeline_) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     }

@@ -5,12 +5,12 @@
 // (zbin: the same, its z-bins uploaded here for the forward pass; zbin-2d: against the tile at every
 // depth, the bins holding depth), one subgroup a tile (tile_culling.comp) where the device has
 // compute subgroup arithmetic, else through shared memory (light_culling.comp). Both kernels run
-// one subgroup a tile (LightGridLayout::tileThreads).
-// tiled-2.5d: light_culling.comp, also against the tile's depth mask. Clustered: a depth-range pass
-// first finds the frame's nearest and farthest geometry, cluster_slices.comp fits logarithmic depth
-// slices to that range (and lists each slice's lights by depth), then cluster_culling.comp (one
-// subgroup a tile, where the device allows; else light_culling.comp) culls each tile's occupied
-// slices. The light grid holds PUNCTUAL_GRID_WORDS
+// one subgroup a tile (LightGridLayout::tileThreads). tiled-2.5d: the same kernels, also against
+// the tile's depth mask. Clustered: a depth-range pass (depth_range.comp) first finds the frame's
+// nearest and farthest geometry, and its last subgroup fits logarithmic depth slices to that range
+// (and lists each slice's lights by depth); then cluster_culling.comp (one subgroup a tile, where
+// the device allows; else light_culling.comp) culls each tile's occupied slices. The range and
+// coarse passes run side by side, behind one barrier. The light grid holds PUNCTUAL_GRID_WORDS
 // words per cell and is sized to the frame's real tile count (times the slices for clustered).
 #include <cstdint>
 #include <vector>
@@ -92,8 +92,7 @@ private:
     vk::Buffer coarseGrid_;  // coarse tiles x PUNCTUAL_GRID_WORDS words, or one word without the coarse pass
     vk::Handle<VkPipeline> cullingPipeline_;           // tile_, cluster_ or light_culling.comp
     vk::Handle<VkPipeline> coarsePipeline_;            // the coarse pass (coarse_culling.comp)
-    vk::Handle<VkPipeline> depthRangePipeline_;        // clustered: nearest/farthest geometry
-    vk::Handle<VkPipeline> sliceBoundariesPipeline_;   // clustered: slice start depths
+    vk::Handle<VkPipeline> depthRangePipeline_;        // clustered: nearest/farthest geometry, then the slices
 };
 
 }  // namespace punctual::render

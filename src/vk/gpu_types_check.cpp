@@ -42,10 +42,8 @@ static_assert(offsetof(GpuShadowView, texel) == 96);
 static_assert(sizeof(GpuDepthRange) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES * (1 + PUNCTUAL_GRID_WORDS));
 static_assert(offsetof(GpuDepthRange, sliceLights) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES);
 static_assert(offsetof(GpuDepthRange, sliceStartDepth) == 16);
-// cluster_slices.comp runs an invocation for each light bit of the grid's words, one a light and
-// at least one a slice.
+// A light bit for each light of a frame in the grid's words.
 static_assert(PUNCTUAL_GRID_WORDS * 32 == PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS);
-static_assert(PUNCTUAL_GRID_WORDS * 32 >= PUNCTUAL_MAX_CLUSTER_SLICES);
 static_assert(sizeof(GpuZBins) == 4 * PUNCTUAL_ZBIN_COUNT + 16 * PUNCTUAL_ZBIN_COUNT);
 static_assert(offsetof(GpuZBins, binMask) == 4 * PUNCTUAL_ZBIN_COUNT);  // 256: a multiple of uvec4's 16
 

@@ -24,7 +24,7 @@ using gpu::spotBoundingSphere;
 // with falling start depths and a depth belongs to the last slice starting at or nearer than it.
 
 // Starts 1, 3/4, 1/2, 1/4 (slices 0-3, all exact in binary); the unused slices start at -1, below
-// every depth, as cluster_slices.comp writes them.
+// every depth, as depth_range.comp writes them.
 std::vector<float> quarterStarts() {
     std::vector<float> starts(PUNCTUAL_MAX_CLUSTER_SLICES, -1.0f);
     for (int s = 0; s < 4; ++s) starts[size_t(s)] = 1.0f - 0.25f * float(s);
