@@ -78,6 +78,8 @@ void cutSlices(uint minDepthBits, uint maxDepthBits) {
     subgroupBarrier();
     if (gl_SubgroupInvocationID == 0u) depthRange.sliceCount = SLICE_COUNT;
     bool empty = minDepthBits > maxDepthBits;
+    float nearDistance = viewDistanceFromDepth(uintBitsToFloat(maxDepthBits), frame.depthToView.xy);
+    float farDistance = viewDistanceFromDepth(uintBitsToFloat(minDepthBits), frame.depthToView.xy);
     for (uint slice = gl_SubgroupInvocationID; slice < PUNCTUAL_MAX_CLUSTER_SLICES; slice += gl_SubgroupSize) {
         for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) depthRange.sliceLights[slice * PUNCTUAL_GRID_WORDS + word] = 0u;
         // Depth is reversed (culling.h): slice starts fall from 1 (the near plane) towards 0. An
@@ -88,8 +90,6 @@ void cutSlices(uint minDepthBits, uint maxDepthBits) {
             depthRange.sliceStartDepth[slice] = slice == 0u || empty ? 1.0 : -1.0;
             continue;
         }
-        float nearDistance = viewDistanceFromDepth(uintBitsToFloat(maxDepthBits), frame.depthToView.xy);
-        float farDistance = viewDistanceFromDepth(uintBitsToFloat(minDepthBits), frame.depthToView.xy);
         float start = sliceStart(slice, nearDistance, farDistance);
         depthRange.sliceStartDepth[slice] = start;
 
