@@ -44,6 +44,9 @@ ForwardPass::ForwardPass(const vk::Context& context, const vk::Image& radiance, 
 
 void ForwardPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
     const ForwardVariant& variant = variant_;
+    // A transparent pass with nothing to blend records nothing (record), so it needs no pipeline:
+    // the forward shader is the frame's largest, and lavapipe takes 0.1-0.3 s to build each one.
+    if (variant.transparent && drawOrder_.empty()) return;
 
     struct Constants {
         uint32_t lightList;
