@@ -41,7 +41,7 @@ DepthPrepass::DepthPrepass(const vk::Context& context, uint32_t width, uint32_t 
     passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_CLEAR;
     passDesc.depthInitialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     passDesc.depthFinalLayout = kFinalLayout;
-    renderPass_ = vk::createRenderPass(context.device(), passDesc);
+    renderPass_ = context.objects().renderPass(passDesc);
     const VkImageView view = depth_.view();
     framebuffer_ = vk::createFramebuffer(context.device(), renderPass_, {&view, 1}, width_, height_);
 }
@@ -60,12 +60,11 @@ void DepthPrepass::createPipelines(const vk::Context& context, const FrameBindin
     // Reversed Z (Camera::projection): nearer is greater. Strictly greater, so that of two
     // fragments at the same depth the first drawn stays, as LESS did with the usual mapping.
     pipelineDesc.depthCompare = VK_COMPARE_OP_GREATER;
-    const VkDevice device = context.device();
-    pipelines_[uint32_t(DepthDrawKind::OpaqueTwoSided)] = vk::createGraphicsPipeline(device, pipelineDesc);
+    pipelines_[uint32_t(DepthDrawKind::OpaqueTwoSided)] = context.objects().graphicsPipeline(pipelineDesc);
     pipelineDesc.cullMode = VK_CULL_MODE_BACK_BIT;
-    pipelines_[uint32_t(DepthDrawKind::OpaqueCullBackCcw)] = vk::createGraphicsPipeline(device, pipelineDesc);
+    pipelines_[uint32_t(DepthDrawKind::OpaqueCullBackCcw)] = context.objects().graphicsPipeline(pipelineDesc);
     pipelineDesc.frontFace = VK_FRONT_FACE_CLOCKWISE;
-    pipelines_[uint32_t(DepthDrawKind::OpaqueCullBackCw)] = vk::createGraphicsPipeline(device, pipelineDesc);
+    pipelines_[uint32_t(DepthDrawKind::OpaqueCullBackCw)] = context.objects().graphicsPipeline(pipelineDesc);
 
     // Masked objects: alpha_mask.frag drops masked-out fragments and, for single-sided materials,
     // back faces (whichever way the object's transform winds them).
@@ -76,7 +75,7 @@ void DepthPrepass::createPipelines(const vk::Context& context, const FrameBindin
     const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
     const VkSpecializationInfo specialization{1, &entry, sizeof(VkBool32), &cullBackFaces};
     pipelineDesc.fragmentSpecialization = &specialization;
-    pipelines_[uint32_t(DepthDrawKind::Masked)] = vk::createGraphicsPipeline(device, pipelineDesc);
+    pipelines_[uint32_t(DepthDrawKind::Masked)] = context.objects().graphicsPipeline(pipelineDesc);
 }
 
 void DepthPrepass::record(const FrameContext& frame) const {

@@ -41,10 +41,11 @@ public:
 private:
     vk::Image depth_;
     vk::Handle<VkSampler> sampler_;  // nearest, for texelFetch in the culling kernels
-    vk::Handle<VkRenderPass> renderPass_;
+    // The render pass and pipelines: the context's object cache (vk/object_cache.h) owns them.
+    VkRenderPass renderPass_ = VK_NULL_HANDLE;
     vk::Handle<VkFramebuffer> framebuffer_;
     // One per DepthDrawKind (render/scene_gpu.h): opaque two-sided, culled CCW, culled CW, masked.
-    std::array<vk::Handle<VkPipeline>, kPrepassDrawKinds> pipelines_;
+    std::array<VkPipeline, kPrepassDrawKinds> pipelines_{};
     std::array<std::vector<uint32_t>, kPrepassDrawKinds> drawLists_;
     uint32_t width_ = 0;
     uint32_t height_ = 0;

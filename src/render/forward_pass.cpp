@@ -37,7 +37,7 @@ ForwardPass::ForwardPass(const vk::Context& context, const vk::Image& radiance, 
     passDesc.depthStore = VK_ATTACHMENT_STORE_OP_STORE;
     passDesc.depthInitialLayout = DepthPrepass::kFinalLayout;
     passDesc.depthFinalLayout = DepthPrepass::kFinalLayout;
-    renderPass_ = vk::createRenderPass(device, passDesc);
+    renderPass_ = context.objects().renderPass(passDesc);
     const std::array<VkImageView, 2> views = {radiance.view(), depth.view()};
     framebuffer_ = vk::createFramebuffer(device, renderPass_, views, width_, height_);
 }
@@ -97,7 +97,7 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
     // Opaque: exactly the prepass's surface. Transparent: in front of it (reversed depth).
     pipelineDesc.depthCompare = variant.transparent ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_EQUAL;
     pipelineDesc.alphaBlend = variant.transparent;
-    pipeline_ = vk::createGraphicsPipeline(context.device(), pipelineDesc);
+    pipeline_ = context.objects().graphicsPipeline(pipelineDesc);
 }
 
 void ForwardPass::record(const FrameContext& frame) const {

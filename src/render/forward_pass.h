@@ -58,9 +58,9 @@ private:
     ForwardVariant variant_;
     std::vector<uint32_t> drawOrder_;
     const vk::Buffer* debugOutput_ = nullptr;
-    vk::Handle<VkRenderPass> renderPass_;
+    VkRenderPass renderPass_ = VK_NULL_HANDLE;  // with pipeline_, owned by the context's object cache
     vk::Handle<VkFramebuffer> framebuffer_;
-    vk::Handle<VkPipeline> pipeline_;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
     uint32_t width_ = 0;
     uint32_t height_ = 0;
 };

@@ -28,9 +28,9 @@ FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, 
         PUNCTUAL_CHECK(seen.insert(row.layout.binding).second, "set 0 binding declared twice");
         bindings.push_back(row.layout);
     }
-    setLayout_ = vk::createDescriptorSetLayout(device, bindings);
+    setLayout_ = context.objects().setLayout(bindings);
     materialSetLayout_ = scene.materialSetLayout();
-    pipelineLayout_ = vk::createPipelineLayout(device, {setLayout_.get(), scene.materialSetLayout()},
+    pipelineLayout_ = context.objects().pipelineLayout({setLayout_, scene.materialSetLayout()},
                                                {kRasterStages, 0, sizeof(uint32_t)});
     descriptors_ = vk::allocateDescriptorSet(device, setLayout_, bindings);
 

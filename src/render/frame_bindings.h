@@ -59,9 +59,10 @@ public:
     void bind(VkCommandBuffer cmd, VkPipelineBindPoint bindPoint, VkPipelineLayout layout) const;
 
 private:
-    vk::Handle<VkDescriptorSetLayout> setLayout_;
-    VkDescriptorSetLayout materialSetLayout_ = VK_NULL_HANDLE;  // owned by the SceneGpu
-    vk::Handle<VkPipelineLayout> pipelineLayout_;
+    // The layouts: the context's object cache (vk/object_cache.h) owns them.
+    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout materialSetLayout_ = VK_NULL_HANDLE;
+    VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
     vk::DescriptorSet descriptors_;
 };
 

@@ -106,7 +106,7 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
     const std::span<const uint32_t> kernel = !layout_.subgroupKernel ? std::span<const uint32_t>(compute_light_culling_comp_spv)
                                              : layout_.slices > 1      ? std::span<const uint32_t>(compute_cluster_culling_comp_spv)
                                                                        : std::span<const uint32_t>(compute_tile_culling_comp_spv);
-    cullingPipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(), kernel, &specialization);
+    cullingPipeline_ = context.objects().computePipeline(bindings.pipelineLayout(), kernel, &specialization);
     if (layout_.coarseTiles) {
         // The coarse kernel reads the tile size, the coarse-tile side and its workgroup size.
         const std::array<VkSpecializationMapEntry, 3> coarseEntries = {{
@@ -116,14 +116,14 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
         }};
         const VkSpecializationInfo coarseSpecialization{uint32_t(coarseEntries.size()), coarseEntries.data(),
                                                         sizeof(values), values.data()};
-        coarsePipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
+        coarsePipeline_ = context.objects().computePipeline(bindings.pipelineLayout(),
                                                     compute_coarse_culling_comp_spv, &coarseSpecialization);
     }
     if (layout_.slices > 1) {
         // The range pass's last subgroup also cuts the slices: it reads the slice count.
         const VkSpecializationMapEntry sliceEntry{PUNCTUAL_SPEC_SLICE_COUNT, 0, sizeof(uint32_t)};
         const VkSpecializationInfo sliceSpecialization{1, &sliceEntry, sizeof(uint32_t), &layout_.slices};
-        depthRangePipeline_ = vk::createComputePipeline(context.device(), bindings.pipelineLayout(),
+        depthRangePipeline_ = context.objects().computePipeline(bindings.pipelineLayout(),
                                                         compute_depth_range_comp_spv, &sliceSpecialization);
     }
 }

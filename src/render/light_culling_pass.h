@@ -90,9 +90,10 @@ private:
     vk::Buffer cullLights_;
     vk::Buffer zBins_;  // gpu::GpuZBins, or one word for the methods without bins
     vk::Buffer coarseGrid_;  // coarse tiles x PUNCTUAL_GRID_WORDS words, or one word without the coarse pass
-    vk::Handle<VkPipeline> cullingPipeline_;           // tile_, cluster_ or light_culling.comp
-    vk::Handle<VkPipeline> coarsePipeline_;            // the coarse pass (coarse_culling.comp)
-    vk::Handle<VkPipeline> depthRangePipeline_;        // clustered: nearest/farthest geometry, then the slices
+    // The pipelines: the context's object cache (vk/object_cache.h) owns them.
+    VkPipeline cullingPipeline_ = VK_NULL_HANDLE;     // tile_, cluster_ or light_culling.comp
+    VkPipeline coarsePipeline_ = VK_NULL_HANDLE;      // the coarse pass (coarse_culling.comp)
+    VkPipeline depthRangePipeline_ = VK_NULL_HANDLE;  // clustered: nearest/farthest geometry, then the slices
 };
 
 }  // namespace punctual::render

@@ -217,7 +217,7 @@ void SceneGpu::createMaterialSets(vk::Context& context, const Scene& scene) {
         {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
     }};
-    materialSetLayout_ = vk::createDescriptorSetLayout(device, bindings);
+    materialSetLayout_ = context.objects().setLayout(bindings);
     const uint32_t setCount = uint32_t(scene.materials.size());
     const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * setCount};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -227,7 +227,7 @@ void SceneGpu::createMaterialSets(vk::Context& context, const Scene& scene) {
     VkDescriptorPool pool = VK_NULL_HANDLE;
     vk::check(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
     materialPool_ = vk::Handle<VkDescriptorPool>(device, pool, vkDestroyDescriptorPool);
-    const std::vector<VkDescriptorSetLayout> layouts(setCount, materialSetLayout_.get());
+    const std::vector<VkDescriptorSetLayout> layouts(setCount, materialSetLayout_);
     VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     allocInfo.descriptorPool = pool;
     allocInfo.descriptorSetCount = setCount;

@@ -80,7 +80,7 @@ private:
     std::vector<vk::Image> textures_;  // the scene's, then a 1x1 white one for texture-less slots
     std::vector<TextureSampler> samplerKeys_;  // distinct samplers the materials use
     std::vector<vk::Handle<VkSampler>> samplers_;  // one per key
-    vk::Handle<VkDescriptorSetLayout> materialSetLayout_;
+    VkDescriptorSetLayout materialSetLayout_ = VK_NULL_HANDLE;  // the context's object cache owns it
     vk::Handle<VkDescriptorPool> materialPool_;
     std::vector<VkDescriptorSet> materialSets_;  // one per material (freed with the pool)
     std::vector<Draw> draws_;

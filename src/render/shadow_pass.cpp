@@ -42,7 +42,7 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
     passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_CLEAR;
     passDesc.depthInitialLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     passDesc.depthFinalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-    renderPass_ = vk::createRenderPass(device, passDesc);
+    renderPass_ = context.objects().renderPass(passDesc);
     auto addTarget = [&](const vk::Image& image, uint32_t layer, uint32_t width, uint32_t height) -> Target& {
         VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         viewInfo.image = image.handle();
@@ -89,8 +89,7 @@ void ShadowPass::addBindings(BindingTable& table) const {
 }
 
 void ShadowPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
-    const VkDevice device = context.device();
-    pipelineLayout_ = vk::createPipelineLayout(device, {bindings.setLayout(), bindings.materialSetLayout()},
+    pipelineLayout_ = context.objects().pipelineLayout({bindings.setLayout(), bindings.materialSetLayout()},
                                                {VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(ShadowDrawConstants)});
     vk::GraphicsPipelineDesc opaque;
     opaque.layout = pipelineLayout_;
@@ -118,8 +117,8 @@ void ShadowPass::createPipelines(const vk::Context& context, const FrameBindings
     const VkSpecializationInfo vertexSpecialization{1, &pancakingEntry, sizeof(VkBool32), &pancaking};
     opaque.vertexSpecialization = &vertexSpecialization;
     masked.vertexSpecialization = &vertexSpecialization;
-    pipelines_.opaque = vk::createGraphicsPipeline(device, opaque);
-    pipelines_.masked = vk::createGraphicsPipeline(device, masked);
+    pipelines_.opaque = context.objects().graphicsPipeline(opaque);
+    pipelines_.masked = context.objects().graphicsPipeline(masked);
 
     // Cascades pancake (the seed's "pancaking"), with the depth clamp where the device has it: the
     // vertex clamp bends the depth of triangles that cross the near plane, the depth clamp does
@@ -133,8 +132,8 @@ void ShadowPass::createPipelines(const vk::Context& context, const FrameBindings
         masked.vertexSpecialization = &cascadeSpecialization;
         opaque.depthClamp = clamp;
         masked.depthClamp = clamp;
-        cascadePipelines_.opaque = vk::createGraphicsPipeline(device, opaque);
-        cascadePipelines_.masked = vk::createGraphicsPipeline(device, masked);
+        cascadePipelines_.opaque = context.objects().graphicsPipeline(opaque);
+        cascadePipelines_.masked = context.objects().graphicsPipeline(masked);
     }
 }
 

@@ -49,11 +49,12 @@ private:
     ShadowSettings settings_;
     ShadowMaps maps_;
     vk::Buffer views_;  // GpuShadowView per plan view (one slot when there are none)
-    vk::Handle<VkRenderPass> renderPass_;
-    vk::Handle<VkPipelineLayout> pipelineLayout_;
+    // The render pass, layout and pipelines: the context's object cache (vk/object_cache.h) owns them.
+    VkRenderPass renderPass_ = VK_NULL_HANDLE;
+    VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
     struct Pipelines {
-        vk::Handle<VkPipeline> opaque;  // depth only, no fragment shader
-        vk::Handle<VkPipeline> masked;  // alpha-masked casters (alpha_mask.frag)
+        VkPipeline opaque = VK_NULL_HANDLE;  // depth only, no fragment shader
+        VkPipeline masked = VK_NULL_HANDLE;  // alpha-masked casters (alpha_mask.frag)
     };
     Pipelines pipelines_;
     // The sun's cascades: casters between the sun and a cascade's near plane are pancaked onto it

@@ -30,9 +30,9 @@ TonemapPass::TonemapPass(const vk::Context& context, const vk::Image& radiance, 
         {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
         {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
     }};
-    setLayout_ = vk::createDescriptorSetLayout(device, bindings);
+    setLayout_ = context.objects().setLayout(bindings);
     pipelineLayout_ =
-        vk::createPipelineLayout(device, {setLayout_.get()}, {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(ToneMapConstants)});
+        context.objects().pipelineLayout({setLayout_}, {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(ToneMapConstants)});
     descriptors_ = vk::allocateDescriptorSet(device, setLayout_, bindings);
 
     const VkDescriptorImageInfo imageInfo{sampler_, radiance.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
@@ -43,7 +43,7 @@ TonemapPass::TonemapPass(const vk::Context& context, const vk::Image& radiance, 
     };
     vkUpdateDescriptorSets(device, uint32_t(writes.size()), writes.data(), 0, nullptr);
 
-    pipeline_ = vk::createComputePipeline(device, pipelineLayout_, compute_tonemap_comp_spv);
+    pipeline_ = context.objects().computePipeline(pipelineLayout_, compute_tonemap_comp_spv);
 }
 
 void TonemapPass::record(const FrameContext& frame) const {

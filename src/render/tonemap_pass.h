@@ -29,10 +29,11 @@ public:
 
 private:
     vk::Handle<VkSampler> sampler_;
-    vk::Handle<VkDescriptorSetLayout> setLayout_;
-    vk::Handle<VkPipelineLayout> pipelineLayout_;
+    // The layouts and pipeline: the context's object cache (vk/object_cache.h) owns them.
+    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+    VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
     vk::DescriptorSet descriptors_;
-    vk::Handle<VkPipeline> pipeline_;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
     vk::Buffer output_;
     uint32_t width_ = 0;
     uint32_t height_ = 0;

@@ -31,7 +31,7 @@ TransparentDepthPass::TransparentDepthPass(const vk::Context& context, const vk:
     passDesc.depthStore = VK_ATTACHMENT_STORE_OP_STORE;
     passDesc.depthInitialLayout = DepthPrepass::kFinalLayout;
     passDesc.depthFinalLayout = DepthPrepass::kFinalLayout;
-    renderPass_ = vk::createRenderPass(context.device(), passDesc);
+    renderPass_ = context.objects().renderPass(passDesc);
     const VkImageView view = depth.view();
     framebuffer_ = vk::createFramebuffer(context.device(), renderPass_, {&view, 1}, width, height);
 }
@@ -52,7 +52,7 @@ void TransparentDepthPass::createPipelines(const vk::Context& context, const Fra
     pipelineDesc.vertexAttributes = SceneGpu::vertexAttributes();
     pipelineDesc.depthWrite = false;
     pipelineDesc.depthCompare = VK_COMPARE_OP_GREATER;  // in front of the opaque surface (reversed depth)
-    pipeline_ = vk::createGraphicsPipeline(context.device(), pipelineDesc);
+    pipeline_ = context.objects().graphicsPipeline(pipelineDesc);
 }
 
 void TransparentDepthPass::record(const FrameContext& frame) const {

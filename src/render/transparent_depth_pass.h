@@ -46,9 +46,9 @@ private:
     uint32_t width_ = 0;
     uint32_t height_ = 0;
     vk::Buffer span_;  // nearest depth bits per pixel, then farthest (gpu_types.h)
-    vk::Handle<VkRenderPass> renderPass_;
+    VkRenderPass renderPass_ = VK_NULL_HANDLE;  // with pipeline_, owned by the context's object cache
     vk::Handle<VkFramebuffer> framebuffer_;
-    vk::Handle<VkPipeline> pipeline_;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
 };
 
 }  // namespace punctual::render

@@ -240,6 +240,7 @@ Context::Context(const ContextOptions& options)
         VkCommandPool pool = VK_NULL_HANDLE;
         check(vkCreateCommandPool(device_, &poolInfo, nullptr, &pool), "vkCreateCommandPool");
         commandPool_ = Handle<VkCommandPool>(device_, pool, vkDestroyCommandPool);
+        objects_ = std::make_unique<ObjectCache>(device_);
     } catch (...) {
         release();
         throw;
@@ -251,6 +252,7 @@ Context::~Context() { release(); }
 void Context::release() {
     if (device_) {
         vkDeviceWaitIdle(device_);
+        objects_.reset();
         commandPool_.reset();
         vkDestroyDevice(device_, nullptr);
     }

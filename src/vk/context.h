@@ -4,6 +4,7 @@
 // the one `--device N` names. With validation on, every validation message is printed and
 // counted; tests fail on any.
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 
 #include "vk/command_buffer.h"
 #include "vk/handle.h"
+#include "vk/object_cache.h"
 
 namespace punctual::vk {
 
@@ -59,6 +61,10 @@ public:
 
     uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required) const;
 
+    // The device's render passes, layouts and pipelines, one per definition (vk/object_cache.h).
+    // A cache: asking it for an object changes nothing any other caller sees, hence const.
+    ObjectCache& objects() const { return *objects_; }
+
     // Allocates a primary command buffer, lets `record` fill it, submits and waits.
     template <typename Record>
     void submitAndWait(Record&& record) {
@@ -91,6 +97,7 @@ private:
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queueFamily_ = 0;
     Handle<VkCommandPool> commandPool_;
+    std::unique_ptr<ObjectCache> objects_;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceFeatures enabledFeatures_{};
     uint32_t subgroupSize_ = 1;
