@@ -1,7 +1,10 @@
 #include "vk/object_cache.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <type_traits>
+#include <utility>
 
 #include "core/check.h"
 #include "vk/descriptors.h"
