@@ -44,9 +44,8 @@ ForwardPass::ForwardPass(const vk::Context& context, const vk::Image& radiance, 
 
 void ForwardPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
     const ForwardVariant& variant = variant_;
-    // A transparent pass with nothing to blend records nothing (record), so it needs no pipeline:
-    // the forward shader is the frame's largest, and lavapipe takes 0.1-0.3 s to build each one.
-    if (variant.transparent && drawOrder_.empty()) return;
+    // The forward shader is the frame's largest: lavapipe takes 0.1-0.3 s to build each pipeline.
+    if (blendsNothing()) return;
 
     struct Constants {
         uint32_t lightList;
@@ -107,8 +106,8 @@ void ForwardPass::record(const FrameContext& frame) const {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
     }
+    if (blendsNothing()) return;
     if (variant_.transparent) {
-        if (drawOrder_.empty()) return;  // the opaque image stays as it is
         // The opaque pass's colour writes land before these blend over them.
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
                           VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,

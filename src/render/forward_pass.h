@@ -55,6 +55,10 @@ public:
     static constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 private:
+    // A transparent pass over a frame with nothing to blend: it records nothing and needs no
+    // pipeline (the opaque image stays as it is).
+    bool blendsNothing() const { return variant_.transparent && drawOrder_.empty(); }
+
     ForwardVariant variant_;
     std::vector<uint32_t> drawOrder_;
     const vk::Buffer* debugOutput_ = nullptr;

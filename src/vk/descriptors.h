@@ -1,6 +1,7 @@
 #pragma once
 // Descriptor set layouts, pipeline layouts and single-set pools: the setup every pass with its
-// own bindings repeats, in one place.
+// own bindings repeats, in one place. Passes ask for set and pipeline layouts through
+// Context::objects() (vk/object_cache.h), which builds each definition once with these.
 #include <initializer_list>
 #include <span>
 

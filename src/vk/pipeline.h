@@ -1,6 +1,8 @@
 #pragma once
 // Shader modules, pipelines and render passes: thin helpers that spell out every state a pass
-// sets, so a pass file reads as a description of its pipeline.
+// sets, so a pass file reads as a description of its pipeline. Passes ask for their pipelines and
+// render passes through Context::objects() (vk/object_cache.h), which builds each definition once
+// with these.
 #include <cstdint>
 #include <span>
 #include <vector>
