@@ -288,6 +288,7 @@ double median(std::vector<double> values) {
 Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSettings& settings)
     : context_(context), scene_(scene), settings_(settings) {
     validateRenderSettings(settings);
+    checkCameraPrecision(scene.camera, settings.height, scene.source);
     view_ = scene.camera.view;
     projection_ = scene.camera.projection(float(settings.width) / float(settings.height));
     lights_ = setupFrameLights(scene, view_, projection_);

@@ -168,8 +168,13 @@ private:
         Light light = prototypes[size_t(lightIndex)];
         if (light.name.empty()) light.name = node.name;
         light.position = glm::vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-        // A singular transform gives NaN here, which validateLights reports.
+        // A singular transform gives NaN here, which validateLights reports for spots and the sun.
+        // A point light has no direction; its angle term (k = 0, offset 1) ignores it, but a NaN
+        // would still poison the product, so a degenerate one becomes the node's default -Z.
         light.direction = glm::normalize(glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f));
+        const bool finiteDirection = std::isfinite(light.direction.x) && std::isfinite(light.direction.y) &&
+                                     std::isfinite(light.direction.z);
+        if (light.type == LightType::Point && !finiteDirection) light.direction = glm::vec3(0.0f, 0.0f, -1.0f);
         scene_.lights.push_back(std::move(light));
     }
 

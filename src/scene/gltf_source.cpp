@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -19,6 +20,7 @@
 #include "core/log.h"
 #include "scene/gltf_detail.h"
 #include "scene/input_file.h"
+#include "scene/json_nesting.h"
 
 namespace punctual::gltf_detail {
 namespace {
@@ -93,6 +95,30 @@ unsigned char hexValue(unsigned char c) {
     if (c >= 'a' && c <= 'f') return static_cast<unsigned char>(c - 'a' + 10);
     if (c >= 'A' && c <= 'F') return static_cast<unsigned char>(c - 'A' + 10);
     return 0;
+}
+
+// How many bytes formatProblem needs: the GLB header, or enough of a .gltf to pass a UTF-8 byte
+// order mark and some whitespace before its '{'.
+constexpr size_t kHeadBytes = 4096;
+
+// Why the file starting with `head` (at most kHeadBytes of it) cannot be glTF, or empty. A GLB
+// starts with its magic; JSON text (RFC 8259) with optional whitespace, here after an optional
+// UTF-8 byte order mark (which tinygltf skips), then the '{' of the top-level object. A GLB's
+// length is checked by glbJsonChunk once the file is read.
+std::string formatProblem(const std::vector<unsigned char>& head, bool glbExtension) {
+    if (head.size() >= 4 && readLittleEndian32(head.data()) == kGlbMagic) return "";
+    if (glbExtension) return "";  // glbJsonChunk names what is wrong with the header
+    size_t i = head.size() >= 3 && head[0] == 0xEF && head[1] == 0xBB && head[2] == 0xBF ? 3 : 0;
+    while (i < head.size() && (head[i] == ' ' || head[i] == '\t' || head[i] == '\n' || head[i] == '\r')) ++i;
+    if (i == head.size()) {
+        return head.size() < kHeadBytes ? "not glTF: the file is empty or only whitespace"
+                                        : "not glTF: the first " + std::to_string(kHeadBytes) + " bytes are whitespace";
+    }
+    if (head[i] == '{') return "";
+    char found[8];
+    std::snprintf(found, sizeof found, "0x%02X", head[i]);
+    return "not glTF: JSON text must start with '{' but byte " + std::to_string(i) + " is " + found +
+           " (and the file has no GLB magic)";
 }
 
 }  // namespace
@@ -176,6 +202,81 @@ void checkImageBufferViews(const nlohmann::json& gltf, const std::string& path) 
     }
 }
 
+// How many bytes base64 text of `length` characters, `padding` of them '=', decodes to.
+uint64_t base64DecodedBytes(uint64_t length, uint64_t padding) { return length / 4 * 3 - std::min<uint64_t>(padding, 2); }
+
+// A buffer's data URI must hold exactly byteLength bytes. tinygltf would report a mismatch as
+// "Failed to decode 'data:...'" with the whole base64 text and not the lengths; this names both.
+void checkBufferDataUris(const nlohmann::json& gltf, const std::string& path) {
+    const auto buffers = gltf.find("buffers");
+    if (buffers == gltf.end() || !buffers->is_array()) return;
+    for (size_t i = 0; i < buffers->size(); ++i) {
+        const nlohmann::json& buffer = (*buffers)[i];
+        if (!buffer.is_object() || !buffer.contains("uri") || !buffer["uri"].is_string()) continue;
+        const std::string& uri = buffer["uri"].get_ref<const std::string&>();
+        if (!startsWith(uri, "data:")) continue;
+        const std::string who = "buffer " + std::to_string(i);
+        const size_t comma = uri.find(',');
+        if (comma == std::string::npos || uri.rfind(";base64", comma) == std::string::npos)
+            throw Error(path, who + ": its data URI is not base64 (data:<type>;base64,<data>)");
+        const uint64_t length = uri.size() - comma - 1;
+        if (length % 4 != 0)
+            throw Error(path, who + ": its data URI's base64 text has " + std::to_string(length) +
+                                  " characters, not a multiple of 4");
+        const uint64_t padding = uint64_t(uri.size() - 1 - std::min(uri.find_last_not_of('='), uri.size() - 1));
+        const uint64_t decoded = length == 0 ? 0 : base64DecodedBytes(length, padding);
+        const std::optional<uint64_t> byteLength = unsignedMember(buffer, "byteLength");
+        if (byteLength && decoded != *byteLength)
+            throw Error(path, who + ": its data URI holds " + std::to_string(decoded) + " bytes but its byteLength is " +
+                                  std::to_string(*byteLength));
+    }
+}
+
+// "2.0" -> {2, 0}; nullopt unless the text is <major>.<minor> in decimal digits (the spec's
+// pattern ^[0-9]+\.[0-9]+$).
+std::optional<std::pair<unsigned long, unsigned long>> versionNumbers(const std::string& text) {
+    const size_t dot = text.find('.');
+    const auto digits = [](const std::string& part) {
+        return !part.empty() && part.size() < 10 && std::all_of(part.begin(), part.end(), [](unsigned char c) { return std::isdigit(c); });
+    };
+    if (dot == std::string::npos || !digits(text.substr(0, dot)) || !digits(text.substr(dot + 1))) return std::nullopt;
+    return std::make_pair(std::stoul(text.substr(0, dot)), std::stoul(text.substr(dot + 1)));
+}
+
+// punctual reads glTF 2.x: a file for another major version (or one whose minVersion is newer
+// than 2.0, the version this loader implements) means something else by the same names.
+void checkAssetVersion(const nlohmann::json& gltf, const std::string& path) {
+    const auto asset = gltf.find("asset");
+    if (asset == gltf.end() || !asset->is_object() || !asset->contains("version") || !(*asset)["version"].is_string())
+        throw Error(path, "asset.version is missing (glTF requires it; punctual reads version 2.0)");
+    const std::string version = (*asset)["version"].get<std::string>();
+    const auto numbers = versionNumbers(version);
+    if (!numbers) throw Error(path, "asset.version '" + version.substr(0, 40) + "' is not <major>.<minor>");
+    if (numbers->first != 2) throw Error(path, "glTF version " + version + " is not supported (punctual reads 2.x)");
+    if (asset->contains("minVersion") && (*asset)["minVersion"].is_string()) {
+        const std::string minimum = (*asset)["minVersion"].get<std::string>();
+        const auto minNumbers = versionNumbers(minimum);
+        if (!minNumbers || *minNumbers > std::make_pair(2ul, 0ul))
+            throw Error(path, "asset.minVersion '" + minimum.substr(0, 40) + "' needs a newer loader (punctual reads 2.0)");
+    }
+}
+
+// glTF: "When a node is targeted for animation, only TRS properties may be present; matrix will
+// not be present", and a node has either a matrix or TRS. tinygltf keeps both and the loader
+// would silently take the matrix.
+void checkNodeTransforms(const nlohmann::json& gltf, const std::string& path) {
+    const auto nodes = gltf.find("nodes");
+    if (nodes == gltf.end() || !nodes->is_array()) return;
+    for (size_t i = 0; i < nodes->size(); ++i) {
+        const nlohmann::json& node = (*nodes)[i];
+        if (!node.is_object() || !node.contains("matrix")) continue;
+        for (const char* key : {"translation", "rotation", "scale"})
+            if (node.contains(key))
+                throw Error(path, "node " + std::to_string(i) + " has both a matrix and a " + key +
+                                      " (glTF allows one or the other)");
+    }
+}
+
 void checkLightPropertyTypes(const nlohmann::json& gltf, const std::string& path) {
     const auto extensions = gltf.find("extensions");
     if (extensions == gltf.end() || !extensions->is_object()) return;
@@ -227,8 +328,14 @@ void checkLightPropertyTypes(const nlohmann::json& gltf, const std::string& path
 SourceFile readSource(const std::string& path) {
     namespace fs = std::filesystem;
     SourceFile source;
-    // tinygltf takes the size as an unsigned int.
-    const std::string problem = readRegularFile(path, std::numeric_limits<uint32_t>::max(), source.bytes);
+    // tinygltf takes the size as an unsigned int. The first bytes say whether the file can be
+    // glTF at all before the rest is read: a 3 GB file of zeros is refused at byte 0, unread.
+    constexpr uint64_t kMaxSourceBytes = std::numeric_limits<uint32_t>::max();
+    std::string problem = readRegularFileHead(path, kMaxSourceBytes, kHeadBytes, source.bytes);
+    if (problem.empty()) {
+        if (std::string format = formatProblem(source.bytes, hasGlbExtension(path)); !format.empty()) throw Error(path, format);
+        problem = readRegularFile(path, kMaxSourceBytes, source.bytes);
+    }
     if (!problem.empty()) throw Error(path, "cannot be read (" + problem + ")");
     source.baseDir = fs::path(path).parent_path().string();
 
@@ -239,6 +346,8 @@ SourceFile readSource(const std::string& path) {
     if (source.binary) std::tie(source.jsonOffset, source.jsonLength) = glbJsonChunk(source.bytes, path);
 
     const auto jsonBegin = source.bytes.begin() + static_cast<std::ptrdiff_t>(source.jsonOffset);
+    if (std::string nesting = jsonNestingProblem(source.bytes.data() + source.jsonOffset, source.jsonLength); !nesting.empty())
+        throw Error(path, "cannot parse JSON: " + nesting);
     try {
         source.json = nlohmann::json::parse(jsonBegin, jsonBegin + static_cast<std::ptrdiff_t>(source.jsonLength));
     } catch (const nlohmann::json::exception& e) {
@@ -334,6 +443,9 @@ std::string UriFiles::problemWith(const std::string& uri) const {
 
 void preflight(const nlohmann::json& gltf, const std::string& path) {
     checkImageBufferViews(gltf, path);
+    checkAssetVersion(gltf, path);
+    checkNodeTransforms(gltf, path);
+    checkBufferDataUris(gltf, path);
     checkLightPropertyTypes(gltf, path);
 }
 

@@ -54,6 +54,21 @@ private:
     int fd_;
 };
 
+// Opens `path` by the reader's rules into `file` (stat first, so a FIFO is never opened at all;
+// then the descriptor's own fstat, in `info`). Returns the problem, or empty.
+std::string openRegularFile(const std::string& path, uint64_t maxBytes, int& file, struct stat& info) {
+    file = -1;
+    if (std::string problem = regularFileProblem(path, maxBytes); !problem.empty()) return problem;
+    // The path may have been replaced between the stat and the open: O_NONBLOCK keeps even a
+    // FIFO swapped in from blocking the open, and fstat checks what was really opened.
+    file = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+    if (file < 0) return errnoProblem(errno);
+    if (::fstat(file, &info) != 0) return errnoProblem(errno);
+    if (std::string problem = typeProblem(info); !problem.empty()) return problem;
+    if (uint64_t(info.st_size) > maxBytes) return sizeProblem(uint64_t(info.st_size), maxBytes);
+    return "";
+}
+
 }  // namespace
 
 std::string regularFileProblem(const std::string& path, uint64_t maxBytes) {
@@ -70,18 +85,34 @@ std::string regularFileProblem(const std::string& path, uint64_t maxBytes) {
     return "";
 }
 
+std::string readRegularFileHead(const std::string& path, uint64_t maxBytes, size_t headBytes,
+                                std::vector<unsigned char>& bytes) {
+    bytes.clear();
+    int descriptor = -1;
+    struct stat info {};
+    const std::string problem = openRegularFile(path, maxBytes, descriptor, info);
+    const FileDescriptor file(descriptor);
+    if (!problem.empty()) return problem;
+    bytes.resize(headBytes);
+    size_t filled = 0;
+    while (filled < bytes.size()) {
+        const ssize_t got = ::read(file.get(), bytes.data() + filled, bytes.size() - filled);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) return readProblem(errno, bytes);
+        if (got == 0) break;
+        filled += size_t(got);
+    }
+    bytes.resize(filled);
+    return "";
+}
+
 std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vector<unsigned char>& bytes) {
     bytes.clear();
-    // stat first, so a FIFO is never opened at all.
-    if (std::string problem = regularFileProblem(path, maxBytes); !problem.empty()) return problem;
-    // The path may have been replaced between the stat and the open: O_NONBLOCK keeps even a
-    // FIFO swapped in from blocking the open, and fstat checks what was really opened.
-    const FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK));
-    if (file.get() < 0) return errnoProblem(errno);
+    int descriptor = -1;
     struct stat info {};
-    if (::fstat(file.get(), &info) != 0) return errnoProblem(errno);
-    if (std::string problem = typeProblem(info); !problem.empty()) return problem;
-    if (uint64_t(info.st_size) > maxBytes) return sizeProblem(uint64_t(info.st_size), maxBytes);
+    const std::string problem = openRegularFile(path, maxBytes, descriptor, info);
+    const FileDescriptor file(descriptor);
+    if (!problem.empty()) return problem;
 
     // st_size is a hint (a file may grow or shrink while we read, and some kernel files report
     // 0): read what it announces, then on until end of file, but never past maxBytes.

@@ -4,6 +4,7 @@
 // FIFO, a device or a socket is refused after a stat(), before anything is opened: reading a
 // directory as a stream "succeeds" with a nonsense size (tinygltf then asks for terabytes), and
 // opening a FIFO blocks until some other process writes to it, possibly forever.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,6 +16,11 @@ namespace punctual {
 // file", "a named pipe (FIFO), not a regular file", ...). Never blocks on anything but the disk,
 // and never allocates more than `maxBytes` (a larger file is refused by its size).
 std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vector<unsigned char>& bytes);
+
+// The first `headBytes` bytes (fewer if the file is shorter) of the file readRegularFile would
+// read, by the same rules: enough to tell a file's format before reading all of it.
+std::string readRegularFileHead(const std::string& path, uint64_t maxBytes, size_t headBytes,
+                                std::vector<unsigned char>& bytes);
 
 // The problem readRegularFile would report before reading (stat only), or an empty string
 // when `path` names a regular file (or a symbolic link to one) of at most `maxBytes`.

@@ -75,6 +75,18 @@ std::string describe(const Light& light, size_t index) {
 }
 }  // namespace
 
+void checkCameraPrecision(const Camera& camera, uint32_t height, const std::string& source) {
+    // A pixel spans about 2 tan(yfov / 2) / height radians at the centre of the frame.
+    const double pixelAngle = 2.0 * std::tan(double(camera.yfov) * 0.5) / double(std::max(height, 1u));
+    if (pixelAngle >= kMinPixelAngle) return;
+    const double smallest = 2.0 * std::atan(kMinPixelAngle * double(std::max(height, 1u)) * 0.5);
+    std::ostringstream message;
+    message << "camera" << (camera.name.empty() ? "" : " '" + camera.name + "'") << ": yfov " << camera.yfov
+            << " rad is too narrow for float precision at " << height << " rows (a pixel would span " << pixelAngle
+            << " rad, less than 2^-16); use a yfov of at least " << smallest << " rad";
+    throw Error(source, message.str());
+}
+
 void validateLights(const std::vector<Light>& lights, const std::string& source) {
     for (size_t i = 0; i < lights.size(); ++i) {
         const Light& light = lights[i];
@@ -83,10 +95,18 @@ void validateLights(const std::vector<Light>& lights, const std::string& source)
             throw Error(source, who + " has an invalid intensity (must be finite and >= 0)");
         if (!finite3(light.color) || light.color.r < 0.0f || light.color.g < 0.0f || light.color.b < 0.0f)
             throw Error(source, who + " has an invalid colour (must be finite and >= 0)");
-        if (!finite3(light.direction) || glm::length(light.direction) < 0.5f)
+        // A point light shines the same way in every direction, so only spots and the sun have one
+        // to lose to a singular (e.g. zero-scale) node transform.
+        if (light.type != LightType::Point && (!finite3(light.direction) || glm::length(light.direction) < 0.5f))
             throw Error(source, who + " has a degenerate direction (its node transform is singular or not finite)");
         if (light.type == LightType::Directional) continue;
         if (!finite3(light.position)) throw Error(source, who + " has a position that is not finite");
+        if (light.rangeDerived && !(std::isfinite(light.range) && light.range > 0.0f)) {
+            std::ostringstream intensity;
+            intensity << light.intensity << " cd, too large to derive a cut-off radius from (sqrt(intensity / "
+                      << kInfiniteRangeCutoffLux << " lux) overflows a float)";
+            throw Error(source, who + " has no range and an intensity of " + intensity.str() + "; give the light a range");
+        }
         if (!std::isfinite(light.range) || light.range <= 0.0f)
             throw Error(source, who + " has an invalid range (must be finite and > 0)");
         if (light.type == LightType::Spot) {

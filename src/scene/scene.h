@@ -192,6 +192,18 @@ float derivedRange(float intensityCandela, const glm::vec3& color);
 // inside the vertical field of view.
 Camera fitCameraToBounds(const Bounds& bounds, float yfov = 0.8f);
 
+// The narrowest angle one pixel of a frame may span, in radians: 2^-16. A float carries about
+// 7 decimal digits (2^-24 relative), and a point's direction from the eye passes through several
+// roundings (the world position, the view matrix, the projection, the depth buffer's inverse in
+// the culling shaders), each about 2^-24 of the distances involved. At 2^-16 a pixel is 256 of
+// those steps wide, so points still land in the right pixel; with yfov 1e-8 at 120 rows a pixel
+// spans 1.7e-10 rad, 1/400 of one step, and the frame renders half black.
+constexpr double kMinPixelAngle = 1.0 / 65536.0;
+
+// Throws punctual::Error(source, ...) when the camera's field of view is too narrow for float
+// precision at `height` pixel rows (kMinPixelAngle), naming the smallest yfov that renders.
+void checkCameraPrecision(const Camera& camera, uint32_t height, const std::string& source);
+
 // Throws punctual::Error(source, ...) when a light has out-of-range parameters (negative or NaN
 // intensity, range <= 0, cone angles outside 0 <= inner < outer <= pi/2, non-finite position).
 void validateLights(const std::vector<Light>& lights, const std::string& source);
