@@ -213,6 +213,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
     const uint32_t rounds = bench.rounds ? bench.rounds : (bench.quick ? 3u : 5u);
     const uint32_t bestOf = bench.bestOf ? bench.bestOf : (bench.quick ? kQuickBestOf : kDefaultBestOf);
     Scene baseScene = loadSceneForOptions(options);
+    checkOutputFolder(*bench.outDir, kFolderLayout);  // again, now that the files the scene reads are known
     vk::Context context(contextOptionsFrom(options));
     const reference::EmbreeScene embree(baseScene);  // geometry only: shared by every configuration
     // The generated lights: the largest set once; each configuration takes its first lights at its

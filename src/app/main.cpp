@@ -12,6 +12,7 @@
 #include "app/render_command.h"
 #include "app/validate_command.h"
 #include "core/error.h"
+#include "core/input_files_read.h"
 #include "vk/context.h"
 
 namespace {
@@ -53,6 +54,8 @@ int listDevices() {
 
 int main(int argc, char** argv) {
     const std::vector<std::string> args(argv + 1, argv + argc);
+    // Every file the command reads is noted, and no output may replace one (core/input_files_read.h).
+    const punctual::InputFileLog inputsRead;
     try {
         if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
             std::fputs(kUsage, args.empty() ? stderr : stdout);

@@ -88,6 +88,7 @@ int runReferenceCommand(const std::vector<std::string>& args) {
     if (!options.outPath) throw Error("--out", "required: the file to write the reference image to");
     checkOutputPaths({{"--out", options.outPath}});
     const Scene scene = loadSceneForOptions(options);
+    checkOutputPaths({{"--out", options.outPath}});  // again, now that the files the scene reads are known
 
     reference::ReferenceSettings settings;
     settings.width = options.width;

@@ -60,11 +60,13 @@ int runRenderCommand(const std::vector<std::string>& args) {
         }
     }
     const RenderOptions options = parseRenderOptions(args);
-    checkOutputPaths({{"--out", options.outPath},
-                      {"--stats", options.statsPath},
-                      {"--heatmap", options.heatmapPath},
-                      {"--shadow-density", options.shadowDensityPath}});
+    const std::vector<NamedOutput> outputPaths = {{"--out", options.outPath},
+                                                  {"--stats", options.statsPath},
+                                                  {"--heatmap", options.heatmapPath},
+                                                  {"--shadow-density", options.shadowDensityPath}};
+    checkOutputPaths(outputPaths);
     const Scene scene = loadSceneForOptions(options);
+    checkOutputPaths(outputPaths);  // again, now that the files the scene reads are known
 
     vk::Context context(contextOptionsFrom(options));
     render::RenderSettings settings = renderSettingsFrom(options);

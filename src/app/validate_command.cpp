@@ -80,6 +80,7 @@ int runValidateCommand(const std::vector<std::string>& args) {
     const RenderOptions options = parseRenderOptions(renderArgs);
     if (!options.shadows.enabled) throw Error("--shadows", "validate compares shadows: they must be on");
     const Scene scene = loadSceneForOptions(options);
+    checkOutputFolder(*outDir, layout);  // again, now that the files the scene reads are known
 
     vk::Context context(contextOptionsFrom(options));
     render::RenderSettings settings = renderSettingsFrom(options);

@@ -12,13 +12,21 @@
 #include <filesystem>
 
 #include "core/concat.h"
+#include "core/deferred_signals.h"
 #include "core/error.h"
+#include "core/input_files_read.h"
 #include "core/output_target.h"
 
 namespace punctual {
 namespace fs = std::filesystem;
 
 namespace {
+
+OutputFiles::StepObserver gStepObserver = nullptr;
+
+void stepDone(const char* step) {
+    if (gStepObserver) gStepObserver(step);
+}
 
 // One output on its way: the target, and what the commit has done for it so far (so a failure
 // can undo exactly that).
@@ -147,6 +155,8 @@ int publish(const Step& step) {
 
 }  // namespace
 
+void OutputFiles::observeStepsForTesting(StepObserver observer) { gStepObserver = observer; }
+
 void OutputFiles::add(const std::string& path, std::string contents) {
     files_.emplace_back(path, std::move(contents));
 }
@@ -156,6 +166,7 @@ void OutputFiles::addFolder(const std::string& path) { folders_.push_back(path);
 void OutputFiles::removeAfterCommit(const std::string& path) { stale_.push_back(path); }
 
 void OutputFiles::commit() {
+    const DeferredSignals deferred;  // all new or all old, whatever signal arrives (core/deferred_signals.h)
     std::vector<std::string> createdFolders;
     std::vector<Step> steps(files_.size());
     auto rollback = [&] {
@@ -180,6 +191,7 @@ void OutputFiles::commit() {
         for (const std::string& folder : folders_) {
             if (::mkdir(folder.c_str(), 0777) == 0) {
                 createdFolders.push_back(folder);
+                stepDone("folder");
                 continue;
             }
             const int error = errno;
@@ -204,10 +216,16 @@ void OutputFiles::commit() {
             if (step.target.kind == OutputTarget::Kind::Stream) step.stream = openStream(step.target);
         }
         for (Step& step : steps) {
-            if (step.target.kind != OutputTarget::Kind::Stream) writeTemporary(step);
+            if (step.target.kind != OutputTarget::Kind::Stream) {
+                writeTemporary(step);
+                stepDone("temporary");
+            }
         }
         for (Step& step : steps) {
-            if (step.target.kind == OutputTarget::Kind::Regular) keepBackup(step);
+            if (step.target.kind == OutputTarget::Kind::Regular) {
+                keepBackup(step);
+                stepDone("backup");
+            }
         }
         // Renames: the undoable ones first, then those without a backup.
         std::vector<Step*> order;
@@ -223,6 +241,7 @@ void OutputFiles::commit() {
                 throw Error(*step->path, concat("cannot write file: ", std::strerror(error)));
             }
             step->published = true;
+            stepDone("rename");
         }
         {
             const IgnoreSigpipe ignoreSigpipe;
@@ -233,6 +252,7 @@ void OutputFiles::commit() {
                 step.stream = -1;
                 if (error == EPIPE) throw Error(*step.path, "the reader closed it before everything was written");
                 if (error != 0) throw Error(*step.path, concat("cannot write to it: ", std::strerror(error)));
+                stepDone("stream");
             }
         }
     } catch (...) {
@@ -244,7 +264,14 @@ void OutputFiles::commit() {
     }
     // Stale files go only now that everything is in place. unlink() never follows a symbolic
     // link and never removes a folder; a stale file already gone is no error.
-    for (const std::string& path : stale_) ::unlink(path.c_str());
+    // A stale name that is now a file this run read (a texture saved under an old output's name)
+    // is the user's input, not an old output: it stays.
+    for (const std::string& path : stale_) {
+        struct stat st {};
+        if (::lstat(path.c_str(), &st) == 0 && findInputFileRead(st.st_dev, st.st_ino)) continue;
+        ::unlink(path.c_str());
+        stepDone("stale");
+    }
     files_.clear();
     folders_.clear();
     stale_.clear();

@@ -32,6 +32,12 @@ public:
     void commit();
     const std::vector<std::pair<std::string, std::string>>& pending() const { return files_; }
 
+    // For tests only: called with the step's name after each step of commit() that changes the
+    // file system ("folder", "temporary", "backup", "rename", "stream", "stale"), so a test can
+    // inject a signal or a failure at each one. nullptr (the default) observes nothing.
+    using StepObserver = void (*)(const char* step);
+    static void observeStepsForTesting(StepObserver observer);
+
 private:
     std::vector<std::pair<std::string, std::string>> files_;
     std::vector<std::string> folders_;

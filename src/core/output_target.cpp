@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "core/concat.h"
+#include "core/deferred_signals.h"
 #include "core/error.h"
+#include "core/input_files_read.h"
 
 namespace punctual {
 namespace fs = std::filesystem;
@@ -140,6 +142,11 @@ OutputTarget resolveOutputTarget(const std::string& path) {
         target.kind = OutputTarget::Kind::Regular;
         target.device = st.st_dev;
         target.inode = st.st_ino;
+        if (const InputFileIdentity* input = findInputFileRead(st.st_dev, st.st_ino)) {
+            const std::string same = input->path == path ? "" : concat(" ('", input->path, "')");
+            throw Error(path, concat("is an input of this run", same,
+                                     "; punctual never writes an output over a file it reads"));
+        }
     } else if (const int error = errno; error != ENOENT) {
         throw Error(path, lookupProblem(target.file, error));
     }
@@ -193,6 +200,7 @@ void checkOutputTargetWritable(const OutputTarget& target) {
 }
 
 void checkFolderWritable(const std::string& subject, const fs::path& folder) {
+    const DeferredSignals deferred;  // the probe file is removed even on Ctrl-C
     std::string temporary;
     const int fd = createTemporaryBeside(folder / "punctual", subject, temporary);
     ::close(fd);

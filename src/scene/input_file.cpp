@@ -1,5 +1,7 @@
 #include "scene/input_file.h"
 
+#include "core/input_files_read.h"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -66,6 +68,7 @@ std::string openRegularFile(const std::string& path, uint64_t maxBytes, int& fil
     if (::fstat(file, &info) != 0) return errnoProblem(errno);
     if (std::string problem = typeProblem(info); !problem.empty()) return problem;
     if (uint64_t(info.st_size) > maxBytes) return sizeProblem(uint64_t(info.st_size), maxBytes);
+    noteInputFileRead(info.st_dev, info.st_ino, path);
     return "";
 }
 
@@ -82,6 +85,7 @@ std::string regularFileProblem(const std::string& path, uint64_t maxBytes) {
     }
     if (std::string problem = typeProblem(info); !problem.empty()) return problem;
     if (uint64_t(info.st_size) > maxBytes) return sizeProblem(uint64_t(info.st_size), maxBytes);
+    noteInputFileRead(info.st_dev, info.st_ino, path);
     return "";
 }
 
