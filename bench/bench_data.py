@@ -7,8 +7,11 @@ has P_spread_ms instead, read as the spread when P_iqr_ms is absent.
 """
 
 import csv
+import io
 import json
 import math
+
+from input_file import InputFileError, read_text
 
 # The columns every row has besides the per-pass times (see pass_columns).
 LEADING_COLUMNS = """config series method spot point light_range width height pixels scene
@@ -59,15 +62,26 @@ def passes_in_header(header):
                   and c != "total_ms")
 
 
-def read_document(path):
-    """(results.json as a dict, notes): {} without notes when the file is absent, {} and a note
-    when it cannot be read or is not an object."""
+def load_document(path):
+    """results.json as parsed JSON; {} when the file is absent (an older bench). Raises
+    InputFileError when something else is at the path (a FIFO, a directory, an unreadable
+    file: input_file.py's rules) and ValueError when it is not JSON."""
     try:
-        with open(path, encoding="utf-8") as f:
-            document = json.load(f)
-    except FileNotFoundError:
-        return {}, []
-    except (OSError, ValueError) as err:
+        text = read_text(path)
+    except InputFileError as err:
+        if err.absent:
+            return {}
+        raise
+    return json.loads(text)
+
+
+def read_document(path):
+    """(results.json as a dict, notes): {} without notes when the file is absent or not an
+    object, {} and a note when it is not valid JSON. Raises InputFileError when the path holds
+    no regular file (a FIFO, a directory) or it cannot be read: the folder is broken."""
+    try:
+        document = load_document(path)
+    except ValueError as err:
         return {}, [f"results.json could not be read ({err}); names come from results.csv."]
     return (document, []) if isinstance(document, dict) else ({}, [])
 
@@ -98,11 +112,15 @@ def read_names(path, header, rows, document=None):
 
 
 def read_results(path):
-    """Returns (header, rows) of the CSV; rows are dicts of strings, missing cells are ''."""
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.DictReader(f)
+    """Returns (header, rows) of the CSV; rows are dicts of strings, missing cells are ''.
+    Raises InputFileError when the file cannot be read (input_file.py's rules) or parsed."""
+    text = read_text(path)
+    try:
+        reader = csv.DictReader(io.StringIO(text, newline=""))
         header = list(reader.fieldnames or [])
         rows = [{k: (v or "").strip() for k, v in row.items() if k is not None} for row in reader]
+    except csv.Error as err:
+        raise InputFileError(path, f"not a valid CSV file ({err})") from None
     return header, rows
 
 

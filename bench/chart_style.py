@@ -49,11 +49,16 @@ def panel_grid(count, width, height):
     return fig, list(axes.flat[:count])
 
 
-def save_chart(fig, charts_dir, name):
-    """Writes charts_dir/name.png and .svg without timestamps, and closes the figure."""
-    fig.savefig(os.path.join(charts_dir, name + ".png"), metadata={"Software": None})
-    fig.savefig(os.path.join(charts_dir, name + ".svg"), metadata={"Date": None, "Creator": None})
-    plt.close(fig)
+def save_chart(fig, charts_dir, name, outputs):
+    """Writes charts_dir/name.png and .svg without timestamps through `outputs` (temporaries,
+    renamed at its commit: output_file.py), and closes the figure even when a write fails."""
+    try:
+        outputs.write_with(os.path.join(charts_dir, name + ".png"), lambda f: fig.savefig(
+            f, format="png", metadata={"Software": None}))
+        outputs.write_with(os.path.join(charts_dir, name + ".svg"), lambda f: fig.savefig(
+            f, format="svg", metadata={"Date": None, "Creator": None}))
+    finally:
+        plt.close(fig)
 
 
 def set_count_axis(ax, counts):

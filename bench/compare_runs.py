@@ -11,9 +11,13 @@ should match: a counter that differs by more than a relative COUNTER_TOLERANCE i
 runs did not draw the same work). The page starts with both runs' provenance. Output is
 deterministic.
 
-Bad input (a folder or results.csv that is missing or unreadable, a CSV without a config
-column, a configuration named twice) prints one line `compare_runs.py: error: <file>:
-<problem>` on stderr, exits with status 1 and writes nothing; a usage error exits with 2.
+Bad input (a folder or results.csv that is missing or unreadable, a FIFO or a folder where a
+file should be, a CSV without a config column, a configuration named twice) prints one line
+`compare_runs.py: error: <file>: <problem>` on stderr, exits with status 1 and writes nothing;
+a usage error exits with 2. Every file is read by input_file.py's rules (those of punctual's
+own reader), so nothing here can block on a FIFO. compare.csv and compare.html change together
+or not at all (output_file.py): an interrupt is one line and status 130 (SIGINT) or 143
+(SIGTERM), a write error one line and status 1.
 """
 
 import csv
@@ -22,17 +26,20 @@ import io
 import os
 import sys
 
-from bench_data import COUNTERS, fmt, number, read_document, read_names
-
 PROGRAM = "compare_runs.py"
+if __name__ == "__main__":
+    # Before the imports below: an interrupt there is one line, not a traceback.
+    import output_file
+    output_file.exit_quietly_on_interrupt(PROGRAM)
+
+import output_file  # noqa: E402
+from bench_data import COUNTERS, fmt, load_document, number, read_names, read_results  # noqa: E402
+from input_file import InputFileError  # noqa: E402
+
 COUNTER_TOLERANCE = 1e-4  # relative: counters printed to six digits, rasterised on two devices
 
-
-class InputError(Exception):
-    """Bad input: the file it concerns and the problem, for the one-line message."""
-
-    def __init__(self, path, problem):
-        super().__init__(f"{path}: {problem}")
+# Bad input: the file it concerns and the problem, for the one-line message.
+InputError = InputFileError
 
 
 def read_run(folder):
@@ -40,15 +47,7 @@ def read_run(folder):
     if not os.path.isdir(folder):
         raise InputError(folder, "not a folder" if os.path.exists(folder) else "no such folder")
     path = os.path.join(folder, "results.csv")
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            reader = csv.DictReader(f)
-            header = list(reader.fieldnames or [])
-            rows = [{k: (v or "").strip() for k, v in r.items() if k is not None} for r in reader]
-    except FileNotFoundError:
-        raise InputError(path, "no such file") from None
-    except (OSError, UnicodeDecodeError, csv.Error) as err:
-        raise InputError(path, getattr(err, "strerror", None) or str(err)) from None
+    header, rows = read_results(path)
     if "config" not in header:
         raise InputError(path, "no config column" if header else "empty file")
     by_config = {}
@@ -56,9 +55,12 @@ def read_run(folder):
         if r["config"] in by_config:
             raise InputError(path, f"configuration {r['config']!r} appears twice")
         by_config[r["config"]] = r
-    document, notes = read_document(os.path.join(folder, "results.json"))
-    if notes:
-        raise InputError(os.path.join(folder, "results.json"), "not valid JSON")
+    try:
+        document = load_document(os.path.join(folder, "results.json"))
+    except ValueError:
+        raise InputError(os.path.join(folder, "results.json"), "not valid JSON") from None
+    if not isinstance(document, dict):
+        document = {}
     names, _ = read_names(None, header, rows, document)
     provenance = document.get("provenance")
     if not isinstance(provenance, dict):
@@ -183,46 +185,27 @@ def html_text(run_a, run_b, rows, timed, counters):
     return "\n".join(out)
 
 
-def write_all(out_dir, files):
-    """Writes {name: text} into out_dir: each to a temporary beside it, then all renamed, so that
-    an error leaves no partial output."""
-    temporaries = []
-    try:
-        for name, text in files.items():
-            temporary = os.path.join(out_dir, f".{name}.tmp{os.getpid()}")
-            temporaries.append((temporary, os.path.join(out_dir, name)))
-            with open(temporary, "w", encoding="utf-8", newline="") as f:
-                f.write(text)
-        for temporary, target in temporaries:
-            os.replace(temporary, target)
-    finally:
-        for temporary, _ in temporaries:
-            if os.path.exists(temporary):
-                os.remove(temporary)
-
-
 def main(argv=None):
     """Command line entry point; returns the exit status."""
     argv = sys.argv[1:] if argv is None else argv
     if len(argv) != 3:
         print(f"{PROGRAM}: error: usage: {PROGRAM} DIR_A DIR_B OUT_DIR", file=sys.stderr)
         return 2
-    dir_a, dir_b, out_dir = argv
-    try:
-        run_a, run_b = read_run(dir_a), read_run(dir_b)
-        if os.path.exists(out_dir) and not os.path.isdir(out_dir):
-            raise InputError(out_dir, "not a folder")
-        columns, rows, timed, counters = compare(run_a, run_b)
-        files = {"compare.csv": csv_text(columns, rows),
-                 "compare.html": html_text(run_a, run_b, rows, timed, counters)}
-        try:
-            os.makedirs(out_dir, exist_ok=True)
-            write_all(out_dir, files)
-        except OSError as err:
-            raise InputError(err.filename or out_dir, err.strerror or str(err)) from None
-    except InputError as err:
-        print(f"{PROGRAM}: error: {err}", file=sys.stderr)
-        return 1
+    return output_file.run_script(PROGRAM, lambda outputs: write_comparison(*argv, outputs))
+
+
+def write_comparison(dir_a, dir_b, out_dir, outputs):
+    """Reads both runs and writes compare.csv and compare.html into `outputs`, committed
+    together; returns 0. Bad input raises InputError before OUT_DIR is made."""
+    run_a, run_b = read_run(dir_a), read_run(dir_b)
+    if os.path.exists(out_dir) and not os.path.isdir(out_dir):
+        raise InputError(out_dir, "not a folder")
+    columns, rows, timed, counters = compare(run_a, run_b)
+    os.makedirs(out_dir, exist_ok=True)
+    outputs.write_text(os.path.join(out_dir, "compare.csv"), csv_text(columns, rows))
+    outputs.write_text(os.path.join(out_dir, "compare.html"),
+                       html_text(run_a, run_b, rows, timed, counters))
+    outputs.commit()
     print(f"wrote {os.path.join(out_dir, 'compare.html')} and compare.csv: {len(rows)} "
           "configurations in both runs")
     return 0

@@ -5,32 +5,53 @@ that provokes it, one line per variant (filter, layout or method).
 Usage: /usr/bin/python3 bench/plot_failures.py DIR   (reads DIR/failures.csv; writes
 DIR/charts/failure-<study>.png and .svg and DIR/failures.html, and adds the charts to
 DIR/index.html when plot_results.py has written one; run it after plot_results.py)
+
+Files are read by input_file.py's rules and written together by output_file.py, as
+plot_results.py's: a run that fails (one line on stderr: `plot_failures.py: error: <file>:
+<problem>` and status 1, or an interrupt and status 130 or 143) leaves every file as it was.
 """
 import csv
 import html
+import io
 import os
 import sys
 import textwrap
 from collections import OrderedDict
 
-import matplotlib
+PROGRAM = "plot_failures.py"
+if __name__ == "__main__":
+    # Before the slow imports below: an interrupt there is one line, not a traceback.
+    import output_file
+    output_file.exit_quietly_on_interrupt(PROGRAM)
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 matplotlib.rcParams["svg.hashsalt"] = "punctual"  # identical SVGs run after run
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.ticker import FixedLocator, NullLocator  # noqa: E402
 
+import output_file  # noqa: E402
+from input_file import InputFileError, read_text  # noqa: E402
+
 WIDE_RATIO = 10.0  # a log x axis once the largest value is this many times the smallest, as plot_results
 
 
 def read_studies(path):
-    """Rows of failures.csv grouped by study, then by variant, in file order."""
+    """Rows of failures.csv grouped by study, then by variant, in file order. Raises
+    InputFileError when the file cannot be read (input_file.py's rules) or a row is bad."""
     studies = OrderedDict()
-    with open(path, newline="") as f:
-        for row in csv.DictReader(f):
+    reader = csv.DictReader(io.StringIO(read_text(path), newline=""))
+    try:
+        for row in reader:
             study = studies.setdefault(row["study"], {"parameter": row["parameter"], "metric": row["metric"],
                                                       "variants": OrderedDict()})
             study["variants"].setdefault(row["variant"], []).append((float(row["value"]), float(row["error"])))
+    except KeyError as err:
+        raise InputFileError(path, f"no {err.args[0]} column") from None
+    except (TypeError, ValueError, csv.Error) as err:
+        # TypeError: a short row's missing cell is None, which float() refuses.
+        raise InputFileError(path, f"line {reader.line_num}: {err}") from None
     return studies
 
 
@@ -83,13 +104,18 @@ def study_figure(name, study):
     return fig
 
 
-def plot_study(name, study, charts):
-    """One chart (study_figure) as charts/failure-NAME.png and .svg; returns the PNG's name."""
+def plot_study(name, study, charts, outputs):
+    """One chart (study_figure) as charts/failure-NAME.png and .svg, written into `outputs`
+    (renamed at its commit: output_file.py); returns the PNG's name."""
     fig = study_figure(name, study)
     base = os.path.join(charts, "failure-" + name)
-    fig.savefig(base + ".png", dpi=100, metadata={"Software": None})
-    fig.savefig(base + ".svg", metadata={"Date": None})
-    plt.close(fig)
+    try:
+        outputs.write_with(base + ".png", lambda f: fig.savefig(
+            f, format="png", dpi=100, metadata={"Software": None}))
+        outputs.write_with(base + ".svg", lambda f: fig.savefig(
+            f, format="svg", metadata={"Date": None}))
+    finally:
+        plt.close(fig)
     return "failure-" + name + ".png"
 
 
@@ -97,25 +123,31 @@ MARK_BEGIN = "<!-- failure study: begin -->"
 MARK_END = "<!-- failure study: end -->"
 
 
-def add_to_index(folder, sections):
+def add_to_index(folder, sections, outputs):
     """Puts the failure charts into DIR/index.html (replacing an earlier copy), so the index
-    shows every chart of the bench."""
+    shows every chart of the bench; False when there is no index.html (plot_results.py has not
+    run). index.html is read by input_file.py's rules: a FIFO there is an error, not a hang."""
     index = os.path.join(folder, "index.html")
-    if not os.path.exists(index):
-        return False
-    with open(index) as f:
-        page = f.read()
-    if MARK_BEGIN in page:
-        page = page[:page.index(MARK_BEGIN)] + page[page.index(MARK_END) + len(MARK_END):]
+    try:
+        page = read_text(index)
+    except InputFileError as err:
+        if err.absent:
+            return False
+        raise
+    if MARK_BEGIN in page and MARK_END in page:
+        # The block's own line end goes with it, so that a rerun writes the same bytes.
+        end = page.index(MARK_END) + len(MARK_END)
+        page = page[:page.index(MARK_BEGIN)] + page[end + page.startswith("\n", end):]
     block = MARK_BEGIN + "\n<h2>Where methods fail</h2>\n" + "\n".join(sections) + "\n" + MARK_END + "\n"
     at = page.rfind("</body>")
     page = page[:at] + block + page[at:] if at >= 0 else page + block
-    with open(index, "w") as f:
-        f.write(page)
+    outputs.write_text(index, page)
     return True
 
 
-def main(folder):
+def write_failures(folder, outputs):
+    """Reads DIR/failures.csv and writes its charts, failures.html and index.html's section
+    into `outputs` (not committed); returns the number of studies."""
     studies = read_studies(os.path.join(folder, "failures.csv"))
     charts = os.path.join(folder, "charts")
     os.makedirs(charts, exist_ok=True)
@@ -123,17 +155,42 @@ def main(folder):
              "<h1>Where methods fail</h1>"]
     sections = []
     for name, study in studies.items():
-        image = plot_study(name, study, charts)
+        image = plot_study(name, study, charts, outputs)
         sections.append("<h3>%s</h3><img src='charts/%s' alt='%s'>" % (html.escape(name), image, html.escape(name)))
     parts.extend(sections)
     parts.append("</body></html>\n")
-    with open(os.path.join(folder, "failures.html"), "w") as f:
-        f.write("\n".join(parts))
-    add_to_index(folder, sections)
+    outputs.write_text(os.path.join(folder, "failures.html"), "\n".join(parts))
+    add_to_index(folder, sections, outputs)
     return len(studies)
 
 
+def main(folder):
+    """Writes DIR's failure charts and pages, all together (output_file.Outputs); returns the
+    number of studies. Raises on bad input or a write error, leaving every file as it was."""
+    outputs = output_file.Outputs()
+    try:
+        count = write_failures(folder, outputs)
+        outputs.commit()
+    finally:
+        outputs.discard()
+    return count
+
+
+def command(argv):
+    """Command line entry point; returns the exit status. Bad input, a write error or an
+    interrupt is one line on stderr (status 1, or 128 + the signal) and changes no file."""
+    if len(argv) != 1:
+        print(f"{PROGRAM}: error: usage: {PROGRAM} DIR", file=sys.stderr)
+        return 2
+
+    def body(outputs):
+        count = write_failures(argv[0], outputs)
+        outputs.commit()
+        print("wrote %d failure charts" % count)
+        return 0
+
+    return output_file.run_script(PROGRAM, body)
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        sys.exit("usage: plot_failures.py DIR")
-    print("wrote %d failure charts" % main(sys.argv[1]))
+    sys.exit(command(sys.argv[1:]))

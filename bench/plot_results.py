@@ -11,6 +11,13 @@ as tables, every DIR/images/*.png and the CSV as a table. A chart whose series o
 missing or empty is skipped with a note in index.html, so the few rows of `--quick` work too.
 Output is deterministic: rerunning on the same CSV gives identical files.
 
+The files are read by input_file.py's rules (punctual's own reader's: a FIFO or a folder where
+a file should be is refused, never opened) and written together by output_file.py: every chart,
+JSON file and index.html goes to a temporary, and all are renamed at the end, so a run that
+fails leaves the folder as it was. Bad input or a write error is one line `plot_results.py:
+error: <file>: <problem>` on stderr and status 1; an interrupt one line and status 130 (SIGINT)
+or 143 (SIGTERM).
+
 Nothing here names the methods, shadow filters or passes: DIR/results.json says them
 ("methods" and "shadow_filters" in table order, "passes" in frame order), and the script draws
 whatever it lists, a method's colour and marker taken from a fixed palette by its position. The
@@ -30,6 +37,12 @@ import json
 import os
 import sys
 
+PROGRAM = "plot_results.py"
+if __name__ == "__main__":
+    # Before the slow imports below: an interrupt there is one line, not a traceback.
+    import output_file
+    output_file.exit_quietly_on_interrupt(PROGRAM)
+
 from bench_data import (METHOD_COLOURS, METHOD_MARKERS, OTHER_STYLE, flag_limit,  # noqa: F401
                         is_flagged, is_wide, known_columns, light_count, mark_flags, method_order,
                         method_style, number, ordered, pareto_front, read_document, read_names,
@@ -41,6 +54,7 @@ from matplotlib.lines import Line2D
 from matplotlib.ticker import MaxNLocator, PercentFormatter
 import bench_report
 import cost_model
+import output_file
 import sweep_charts
 
 # Pass colours by position in "passes" (a palette apart from the methods').
@@ -390,9 +404,10 @@ CHARTS = [
 ]
 
 
-def draw_charts(rows, names, charts_dir):
-    """Draws every chart; returns ([{name, title, caption, skipped (the reason or None), flagged
-    (configurations drawn hollow), laws}], every law fitted)."""
+def draw_charts(rows, names, charts_dir, outputs):
+    """Draws every chart into `outputs` (written at its commit); returns ([{name, title,
+    caption, skipped (the reason or None), flagged (configurations drawn hollow), laws}], every
+    law fitted)."""
     os.makedirs(charts_dir, exist_ok=True)
     done, laws = [], []
     for name, title, function, args in CHARTS:
@@ -408,39 +423,39 @@ def draw_charts(rows, names, charts_dir):
         except SkipChart as reason:
             for ext in (".png", ".svg"):  # never leave a stale chart from an earlier run
                 stale = os.path.join(charts_dir, name + ext)
-                if os.path.exists(stale):
-                    os.remove(stale)
+                if os.path.lexists(stale):
+                    outputs.remove(stale)
             entry["skipped"] = str(reason)
             done.append(entry)
             continue
         entry["flagged"] = list(getattr(fig, "flagged", []))
         entry["laws"] = own
         laws += own
-        save_chart(fig, charts_dir, name)
+        save_chart(fig, charts_dir, name, outputs)
         done.append(entry)
     return done, laws
 
 
-def write_json(path, document):
-    """Writes `document` as indented JSON with a final newline."""
-    with open(path, "w", encoding="utf-8") as f:
-        json.dump(document, f, indent=1, ensure_ascii=False)
-        f.write("\n")
+def json_text(document):
+    """`document` as indented JSON with a final newline."""
+    return json.dumps(document, indent=1, ensure_ascii=False) + "\n"
 
 
 def main(argv=None):
-    """Command line entry point; returns the exit status."""
+    """Command line entry point; returns the exit status. Bad input, a write error or an
+    interrupt is one line on stderr (status 1, or 128 + the signal) and changes no file."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("out_dir", metavar="DIR", help="folder holding results.csv (from "
                         "`punctual bench --out-dir DIR`); charts/ and index.html go there too")
     args = parser.parse_args(argv)
-    csv_path = os.path.join(args.out_dir, "results.csv")
-    try:
-        header, rows = read_results(csv_path)
-    except OSError as err:
-        print(f"plot_results: error: {csv_path}: {err.strerror or err}", file=sys.stderr)
-        return 1
-    document, notes = read_document(os.path.join(args.out_dir, "results.json"))
+    return output_file.run_script(PROGRAM, lambda outputs: write_report(args.out_dir, outputs))
+
+
+def write_report(out_dir, outputs):
+    """Reads DIR's results, writes every chart, laws.json, cost_model.json and index.html into
+    `outputs` and commits them together; returns 0."""
+    header, rows = read_results(os.path.join(out_dir, "results.csv"))
+    document, notes = read_document(os.path.join(out_dir, "results.json"))
     names, more = read_names(None, header, rows, document)
     notes += more
     missing = [c for c in known_columns(names["passes"]) if c not in header]
@@ -454,18 +469,20 @@ def main(argv=None):
     limit = flag_limit(document)
     mark_flags(rows, limit)
     configure_matplotlib()
-    charts, laws = draw_charts(rows, names, os.path.join(args.out_dir, "charts"))
+    charts, laws = draw_charts(rows, names, os.path.join(out_dir, "charts"), outputs)
     model = cost_model.fit_cost_model(rows, names["passes"])
-    write_json(os.path.join(args.out_dir, "laws.json"), sweep_charts.laws_document(laws))
-    write_json(os.path.join(args.out_dir, "cost_model.json"), cost_model.model_document(model))
-    index = bench_report.render_index(header, rows, charts, bench_report.list_images(args.out_dir),
+    outputs.write_text(os.path.join(out_dir, "laws.json"),
+                       json_text(sweep_charts.laws_document(laws)))
+    outputs.write_text(os.path.join(out_dir, "cost_model.json"),
+                       json_text(cost_model.model_document(model)))
+    index = bench_report.render_index(header, rows, charts, bench_report.list_images(out_dir),
                                       notes, document, limit, laws, cost_model.model_document(model))
-    with open(os.path.join(args.out_dir, "index.html"), "w", encoding="utf-8") as f:
-        f.write(index)
+    outputs.write_text(os.path.join(out_dir, "index.html"), index)
+    outputs.commit()
     for chart in charts:
         print(f"{'skipped' if chart['skipped'] else 'wrote'} charts/{chart['name']}: "
               f"{chart['skipped'] or chart['title']}")
-    print(f"wrote {os.path.join(args.out_dir, 'index.html')}, laws.json, cost_model.json")
+    print(f"wrote {os.path.join(out_dir, 'index.html')}, laws.json, cost_model.json")
     return 0
 
 

@@ -23,6 +23,11 @@ import subprocess
 import sys
 import tempfile
 
+import output_file
+from input_file import InputFileError, read_text
+
+PROGRAM = "shadow_targets.py"
+
 SETTINGS = {
     "A0": ["--shadow-res", "1024", "--shadowed", "32,8", "--shadow-format", "d32", "--shadow-receiver-plane", "off",
            "--shadow-bias", "1,1,1,0"],
@@ -42,15 +47,21 @@ def run(punctual, args):
 def render_stats(punctual, size, name, folder, round_index):
     path = os.path.join(folder, f"stats-{name}-{round_index}.json")
     run(punctual, ["render", "--size", size, "--frames", "3", "--stats", path] + SETTINGS[name])
-    with open(path, encoding="utf-8") as f:
-        return json.load(f)
+    return read_json(path)
+
+
+def read_json(path):
+    """A JSON file punctual wrote, read by input_file.py's rules (never blocks on a FIFO)."""
+    try:
+        return json.loads(read_text(path))
+    except ValueError as err:
+        raise InputFileError(path, f"not valid JSON ({err})") from None
 
 
 def validation(punctual, size, name, folder):
     out = os.path.join(folder, f"validate-{name}")
     run(punctual, ["validate", "--size", size, "--edge-band-px", "1", "--out-dir", out] + SETTINGS[name])
-    with open(os.path.join(out, "report.json"), encoding="utf-8") as f:
-        return {light["scene_light"]: light for light in json.load(f)["lights"]}
+    return {light["scene_light"]: light for light in read_json(os.path.join(out, "report.json"))["lights"]}
 
 
 def misclassified(lights, keys):
@@ -78,12 +89,20 @@ def spread(values):
 
 
 def main(argv=None):
+    """Command line entry point; returns the exit status. An unreadable stats or report file
+    is one line `shadow_targets.py: error: <file>: <problem>` (status 1), an interrupt one
+    line (status 130 or 143): output_file.run_script. It writes no file itself."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--punctual", default="build/punctual")
     parser.add_argument("--size", default="1280x720")
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--out-dir")
     args = parser.parse_args(argv)
+    return output_file.run_script(PROGRAM, lambda outputs: measure(args))
+
+
+def measure(args):
+    """Runs the renders and validations and prints the table; returns 0."""
     folder = args.out_dir or tempfile.mkdtemp(prefix="shadow-targets-")
     os.makedirs(folder, exist_ok=True)
 

@@ -1,6 +1,9 @@
 #include "app/options.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
+#include <filesystem>
 #include <cmath>
 #include <vector>
 
@@ -76,6 +79,19 @@ void parseShadowedCounts(const std::string& text, ShadowSettings& shadows) {
     shadows.maxShadowedPoints = parseWhole("--shadowed", text.substr(comma + 1));
 }
 
+// An output written in one format must not be named for another: `--out x.jpg` would get PNG
+// bytes under a JPEG name, which viewers then refuse or misread. A name with no extension
+// (/dev/stdout, a FIFO, "frame") is taken as it is.
+void checkOutputExtension(const char* option, const std::optional<std::string>& path, const char* extension,
+                          const char* format) {
+    if (!path) return;
+    std::string found = std::filesystem::path(*path).extension().string();
+    std::transform(found.begin(), found.end(), found.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (found.empty() || found == extension) return;
+    throw Error(option, "'" + *path + "' is named " + found + " but punctual writes " + format + " there; name it " +
+                            extension + " (or with no extension)");
+}
+
 }  // namespace
 
 uint64_t parseSceneTriangles(const std::string& text) {
@@ -106,8 +122,37 @@ void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
     }
 }
 
+// What no single option can check: options that contradict each other, outputs named for another
+// format.
+void checkOptionCombinations(const RenderOptions& options, bool splitsAndLambda) {
+    if (splitsAndLambda) {
+        throw Error("--cascade-lambda", "conflicts with --cascade-splits: the splits are either given or computed by "
+                                        "the practical scheme from lambda; give one of the two");
+    }
+    checkOutputExtension("--out", options.outPath, ".png", "PNG");
+    checkOutputExtension("--heatmap", options.heatmapPath, ".png", "PNG");
+    checkOutputExtension("--shadow-density", options.shadowDensityPath, ".png", "PNG");
+    checkOutputExtension("--stats", options.statsPath, ".json", "JSON");
+    if (options.scenePath && options.sceneName) {
+        throw Error("--scene", "a built-in scene and a scene file ('" + *options.scenePath +
+                                   "') cannot both be given: choose one");
+    }
+    if (options.sceneTriangles && !(options.sceneName && parseBuiltinScene(*options.sceneName).sized())) {
+        std::string sized;
+        for (const BuiltinScene& scene : kBuiltinScenes) {
+            if (scene.sized()) sized += std::string(sized.empty() ? "" : " or ") + "--scene " + scene.name;
+        }
+        throw Error("--scene-triangles", "sizes only " + sized + ", not " +
+                                             (options.scenePath ? "a scene file"
+                                                                : "--scene " + options.sceneName.value_or(
+                                                                                   kDefaultBuiltinScene.name)));
+    }
+}
+
 RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
     RenderOptions options;
+    bool splitsGiven = false;  // --cascade-splits and --cascade-lambda are two ways to say one thing
+    bool lambdaGiven = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
         // An option's value never starts with "--": `--heatmap --out x.png` is a missing value,
@@ -181,7 +226,9 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
                 parseNumberList(arg, value(), 3, "three fractions of the shadow distance, e.g. 0.1,0.25,0.5");
             options.shadows.cascades.splits = {splits[0], splits[1], splits[2]};
             options.shadows.cascades.lambda = -1.0f;
+            splitsGiven = true;
         } else if (arg == "--cascade-lambda") {
+            lambdaGiven = true;
             options.shadows.cascades.lambda = parseFloat(arg, value());
             if (options.shadows.cascades.lambda < 0.0f) throw Error(arg, "must be from 0 to 1");
         } else if (arg == "--shadow-distance") {
@@ -212,20 +259,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             throw Error(arg, "unexpected argument: only one scene file can be given");
         }
     }
-    if (options.scenePath && options.sceneName) {
-        throw Error("--scene", "a built-in scene and a scene file ('" + *options.scenePath +
-                                   "') cannot both be given: choose one");
-    }
-    if (options.sceneTriangles && !(options.sceneName && parseBuiltinScene(*options.sceneName).sized())) {
-        std::string sized;
-        for (const BuiltinScene& scene : kBuiltinScenes) {
-            if (scene.sized()) sized += std::string(sized.empty() ? "" : " or ") + "--scene " + scene.name;
-        }
-        throw Error("--scene-triangles", "sizes only " + sized + ", not " +
-                                             (options.scenePath ? "a scene file"
-                                                                : "--scene " + options.sceneName.value_or(
-                                                                                   kDefaultBuiltinScene.name)));
-    }
+    checkOptionCombinations(options, splitsGiven && lambdaGiven);
     render::validateRenderSettings(renderSettingsFrom(options));
     return options;
 }
