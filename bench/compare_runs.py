@@ -16,8 +16,8 @@ file should be, a CSV without a config column, a configuration named twice) prin
 `compare_runs.py: error: <file>: <problem>` on stderr, exits with status 1 and writes nothing;
 a usage error exits with 2. Every file is read by input_file.py's rules (those of punctual's
 own reader), so nothing here can block on a FIFO. compare.csv and compare.html change together
-or not at all (output_file.py): an interrupt is one line and status 130 (SIGINT) or 143
-(SIGTERM), a write error one line and status 1.
+or not at all (output_file.py): an interrupt is one line and status 128 + the signal (130 for
+Ctrl-C), a write error one line and status 1.
 """
 
 import csv

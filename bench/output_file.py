@@ -5,18 +5,19 @@ A script's outputs (charts, pages, JSON) go through one Outputs. Each is written
 beside its target (tempfile.mkstemp, named ".NAME.XXXXXXXX" so that a listing hides it), given
 the mode a plain open() would (the old file's, else 0666 less the umask) and fsync'ed; nothing
 is renamed yet. When the run has written everything, commit() renames every temporary over its
-target with SIGINT and SIGTERM blocked, so an interrupt then is held until every rename is done
+target with the ending signals blocked, so an interrupt then is held until every rename is done
 (all new); an interrupt or an error before it removes every temporary (all old). A reader of
 the folder never sees a truncated chart, nor a page pointing at a chart of another run.
 
-run_script() runs a script's body with that Outputs: it turns SIGTERM into an interrupt like
-SIGINT's, and maps an interrupt to one line and status 128 + the signal (130 for Ctrl-C), bad
+run_script() runs a script's body with that Outputs: it turns SIGTERM, SIGHUP and SIGQUIT into
+an interrupt like SIGINT's (the signals punctual's own commit holds, src/core/deferred_signals.h),
+and maps an interrupt to one line and status 128 + the signal (130 for Ctrl-C), bad
 input (InputFileError) or a write error (OutputError, OSError) to `<script>.py: error: <file>:
 <problem>` and status 1. Any other exception is a bug: its temporaries are removed and its
 traceback shown.
 
-PUNCTUAL_BENCH_TEST_HOOK=STEP:INDEX:ACTION (for the tests only) sends SIGINT (INT) or SIGTERM
-(TERM) to the script, or raises ENOSPC (ENOSPC), at one step of the commit: "write" before
+PUNCTUAL_BENCH_TEST_HOOK=STEP:INDEX:ACTION (for the tests only) sends SIGINT (INT), SIGTERM
+(TERM), SIGHUP (HUP) or SIGQUIT (QUIT) to the script, or raises ENOSPC (ENOSPC), at one step of the commit: "write" before
 the INDEX-th temporary is created, "written" once it holds its bytes (before the fsync), "rename"
 before the INDEX-th rename (signals blocked).
 """
@@ -32,14 +33,15 @@ import threading
 
 from input_file import InputFileError
 
-SIGNALS = (signal.SIGINT, signal.SIGTERM)
+# The signals that end a process from the keyboard, a closed terminal or a supervisor.
+SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT)
 TEST_HOOK = "PUNCTUAL_BENCH_TEST_HOOK"
 
 _started = False  # whether run_script has begun (for the import-time interrupt message)
 
 
 class Interrupted(KeyboardInterrupt):
-    """SIGINT or SIGTERM arrived; a KeyboardInterrupt, so nothing catches it by accident."""
+    """One of SIGNALS arrived; a KeyboardInterrupt, so nothing catches it by accident."""
 
     def __init__(self, signum=signal.SIGINT):
         super().__init__(signal.Signals(signum).name)
@@ -87,7 +89,7 @@ def target_mode(target, new_mode):
 
 @contextlib.contextmanager
 def signals_blocked():
-    """SIGINT and SIGTERM held (not lost) for the block: they are delivered when it ends."""
+    """SIGNALS held (not lost) for the block: they are delivered when it ends."""
     previous = signal.pthread_sigmask(signal.SIG_BLOCK, SIGNALS)
     try:
         yield
@@ -154,7 +156,7 @@ class Outputs:
 
     def commit(self):
         """Renames every temporary over its target and removes the stale targets, with
-        SIGINT and SIGTERM held until all is done. Only a failing rename (a disk error) can
+        SIGNALS held until all is done. Only a failing rename (a disk error) can
         stop it halfway; the error then says how many targets were already replaced."""
         with signals_blocked():
             for done, (temporary, target) in enumerate(self._pending):
@@ -195,16 +197,23 @@ def exit_quietly_on_interrupt(program):
     with one line and 128 + the signal, no traceback. Nothing is written before run_script."""
     def handler(signum, frame):
         what = "interrupted" if _started else "interrupted before writing anything"
-        os.write(2, f"{program}: {what}\n".encode())
+        with contextlib.suppress(OSError):  # a closed terminal (SIGHUP): the line is lost
+            os.write(2, f"{program}: {what}\n".encode())
         os._exit(128 + signum)
     for s in _caught_signals():
         signal.signal(s, handler)
 
 
 def _caught_signals():
-    """SIGINT and SIGTERM, less those the parent set to be ignored (nohup, a background job of
+    """SIGNALS, less those the parent set to be ignored (nohup, a background job of
     a shell script): an ignored signal stays ignored, as Python itself leaves SIGINT."""
     return [s for s in SIGNALS if signal.getsignal(s) is not signal.SIG_IGN]
+
+
+def _say(line):
+    """The run's one line on stderr; on a closed terminal (SIGHUP) it is lost, quietly."""
+    with contextlib.suppress(OSError):
+        print(line, file=sys.stderr, flush=True)
 
 
 def _error_line(program, err):
@@ -232,12 +241,12 @@ def run_script(program, body):
         outputs.discard()
         what = ("every file was already written" if outputs.committed
                 else "no file was changed")
-        print(f"{program}: interrupted; {what}", file=sys.stderr)
+        _say(f"{program}: interrupted; {what}")
         return 128 + getattr(err, "signum", signal.SIGINT)
     except (InputFileError, OutputError, OSError) as err:
         _stop_signals(handle)
         outputs.discard()
-        print(_error_line(program, err), file=sys.stderr)
+        _say(_error_line(program, err))
         return 1
     finally:
         outputs.discard()  # a bug's exception: no temporary left behind either
@@ -246,7 +255,7 @@ def run_script(program, body):
 
 
 def _stop_signals(handle):
-    """Ignores SIGINT and SIGTERM while a failed run cleans up (a second Ctrl-C must not cut
+    """Ignores SIGNALS while a failed run cleans up (a second Ctrl-C must not cut
     the cleanup short); run_script's finally puts the handlers back."""
     if handle:
         for s in SIGNALS:

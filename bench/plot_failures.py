@@ -8,7 +8,7 @@ DIR/index.html when plot_results.py has written one; run it after plot_results.p
 
 Files are read by input_file.py's rules and written together by output_file.py, as
 plot_results.py's: a run that fails (one line on stderr: `plot_failures.py: error: <file>:
-<problem>` and status 1, or an interrupt and status 130 or 143) leaves every file as it was.
+<problem>` and status 1, or an interrupt and 128 + the signal) leaves every file as it was.
 """
 import csv
 import html

@@ -15,8 +15,8 @@ The files are read by input_file.py's rules (punctual's own reader's: a FIFO or 
 a file should be is refused, never opened) and written together by output_file.py: every chart,
 JSON file and index.html goes to a temporary, and all are renamed at the end, so a run that
 fails leaves the folder as it was. Bad input or a write error is one line `plot_results.py:
-error: <file>: <problem>` on stderr and status 1; an interrupt one line and status 130 (SIGINT)
-or 143 (SIGTERM).
+error: <file>: <problem>` on stderr and status 1; an interrupt one line and status 128 + the
+signal (130 for Ctrl-C).
 
 Nothing here names the methods, shadow filters or passes: DIR/results.json says them
 ("methods" and "shadow_filters" in table order, "passes" in frame order), and the script draws

@@ -91,7 +91,7 @@ def spread(values):
 def main(argv=None):
     """Command line entry point; returns the exit status. An unreadable stats or report file
     is one line `shadow_targets.py: error: <file>: <problem>` (status 1), an interrupt one
-    line (status 130 or 143): output_file.run_script. It writes no file itself."""
+    line (status 128 + the signal): output_file.run_script. It writes no file itself."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--punctual", default="build/punctual")
     parser.add_argument("--size", default="1280x720")

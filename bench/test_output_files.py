@@ -328,7 +328,8 @@ class CommitTest(unittest.TestCase):
 
     def test_a_fault_before_the_renames_leaves_every_old_file(self):
         cases = [("write:0:INT", 130), ("written:0:INT", 130), ("written:2:TERM", 143),
-                 ("write:5:INT", 130), ("written:5:INT", 130), ("written:1:ENOSPC", 1)]
+                 ("write:3:QUIT", 131), ("write:5:INT", 130), ("written:5:HUP", 129),
+                 ("written:1:ENOSPC", 1)]
         for hook, status in cases:
             with self.subTest(hook=hook):
                 folder, result = self.run_with(hook)
@@ -342,7 +343,7 @@ class CommitTest(unittest.TestCase):
                 self.assertEqual(snapshot(folder), self.old_files)
 
     def test_a_signal_during_the_renames_completes_every_new_file(self):
-        for hook, status in (("rename:0:INT", 130), ("rename:3:INT", 130), ("rename:5:TERM", 143)):
+        for hook, status in (("rename:0:INT", 130), ("rename:3:HUP", 129), ("rename:5:TERM", 143)):
             with self.subTest(hook=hook):
                 folder, result = self.run_with(hook)
                 self.assertEqual((result.returncode, result.stdout), (status, ""))

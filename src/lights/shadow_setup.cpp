@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "lights/caster_distance.h"
 #include "shadows.h"
 
 namespace punctual {
@@ -37,12 +38,28 @@ bool boxMeetsFrustum(const Frustum& frustum, const Bounds& box) {
 struct DepthSpan {
     float nearest = std::numeric_limits<float>::max();
     float farthest = -std::numeric_limits<float>::max();
+    // The least depth at which any caster's surface can lie inside the view (see reachDepth):
+    // the near plane may come up to it and clip nothing.
+    float nearestReach = std::numeric_limits<float>::max();
 
     void extend(const DepthSpan& other) {
         nearest = std::min(nearest, other.nearest);
         farthest = std::max(farthest, other.farthest);
+        nearestReach = std::min(nearestReach, other.nearestReach);
     }
 };
+
+// A lower bound of the depth of any surface point of a caster inside the view. Two bounds hold,
+// so their larger one does:
+// - its bounds' shallowest corner along the axis (depthSpanAlong);
+// - its distance from the light, over sqrt(1 + 2 tan^2): inside a square frustum of half-angle
+//   slope `tanHalf`, a point at depth z lies within z sqrt(1 + 2 tan^2) of the apex (its two side
+//   offsets are at most z tan each). A floor under a point light straddles the light's plane, so
+//   its corners give a depth <= 0, yet it is 2.5 m below the light: no part of it inside a side
+//   face's frustum is shallower than 2.5 / sqrt(3) m.
+float reachDepth(float shallowestCorner, float distance, float tanHalf) {
+    return std::max(shallowestCorner, distance / std::sqrt(1.0f + 2.0f * tanHalf * tanHalf));
+}
 
 DepthSpan depthSpanAlong(const glm::vec3& position, const glm::vec3& axis, const Bounds& box) {
     DepthSpan span;
@@ -63,7 +80,7 @@ DepthSpan depthSpanAlong(const glm::vec3& position, const glm::vec3& axis, const
 // a near plane at any fixed share of the range would miss the casters in front of it, and glTF
 // allows any range (1e6 m would put a 1/1000 one at 1 km).
 std::vector<uint32_t> findCasters(const Scene& scene, const glm::mat4& viewProjection, const glm::vec3& position,
-                                  const glm::vec3& axis, float range, DepthSpan& span) {
+                                  const glm::vec3& axis, float range, float tanHalf, DepthSpan& span) {
     Frustum frustum = extractFrustum(viewProjection);
     frustum.planes[4] = glm::vec4(axis, -glm::dot(axis, position));           // depth along the axis >= 0
     frustum.planes[5] = glm::vec4(-axis, glm::dot(axis, position) + range);   // depth along the axis <= range
@@ -72,7 +89,9 @@ std::vector<uint32_t> findCasters(const Scene& scene, const glm::mat4& viewProje
     for (uint32_t i = 0; i < scene.objects.size(); ++i) {
         if (!boxMeetsFrustum(frustum, scene.objects[i].worldBounds)) continue;
         casters.push_back(i);
-        span.extend(depthSpanAlong(position, axis, scene.objects[i].worldBounds));
+        DepthSpan object = depthSpanAlong(position, axis, scene.objects[i].worldBounds);
+        object.nearestReach = reachDepth(object.nearest, casterDistance(scene, i, position), tanHalf);
+        span.extend(object);
     }
     return casters;
 }
@@ -89,14 +108,27 @@ float farPlaneFor(const DepthSpan& span, float range) {
     return span.farthest > 0.0f ? std::min(span.farthest * 1.01f, range) : range;
 }
 
-// Near plane from the casters: just short of the shallowest caster along the view's axis, never
-// closer than 1/1000 of the far plane (depth precision: a 32-bit float depth buffer then resolves
-// about 6e-5 of the depth everywhere up to far) nor beyond half of it. No caster reaches in front
-// of it, so nothing is clipped, and receivers there (depth < 0) compare as lit, which they are.
-// A caster straddling the light's plane gives a depth <= 0 and the 1/1000 floor. The floor is
-// tied to the fitted far plane, not to the range: it is the scene's extent that sets it.
-float nearPlaneFor(float nearestCaster, float farPlane) {
-    return std::clamp(nearestCaster * 0.9f, farPlane * 1e-3f, farPlane * 0.5f);
+// Near plane from the casters: 90% of the least depth any caster's surface reaches inside the view
+// (DepthSpan::nearestReach), so no caster is clipped, however far the far plane is. It is not tied
+// to the far plane: a wall 3 km away in a light's reach once pushed a near plane at far / 1000 to
+// 3 m and clipped every caster nearer than that (issue 30).
+//
+// What that costs in precision, and why it is the right trade: a perspective depth d = A + B / z
+// maps view depth z to d with dd/dz = n f / ((f - n) z^2) ~ n / z^2, so one step q of the depth
+// format (2^-16 for D16; 2^-24 near 1 for D32's float, shadowDepthQuantum says 2^-20 to be safe)
+// spans dz = q z^2 / n at depth z. The bias at a receiver is at least one texel's world size,
+// 2 z tan / resolution (applyShadowBias), so the steps stay inside it up to z = 2 n tan / (q res):
+// with n = 1 m, a 1024 map and D16, 128 m; with D32, 2 km. Receivers deeper than that lose
+// precision (acne or leaks within dz of them), casters nearer than n would vanish entirely; the
+// first is a graceful loss far from the light, the second was the bug. The far plane stays
+// fitted to the deepest object in reach (farPlaneFor).
+//
+// Never beyond half the far plane (a degenerate range), never below far / 10^6 (a caster touching
+// the light: a surface through its centre would otherwise ask for a zero near plane; the old far
+// / 1000 floor remains for a caster whose surface passes through the light itself).
+float nearPlaneFor(float nearestReach, float farPlane) {
+    if (!(nearestReach > 0.0f)) return farPlane * 1e-3f;
+    return std::clamp(nearestReach * 0.9f, farPlane * 1e-6f, farPlane * 0.5f);
 }
 
 glm::mat4 spotViewProjection(const glm::vec3& position, const glm::vec3& direction, float halfAngle, float nearPlane,
@@ -244,11 +276,11 @@ ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3&
         ShadowView view;
         // The side planes do not depend on the near and far planes given here (see findCasters).
         view.casters = findCasters(scene, spotViewProjection(position, direction, halfAngle, 1.0f, 2.0f), position,
-                                   direction, range, span);
+                                   direction, range, std::tan(halfAngle), span);
         // The failure study's fixed near plane (a share of the range) keeps the range as far.
         const bool fixedNear = settings.spotNearFraction > 0.0f;
         view.farPlane = fixedNear ? range : farPlaneFor(span, range);
-        view.nearPlane = fixedNear ? range * settings.spotNearFraction : nearPlaneFor(span.nearest, view.farPlane);
+        view.nearPlane = fixedNear ? range * settings.spotNearFraction : nearPlaneFor(span.nearestReach, view.farPlane);
         view.gpu.viewProjection = spotViewProjection(position, direction, halfAngle, view.nearPlane, view.farPlane);
         view.tanSpan = 2.0f * std::tan(halfAngle);
         view.packedLight = index;
@@ -278,11 +310,11 @@ ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3&
             // resolution turns out to be.
             const float widest = settings.pointLayout == PointShadowLayout::Slices ? 2.0f : 1.0f;
             faces[face].casters = findCasters(scene, cubeFaceViewProjection(position, face, 1.0f, 2.0f, widest), position,
-                                              gpu::cubeFaceAxis(face), range, span);
+                                              gpu::cubeFaceAxis(face), range, widest, span);
             cubeSpan.extend(span);
         }
         const float farPlane = farPlaneFor(cubeSpan, range);
-        const float nearPlane = nearPlaneFor(cubeSpan.nearest, farPlane);
+        const float nearPlane = nearPlaneFor(cubeSpan.nearestReach, farPlane);
         for (uint32_t face = 0; face < 6; ++face) {
             ShadowView& view = faces[face];
             view.farPlane = farPlane;

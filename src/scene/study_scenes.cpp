@@ -194,6 +194,17 @@ Scene longRangeScene(float range) {
     return scene;
 }
 
+Scene distantGeometryScene() {
+    Scene scene = longRangeScene(1e4f);
+    scene.source = "long-range lights with distant geometry";
+    const Light& point = scene.lights[1];
+    addBox(scene, point.position + glm::vec3(3000.0f, 0.0f, 0.0f), {1.0f, 400.0f, 400.0f});  // a wall 3 km away
+    const Light& spot = scene.lights[0];
+    addBox(scene, spot.position + spot.direction * 5000.0f, {50.0f, 50.0f, 50.0f});  // 5 km down the cone
+    scene.computeBounds();
+    return scene;
+}
+
 Light sunLight(const glm::vec3& direction, float lux) {
     Light light;
     light.name = "sun";

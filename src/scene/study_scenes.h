@@ -46,6 +46,10 @@ Scene manyLightsScene(int spotCount, int pointCount);
 // object lies within 18 m of both lights, so any range from 20 m up reaches the same geometry
 // (shadow near and far planes fitted to the range rather than to the casters fail at long ones).
 Scene longRangeScene(float range);
+// longRangeScene(1e4) with far geometry in both lights' reach, none of it in the camera's view: a
+// wall 3 km from the point light along +X, and a box 5 km down the spot's cone (under the floor).
+// A shadow view whose near plane follows its far plane clips the near casters (issue 30).
+Scene distantGeometryScene();
 
 // The sun's cascades: a 400 m x 320 m field seen from 8 m up along it (looking 11 degrees down, so
 // every cascade's range fills rows of the frame), posts of several heights from 1 m to 160 m away
