@@ -11,6 +11,7 @@ packages=(
   libglm-dev libembree-dev libtbb-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libgtest-dev
   libtinyexr-dev                                             # OpenEXR output of `punctual validate --export-exr`
   libwebp-dev                                                # EXT_texture_webp textures
+  libpng-dev                                                 # huge PNG textures decoded row by row at a reduced size
   libdraco-dev                                               # glTF geometry compressed with KHR_draco_mesh_compression
   libmeshoptimizer-dev                                       # glTF buffer views compressed with EXT_meshopt_compression
   python3-matplotlib                                         # charts in bench/

@@ -79,17 +79,32 @@ void parseShadowedCounts(const std::string& text, ShadowSettings& shadows) {
     shadows.maxShadowedPoints = parseWhole("--shadowed", text.substr(comma + 1));
 }
 
-// An output written in one format must not be named for another: `--out x.jpg` would get PNG
-// bytes under a JPEG name, which viewers then refuse or misread. A name with no extension
-// (/dev/stdout, a FIFO, "frame") is taken as it is.
+// Extensions that name a file format, and the format's name. An output named for one format
+// but written in another (`--out x.jpg` getting PNG bytes) is refused: viewers refuse or misread
+// such files. A name with no extension or one naming no format (/dev/stdout, a FIFO, "frame",
+// "x.v2") is taken as it is.
+struct NamedFormat {
+    const char* extension;
+    const char* format;
+};
+constexpr NamedFormat kNamedFormats[] = {
+    {".png", "PNG"},   {".jpg", "JPEG"},  {".jpeg", "JPEG"}, {".webp", "WebP"}, {".exr", "OpenEXR"},
+    {".hdr", "Radiance HDR"}, {".bmp", "BMP"}, {".tga", "TGA"}, {".gif", "GIF"}, {".tif", "TIFF"},
+    {".tiff", "TIFF"}, {".ppm", "PPM"}, {".json", "JSON"}, {".gltf", "glTF"}, {".glb", "glTF"},
+    {".svg", "SVG"}, {".html", "HTML"}, {".csv", "CSV"}, {".txt", "text"},
+};
+
 void checkOutputExtension(const char* option, const std::optional<std::string>& path, const char* extension,
                           const char* format) {
     if (!path) return;
     std::string found = std::filesystem::path(*path).extension().string();
     std::transform(found.begin(), found.end(), found.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (found.empty() || found == extension) return;
-    throw Error(option, "'" + *path + "' is named " + found + " but punctual writes " + format + " there; name it " +
-                            extension + " (or with no extension)");
+    if (found == extension) return;
+    for (const NamedFormat& named : kNamedFormats) {
+        if (found != named.extension) continue;
+        throw Error(option, std::string("'") + *path + "' is named for " + named.format + " (" + found +
+                                ") but punctual writes " + format + " there; name it " + extension);
+    }
 }
 
 }  // namespace

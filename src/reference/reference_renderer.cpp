@@ -99,6 +99,7 @@ std::array<uint8_t, 4> toneMapToRgba8(glm::vec3 radiance, float exposure) {
 ReferenceRenderer::ReferenceRenderer(const Scene& scene, const ReferenceSettings& settings)
     : scene_(scene), settings_(settings) {
     validateSettings(settings);
+    checkCameraPrecision(scene.camera, settings.height, scene.source);  // as the GPU's renderer: one rule
     if (scene.vertices.empty() || scene.indices.empty() || scene.objects.empty()) {
         throw Error(scene.source, "no triangle meshes to draw");
     }

@@ -488,28 +488,23 @@ bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* /*err*/, s
         decoding.failures[imageIndex] = "no image data";
         return true;
     }
-    int width = 0;
-    int height = 0;
+    // Fitted while decoding (scene/image_decoding.h): a texture too large for the frame never
+    // exists twice at full size, and one too large to decode whole is decoded reduced.
     std::string failure;
-    const std::unique_ptr<uint8_t, void (*)(void*)> decoded = decodeRgba8(bytes, size, width, height, failure);
-    const uint8_t* pixels = decoded.get();
-    if (pixels == nullptr) {
+    FittedImage decoded;
+    if (!decodeFittedRgba8(bytes, size_t(size), decoding.limit.maxSide, decoded, failure)) {
         decoding.failures[imageIndex] = failure;
         return true;
     }
-    // Downscale here, straight from stb's pixels: a texture too large for the frame never
-    // exists twice at full size (stb's copy and tinygltf's).
-    const TextureSize from{uint32_t(width), uint32_t(height)};
-    const TextureSize to = fittedTextureSize(from.width, from.height, decoding.limit.maxSide);
+    const TextureSize from = decoded.original;
+    const TextureSize to = decoded.size;
     if (to.width != from.width || to.height != from.height) {
-        image->image = resizedRgba8Srgb(pixels, from, to);
         std::string what = "image " + std::to_string(imageIndex);
         if (!image->uri.empty()) what += " '" + image->uri + "'";
         else if (!image->name.empty()) what += " '" + image->name + "'";
         log::warn(decoding.source + ": " + downscaleWarning(what, from, to, decoding.limit.reason));
-    } else {
-        image->image.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
     }
+    image->image = std::move(decoded.rgba);
     image->width = int(to.width);
     image->height = int(to.height);
     image->component = 4;

@@ -182,6 +182,15 @@ TEST(Cli, BadOptionsFailCleanly) {
     expectCleanFailure(folder, "render --shadow-strength 2", "--shadow-strength");
     expectCleanFailure(folder, "render --point-shadow-layout sphere", "--point-shadow-layout");
     expectCleanFailure(folder, "render --no-such-option", "--no-such-option");
+    // Conflicting options, and outputs named for a format punctual does not write there.
+    expectCleanFailure(folder, "render --cascade-lambda 0.5 --cascade-splits 0.1,0.2,0.4", "conflicts with --cascade-splits");
+    expectCleanFailure(folder, "render --heatmap h.webp", "writes PNG there");
+    // (expectCleanFailure adds its own --out and --stats, which would win over these.)
+    for (const auto& [args, mention] : {std::pair<std::string, std::string>{"render --out x.jpg", "'x.jpg' is named for JPEG (.jpg) but punctual writes PNG there"},
+                                        {"render --stats s.txt", "is named for text (.txt) but punctual writes JSON there"}}) {
+        testing::expectOneClearError(runPunctual(folder, args), args, mention);
+        EXPECT_FALSE(std::filesystem::exists(folder.file("x.jpg")));
+    }
 }
 
 TEST(Cli, BadFilesFailCleanly) {

@@ -115,20 +115,21 @@ TEST(CliOutputs, WritesThroughASymbolicLink) {
 
 TEST(CliOutputs, RefusesTwoOutputsNamingOneFileBeforeRendering) {
     testing::TempFolder folder;
-    const std::string mine = folder.file("x.png");
+    // Names without an extension, so that any option may name them (a .png is refused for --stats).
+    const std::string mine = folder.file("x");
     writeText(mine, "mine");
     const ino_t inode = inodeOf(mine);
-    fs::create_symlink("x.png", folder.file("link.png"));
-    const std::string again = cat(folder.path(), "/./x.png");
+    fs::create_symlink("x", folder.file("link"));
+    const std::string again = cat(folder.path(), "/./x");
     for (const std::string& options :
          {cat("--out ", quoted(mine), " --stats ", quoted(mine)), cat("--out ", quoted(mine), " --heatmap ", quoted(again)),
-          cat("--stats ", quoted(mine), " --heatmap ", quoted(folder.file("link.png"))),
+          cat("--stats ", quoted(mine), " --heatmap ", quoted(folder.file("link"))),
           cat("--out ", quoted(folder.file("new.png")), " --heatmap ", quoted(cat(folder.path(), "/./new.png")))}) {
         const std::string args = cat(kSmall, " ", options);
         expectRefusedUpFront(runPunctual(folder, args), args, "two outputs cannot share a file");
         EXPECT_EQ(readText(mine), "mine") << args;
         EXPECT_EQ(inodeOf(mine), inode) << args;
-        testing::expectNothingLeftBehind(folder, args, {"x.png", "link.png"});
+        testing::expectNothingLeftBehind(folder, args, {"x", "link"});
     }
 }
 
@@ -142,11 +143,11 @@ TEST(CliOutputs, NeverTouchesAUsersPartialFile) {
     EXPECT_EQ(readText(partial), "mine");
     EXPECT_EQ(inodeOf(partial), inode);
     // An output named like another's temporary once was: both arrive, each with its contents.
-    run = runPunctual(folder, cat(kSmall, " --out ", quoted(folder.file("x.png.partial")), " --stats ",
-                                  quoted(folder.file("x.png"))));
+    run = runPunctual(folder, cat(kSmall, " --out ", quoted(folder.file("x.json.partial")), " --stats ",
+                                  quoted(folder.file("x.json"))));
     ASSERT_EQ(run.exitCode, 0) << run.err;
-    EXPECT_TRUE(isPng(readText(folder.file("x.png.partial"))));
-    EXPECT_TRUE(nlohmann::json::accept(readText(folder.file("x.png"))));
+    EXPECT_TRUE(isPng(readText(folder.file("x.json.partial"))));
+    EXPECT_TRUE(nlohmann::json::accept(readText(folder.file("x.json"))));
 }
 
 TEST(CliOutputs, PathProblemsAreFoundBeforeRendering) {

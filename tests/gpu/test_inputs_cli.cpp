@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -23,6 +24,7 @@
 namespace punctual {
 namespace {
 
+namespace fs = std::filesystem;
 using testing::cat;
 using testing::quoted;
 using testing::RunResult;
@@ -275,6 +277,79 @@ TEST(CliInputs, FrameNoLightReachesWarnsInOneLine) {
     ASSERT_EQ(run.exitCode, 0) << run.err;
     EXPECT_EQ(run.err, "");
     EXPECT_TRUE(anyLitPixel(readPng(png)));
+}
+
+// No output may replace a file the run reads, however it is spelt (issue 30: `--out s.gltf`
+// replaced the scene, `--out tex.png` a texture, validate's reference.png a texture of that name).
+// Each run fails in one line before any work, and every input is left byte for byte.
+TEST(CliInputs, NoOutputReplacesAFileTheRunReads) {
+    testing::TempFolder folder;
+    fs::create_directories(folder.file("out"));
+    ImageRgba8 texture;
+    texture.width = texture.height = 4;
+    texture.pixels.assign(4 * 4 * 4, 180);
+    const std::string png = encodePng(texture);
+    std::ofstream(folder.file("tex.png"), std::ios::binary) << png;
+    std::ofstream(folder.file("out/reference.png"), std::ios::binary) << png;
+    SceneParts parts;
+    parts.lights = kSun;
+    parts.lightNode = kSunNode;
+    parts.baseColorImage = "tex.png";
+    const std::string scene = writeQuad(folder, "s.gltf", parts);
+    parts.baseColorImage = "out/reference.png";
+    const std::string sceneB = writeQuad(folder, "b.gltf", parts);
+    const std::string sceneBytes = testing::readText(scene);
+    fs::create_symlink("s.gltf", folder.file("link.png"));
+    fs::create_hard_link(scene, folder.file("hard.png"));
+
+    for (const std::string& out : {folder.file("link.png"), folder.file("hard.png"), folder.file("out/../tex.png")}) {
+        const std::string args = cat("render ", quoted(scene), " --size 32x18 --out ", quoted(out));
+        const RunResult run = runBounded(folder, args);
+        testing::expectOneClearError(run, args, "is an input of this run");
+        EXPECT_EQ(run.exitCode, 1) << args;
+        EXPECT_EQ(run.out, "") << args << ": the command rendered before refusing";
+    }
+    const std::string stats = cat("render ", quoted(scene), " --size 32x18 --stats ", quoted(folder.file("s.gltf")));
+    testing::expectOneClearError(runBounded(folder, stats), stats, "punctual writes JSON there");
+    const std::string validate = cat("validate ", quoted(sceneB), " --size 32x18 --out-dir ", quoted(folder.file("out")));
+    testing::expectOneClearError(runBounded(folder, validate), validate, "is an input of this run");
+
+    EXPECT_EQ(testing::readText(scene), sceneBytes) << "the scene changed";
+    EXPECT_EQ(testing::readText(folder.file("tex.png")), png) << "the texture changed";
+    EXPECT_EQ(testing::readText(folder.file("out/reference.png")), png) << "validate's texture changed";
+    testing::expectNothingLeftBehind(folder, "every refused run", {"s.gltf", "b.gltf", "tex.png", "link.png", "hard.png", "out"});
+    // The same scene renders to a file of its own.
+    const std::string fine = cat("render ", quoted(scene), " --size 32x18 --out ", quoted(folder.file("frame.png")));
+    EXPECT_EQ(runBounded(folder, fine).exitCode, 0) << fine;
+}
+
+// A field of view too narrow for float precision is refused in one line (issue 30: yfov 1e-8 drew
+// half the frame black while Embree saw it lit; 1e-12 drew all of it black, with a false warning).
+TEST(CliInputs, AFieldOfViewTooNarrowForFloatsIsRefused) {
+    testing::TempFolder folder;
+    SceneParts parts;
+    parts.lights = kSun;
+    parts.lightNode = kSunNode;
+    const std::string scene = writeQuad(folder, "narrow.gltf", parts);
+    std::string text = testing::readText(scene);
+    const size_t yfov = text.find("\"yfov\": 0.8");
+    ASSERT_NE(yfov, std::string::npos);
+    for (const char* narrow : {"1e-8", "1e-12"}) {
+        std::string changed = text;
+        changed.replace(yfov, std::strlen("\"yfov\": 0.8"), cat("\"yfov\": ", narrow));
+        std::ofstream(scene) << changed;
+        for (const char* command : {"render", "reference"}) {
+            const std::string args = cat(command, " ", quoted(scene), " --size 160x120 --out ", quoted(folder.file("x.png")));
+            testing::expectOneClearError(runBounded(folder, args), args, "is too narrow for float precision at 120 rows");
+        }
+    }
+    // The narrowest it accepts at 120 rows renders a lit frame (the quad fills it).
+    std::string changed = text;
+    changed.replace(yfov, std::strlen("\"yfov\": 0.8"), "\"yfov\": 0.002");
+    std::ofstream(scene) << changed;
+    const std::string args = cat("render ", quoted(scene), " --size 160x120 --out ", quoted(folder.file("x.png")));
+    ASSERT_EQ(runBounded(folder, args).exitCode, 0) << args;
+    EXPECT_TRUE(anyLitPixel(readPng(folder.file("x.png"))));
 }
 
 }  // namespace

@@ -540,5 +540,87 @@ TEST_F(GltfMalformed, TextureOverTheLimitIsDownscaledOnLoadWithOneWarning) {
                                           "(a test's limit)");
 }
 
+// Issue 30's third hardening round: each of these used to crash, read gigabytes, or say the wrong thing.
+
+TEST_F(GltfMalformed, DeeplyNestedJsonIsRefusedBeforeTheParserRecursesIntoIt) {
+    // 15,000 levels once overflowed the stack inside tinygltf's JSON conversion (SIGSEGV).
+    const std::string deep = "{\"asset\": {\"version\": \"2.0\"}, \"extras\": " + std::string(15000, '[') +
+                             std::string(15000, ']') + "}";
+    writeFile(dir.path() / "deep.gltf", deep);
+    expectLoadError((dir.path() / "deep.gltf").string(), "nests more than 128 levels");
+    // Brackets inside strings do not count, and 128 levels are still read.
+    quad.doc["extras"] = {{"text", std::string(5000, '[')}};
+    json nested = json::array();
+    for (int level = 0; level < 120; ++level) nested = json::array({nested});
+    quad.doc["extras"]["nested"] = nested;
+    EXPECT_EQ(loadGltf(quad.write(dir.path())).triangleCount(), 2u);
+}
+
+TEST_F(GltfMalformed, AFileThatCannotBeGltfIsRefusedFromItsFirstBytes) {
+    // A sparse 3 GB file of zeros: refused at byte 0 without reading it (it would take seconds and
+    // 3 GB of memory to read whole).
+    const fs::path zeros = dir.path() / "zeros.gltf";
+    writeFile(zeros, std::string());
+    fs::resize_file(zeros, 3ull << 30);
+    const auto started = std::chrono::steady_clock::now();
+    expectLoadError(zeros.string(), "JSON text must start with '{' but byte 0 is 0x00");
+    EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(5)) << "the file was read whole";
+    writeFile(dir.path() / "blank.gltf", std::string("  \n\t  "));
+    expectLoadError((dir.path() / "blank.gltf").string(), "empty or only whitespace");
+    // A UTF-8 byte order mark and whitespace before the '{' are fine.
+    quad.write(dir.path());
+    writeFile(dir.path() / "bom.gltf", "\xEF\xBB\xBF\n  " + quad.doc.dump());
+    EXPECT_EQ(loadGltf((dir.path() / "bom.gltf").string()).triangleCount(), 2u);
+}
+
+TEST_F(GltfMalformed, OnlyGltfVersionTwoIsRead) {
+    quad.doc["asset"]["version"] = "3.0";
+    expectQuadLoadError("glTF version 3.0 is not supported (punctual reads 2.x)");
+    quad.doc["asset"]["version"] = "two";
+    expectQuadLoadError("asset.version 'two' is not <major>.<minor>");
+    quad.doc["asset"]["version"] = "2.1";  // a newer minor version is compatible by the spec's rules
+    EXPECT_EQ(loadGltf(quad.write(dir.path())).triangleCount(), 2u);
+    quad.doc["asset"]["minVersion"] = "2.1";
+    expectQuadLoadError("asset.minVersion '2.1' needs a newer loader");
+    quad.doc["asset"] = json::object();
+    expectQuadLoadError("asset.version is missing");
+}
+
+TEST_F(GltfMalformed, ANodeWithBothAMatrixAndTrsIsRefused) {
+    quad.doc["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1};
+    quad.doc["nodes"][0]["translation"] = {1, 2, 3};
+    expectQuadLoadError("node 0 has both a matrix and a translation");
+}
+
+TEST_F(GltfMalformed, ADataUriOfTheWrongLengthNamesBothLengths) {
+    // 48 bytes of base64 ("AAAA" is 3 bytes) where byteLength says 60.
+    quad.doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + std::string(64, 'A');
+    quad.doc["buffers"][0]["byteLength"] = 60;
+    expectQuadLoadError("buffer 0: its data URI holds 48 bytes but its byteLength is 60");
+    quad.doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + std::string(62, 'A') + "==";
+    expectQuadLoadError("holds 46 bytes");
+    quad.doc["buffers"][0]["uri"] = "data:application/octet-stream;base64,AAA";
+    expectQuadLoadError("has 3 characters, not a multiple of 4");
+}
+
+TEST_F(GltfMalformed, ABrightLightWithoutARangeIsNotBlamedForItsRange) {
+    quad.addLight({{"type", "point"}, {"intensity", 1e37}});
+    expectQuadLoadError("no range and an intensity of 1e+37 cd, too large to derive a cut-off radius");
+}
+
+TEST_F(GltfMalformed, APointLightOnAZeroScaleNodeKeepsItsPosition) {
+    quad.addLight({{"type", "point"}, {"intensity", 10.0}, {"range", 5.0}});
+    quad.doc["nodes"].back()["translation"] = {1.0, 2.0, 3.0};
+    quad.doc["nodes"].back()["scale"] = {0.0, 0.0, 0.0};
+    const Scene scene = loadGltf(quad.write(dir.path()));
+    ASSERT_EQ(scene.lights.size(), 1u);
+    EXPECT_EQ(scene.lights[0].position, glm::vec3(1.0f, 2.0f, 3.0f));
+    EXPECT_EQ(scene.lights[0].direction, glm::vec3(0.0f, 0.0f, -1.0f));  // none to lose: the default
+    // A spot has a direction to lose.
+    quad.doc["extensions"]["KHR_lights_punctual"]["lights"][0] = {
+        {"type", "spot"}, {"intensity", 10.0}, {"range", 5.0}, {"spot", json::object()}};
+    expectQuadLoadError("has a degenerate direction");
+}
+
 }  // namespace
 }  // namespace punctual
