@@ -24,6 +24,20 @@ bool headerSize(const unsigned char* bytes, size_t size, TextureSize& declared, 
             failure = "corrupt WebP header";
             return false;
         }
+    } else if (isPng(bytes, size)) {
+        // The IHDR chunk comes first (PNG spec 5.6): signature, length, "IHDR", width, height, both
+        // big-endian. Read here because stb_image's header check refuses images over 2^30 bytes
+        // as an "unknown image type", and those are the ones the reduced decoder is for.
+        const auto bigEndian = [&](size_t at) {
+            return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
+        };
+        if (size < 24 || std::memcmp(bytes + 12, "IHDR", 4) != 0 || bigEndian(16) > 0x7fffffffu ||
+            bigEndian(20) > 0x7fffffffu) {
+            failure = "corrupt PNG header";
+            return false;
+        }
+        width = int(bigEndian(16));
+        height = int(bigEndian(20));
     } else {
         int channels = 0;
         if (size > size_t(std::numeric_limits<int>::max()) ||
