@@ -257,9 +257,12 @@ bool drawsTriangles(int mode);
 // (indices relative to the returned Mesh::vertexOffset) and returns its Mesh with `material`
 // left for the caller, or nullopt when the primitive has no triangles. `label` names the
 // primitive in errors, e.g. "mesh 'box' primitive 0". Reads plain accessors, decoded meshopt
-// views and KHR_draco_mesh_compression data alike; throws Error(path, ...).
+// views and KHR_draco_mesh_compression data alike; throws Error(path, ...). Morph targets are
+// applied at `morphWeights` (the node's weights, else the mesh's: glTF's default pose), POSITION
+// and NORMAL; a target whose accessor is sparse is skipped, counted in `unmorphedTargets`.
 std::optional<Mesh> appendPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                                     const std::string& label, const std::string& path,
+                                    const std::vector<double>& morphWeights, size_t& unmorphedTargets,
                                     std::vector<Vertex>& vertices, std::vector<uint32_t>& indices);
 
 }  // namespace punctual::gltf_detail

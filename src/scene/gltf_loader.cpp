@@ -8,6 +8,7 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <tuple>
 #include <set>
 #include <utility>
 
@@ -287,7 +288,10 @@ private:
                  ", which does not exist");
         const tinygltf::Mesh& mesh = model_.meshes[meshIndex];
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-            const std::optional<uint32_t> converted = meshOfPrimitive(meshIndex, p);
+            // glTF 2.0 3.7.2.2: a node's weights override its mesh's; without animation (a later
+            // issue) these are the pose drawn.
+            const std::vector<double>& weights = node.weights.empty() ? mesh.weights : node.weights;
+            const std::optional<uint32_t> converted = meshOfPrimitive(meshIndex, p, weights);
             if (!converted) continue;
             Object object;
             object.name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : "node " + std::to_string(nodeIndex);
@@ -297,10 +301,12 @@ private:
         }
     }
 
-    // The punctual Mesh of a glTF primitive, converted on first use so a primitive instanced by
-    // several nodes is stored once. nullopt for primitives that draw nothing we support.
-    std::optional<uint32_t> meshOfPrimitive(size_t meshIndex, size_t primitiveIndex) {
-        const auto key = std::make_pair(meshIndex, primitiveIndex);
+    // The punctual Mesh of a glTF primitive at the given morph weights, converted on first use so
+    // a primitive instanced by several nodes in one pose is stored once. nullopt for primitives
+    // that draw nothing we support.
+    std::optional<uint32_t> meshOfPrimitive(size_t meshIndex, size_t primitiveIndex, const std::vector<double>& weights) {
+        const bool morphed = !model_.meshes[meshIndex].primitives[primitiveIndex].targets.empty();
+        const auto key = std::make_tuple(meshIndex, primitiveIndex, morphed ? weights : std::vector<double>{});
         if (const auto known = primitiveMeshes_.find(key); known != primitiveMeshes_.end()) return known->second;
 
         const tinygltf::Primitive& primitive = model_.meshes[meshIndex].primitives[primitiveIndex];
@@ -309,7 +315,8 @@ private:
         if (!drawsTriangles(primitive.mode)) {
             ++skippedPrimitives_[primitive.mode];
         } else if (std::optional<Mesh> mesh =
-                       appendPrimitive(model_, primitive, label, path_, scene_.vertices, scene_.indices)) {
+                       appendPrimitive(model_, primitive, label, path_, std::get<2>(key), unmorphedTargets_,
+                                       scene_.vertices, scene_.indices)) {
             if (primitive.material < 0) {
                 mesh->material = defaultMaterial();
             } else if (size_t(primitive.material) < model_.materials.size()) {
@@ -338,10 +345,12 @@ private:
         return std::to_string(total) + " primitive(s) that are not triangles (" + modes + ")";
     }
 
-    // One line for the whole file, however many primitives and modes.
+    // One line for the whole file, however many primitives and modes; one for unread morph targets.
     void warnAboutSkippedPrimitives() const {
-        if (skippedPrimitives_.empty()) return;
-        log::warn(path_ + ": skipped " + describeSkipped() + ": punctual draws only triangles");
+        if (!skippedPrimitives_.empty()) log::warn(path_ + ": skipped " + describeSkipped() + ": punctual draws only triangles");
+        if (unmorphedTargets_ > 0)
+            log::warn(path_ + ": " + std::to_string(unmorphedTargets_) +
+                      " weighted morph target(s) use sparse accessors, which punctual does not read: drawn without them");
     }
 
     // --- camera --------------------------------------------------------------------------------
@@ -424,7 +433,8 @@ private:
     const ImageDecoding& decoding_;
     const UriFiles& files_;
     Scene scene_;
-    std::map<std::pair<size_t, size_t>, std::optional<uint32_t>> primitiveMeshes_;
+    std::map<std::tuple<size_t, size_t, std::vector<double>>, std::optional<uint32_t>> primitiveMeshes_;
+    size_t unmorphedTargets_ = 0;  // weighted morph targets skipped (sparse accessors)
     std::map<int, int> skippedPrimitives_;  // mode -> count
     std::optional<uint32_t> defaultMaterialIndex_;
     std::optional<size_t> cameraNode_;

@@ -106,6 +106,38 @@ PrimitiveArrays gatherArrays(const AttributeSource& source, const AccessorReader
     return arrays;
 }
 
+// Adds each morph target's POSITION and NORMAL deltas times its weight (glTF 2.0, 3.7.2.2:
+// p = p0 + sum w_i d_i). A weight of 0 (the default) adds nothing and reads nothing. An accessor
+// without a buffer view holds zeros (and is skipped likewise); a sparse one is not read: the
+// target is counted in `unmorphed` for the loader's warning.
+void applyMorphTargets(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                       const std::vector<double>& weights, const AccessorReader& reader, PrimitiveArrays& arrays,
+                       size_t& unmorphed) {
+    for (size_t t = 0; t < primitive.targets.size() && t < weights.size(); ++t) {
+        const float weight = float(weights[t]);
+        if (weight == 0.0f || !std::isfinite(weight)) continue;
+        for (const auto& [semantic, accessor] : primitive.targets[t]) {
+            std::vector<glm::vec3>* values = semantic == "POSITION" ? &arrays.positions
+                                             : semantic == "NORMAL" && !arrays.normals.empty() ? &arrays.normals
+                                                                                               : nullptr;
+            if (!values || accessor < 0 || size_t(accessor) >= model.accessors.size()) continue;
+            const tinygltf::Accessor& a = model.accessors[size_t(accessor)];
+            if (a.sparse.isSparse) {
+                ++unmorphed;
+                continue;
+            }
+            if (a.bufferView < 0) continue;  // all zeros
+            const std::string what = "morph target " + std::to_string(t) + " " + semantic;
+            const std::vector<glm::vec3> deltas =
+                reader.readVec3(accessor, what, semantic == "POSITION" ? AttributeKind::Position : AttributeKind::Normal);
+            if (deltas.size() != values->size())
+                reader.fail(what + " has " + std::to_string(deltas.size()) + " elements but POSITION has " +
+                            std::to_string(values->size()));
+            for (size_t v = 0; v < deltas.size(); ++v) (*values)[v] += weight * deltas[v];
+        }
+    }
+}
+
 // The primitive's triangles as a list of vertex indices, whatever its topology.
 std::vector<uint32_t> triangleList(int mode, const PrimitiveArrays& arrays, const AccessorReader& reader) {
     const size_t vertexCount = arrays.positions.size();
@@ -188,9 +220,11 @@ bool drawsTriangles(int mode) {
 
 std::optional<Mesh> appendPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                                     const std::string& label, const std::string& path,
+                                    const std::vector<double>& morphWeights, size_t& unmorphedTargets,
                                     std::vector<Vertex>& vertices, std::vector<uint32_t>& indices) {
     const AccessorReader reader(model, label, path);
     PrimitiveArrays arrays = gatherArrays(AttributeSource(model, primitive, reader), reader);
+    applyMorphTargets(model, primitive, morphWeights, reader, arrays, unmorphedTargets);
     const std::vector<uint32_t> triangleIndices = triangleList(primitive.mode, arrays, reader);
     if (triangleIndices.empty()) return std::nullopt;
 

@@ -622,5 +622,40 @@ TEST_F(GltfMalformed, APointLightOnAZeroScaleNodeKeepsItsPosition) {
     expectQuadLoadError("has a degenerate direction");
 }
 
+TEST_F(GltfMalformed, MorphTargetsAreAppliedAtTheirDefaultWeights) {
+    // One target moving every vertex by (0, 0, 2), and its NORMAL unused. Weight 0 (the default)
+    // draws the base quad; the mesh's weight 0.25 moves it by 0.5; a node's weight overrides.
+    const float deltas[12] = {0, 0, 2, 0, 0, 2, 0, 0, 2, 0, 0, 2};
+    const size_t offset = quad.bin.size();
+    quad.bin.resize(offset + sizeof deltas);
+    std::memcpy(quad.bin.data() + offset, deltas, sizeof deltas);
+    quad.doc["buffers"][0]["byteLength"] = quad.bin.size();
+    quad.doc["bufferViews"].push_back(bufferViewJson(offset, sizeof deltas));
+    quad.doc["accessors"].push_back(accessorJson(2, kFloat, 4, "VEC3"));
+    quad.doc["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 2}}};
+    const auto zOf = [&](const Scene& scene) {
+        float lowest = 1e9f, highest = -1e9f;
+        for (const Vertex& v : scene.vertices) {
+            lowest = std::min(lowest, v.position.z);
+            highest = std::max(highest, v.position.z);
+        }
+        EXPECT_EQ(lowest, highest);
+        return lowest;
+    };
+    EXPECT_EQ(zOf(loadGltf(quad.write(dir.path()))), 0.0f);  // no weights: 0
+    quad.doc["meshes"][0]["weights"] = {0.25};
+    EXPECT_EQ(zOf(loadGltf(quad.write(dir.path()))), 0.5f);
+    quad.doc["nodes"][0]["weights"] = {1.0};
+    EXPECT_EQ(zOf(loadGltf(quad.write(dir.path()))), 2.0f);
+    // A sparse target is not read: one warning, the base shape.
+    quad.doc["accessors"][2].erase("bufferView");
+    quad.doc["accessors"][2]["sparse"] = {{"count", 1}, {"indices", {{"bufferView", 1}, {"componentType", 5123}}},
+                                          {"values", {{"bufferView", 2}}}};
+    WarningCapture capture;
+    const Scene sparse = loadGltf(quad.write(dir.path()));
+    ASSERT_EQ(capture.warnings.size(), 1u);
+    EXPECT_NE(capture.warnings[0].find("1 weighted morph target(s) use sparse accessors"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace punctual
