@@ -14,7 +14,7 @@ target_link_libraries(punctual_gltf_libraries PUBLIC nlohmann_json::nlohmann_jso
 
 # After the libraries: one executable per target.
 function(punctual_add_fuzz_targets)
-  foreach(target gltf options)
+  foreach(target gltf gltf_json options)
     add_executable(punctual_fuzz_${target} ${CMAKE_SOURCE_DIR}/tests/fuzz/fuzz_${target}.cpp)
     target_compile_options(punctual_fuzz_${target} PRIVATE ${PUNCTUAL_WARNINGS})
     target_link_libraries(punctual_fuzz_${target} PRIVATE punctual_options)

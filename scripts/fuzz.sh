@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (tests/fuzz) with clang into build-fuzz/ and runs both at once for
-# a bounded time, the glTF loader's and the render options parser's:
+# a bounded time, all at once: the glTF loader's on bytes (gltf) and on JSON built structure first
+# (gltf_json: deep nesting, huge numbers, long strings), and the render options parser's:
 #   scripts/fuzz.sh [SECONDS]      (default 60)
 # Installs clang and its sanitizer runtimes first (install-deps.sh --fuzz). Each target starts
 # from its seeds (tests/fuzz/corpus/<target>, plus data/small-room.gltf for glTF) and the inputs
@@ -19,25 +20,25 @@ CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DP
   -DPUNCTUAL_WERROR="$werror" >/dev/null
 cmake --build "$build" -j"$(nproc)"
 
-mkdir -p "$build/corpus/gltf" "$build/corpus/options" "$build/crashes"
+mkdir -p "$build/corpus/gltf" "$build/corpus/gltf_json" "$build/corpus/options" "$build/crashes"
 cp "$root/data/small-room.gltf" "$build/corpus/gltf/"
 
 run() {  # TARGET: fuzz it for $seconds, output in build-fuzz/TARGET.log
   local target=$1
   # The first corpus folder receives new inputs; the seeds are only read.
   "$build/punctual_fuzz_$target" -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 \
-    -dict="$root/tests/fuzz/$target.dict" -artifact_prefix="$build/crashes/$target-" -print_final_stats=1 \
+    $([ -f "$root/tests/fuzz/$target.dict" ] && echo "-dict=$root/tests/fuzz/$target.dict") -artifact_prefix="$build/crashes/$target-" -print_final_stats=1 \
     "$build/corpus/$target" "$root/tests/fuzz/corpus/$target" </dev/null >"$build/$target.log" 2>&1
 }
 
 status=0
 pids=()
-for target in gltf options; do
+for target in gltf gltf_json options; do
   run "$target" &
   pids+=($!)
 done
 i=0
-for target in gltf options; do
+for target in gltf gltf_json options; do
   if wait "${pids[$i]}"; then
     echo "fuzz $target: $(grep -E '^stat::number_of_executed_units' "$build/$target.log" | awk '{print $2}') inputs" \
          "in ${seconds} s, no failure"
