@@ -28,6 +28,7 @@
 #include "metrics/image_diff.h"
 #include "reference/embree_scene.h"
 #include "render/renderer.h"
+#include "scene/input_file.h"
 #include "scene/light_generator.h"
 #include "vk/context.h"
 
@@ -162,11 +163,19 @@ BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
     return parsed;
 }
 
+// What a bench file may weigh: bench/input_file.py's MAX_BYTES (the script reads with the same cap).
+constexpr uint64_t kMaxBenchFileBytes = 256ull << 20;
+
 // `punctual bench --compare DIR_A DIR_B --out-dir DIR`: bench/compare_runs.py writes the page.
 int runCompare(const BenchArgs& args) {
+    // The files compare_runs.py reads, by the one reader's rules (scene/input_file.h, and
+    // bench/input_file.py on the script's side): a FIFO or a folder is refused here, never opened.
     for (const std::string& dir : {args.compare->first, args.compare->second}) {
-        if (!std::filesystem::is_regular_file(dir + "/results.json")) {
-            throw Error(dir, "not a bench folder (no results.json)");
+        for (const char* name : {"results.json", "results.csv"}) {
+            const std::string path = dir + "/" + name;
+            const std::string problem = regularFileProblem(path, kMaxBenchFileBytes);
+            if (problem == "no such file") throw Error(dir, std::string("not a bench folder (no ") + name + ")");
+            if (!problem.empty()) throw Error(path, "cannot be read (" + problem + ")");
         }
     }
     if (access("/usr/bin/python3", X_OK) != 0) throw Error("--compare", "needs /usr/bin/python3 (apt-get install python3)");
@@ -174,7 +183,10 @@ int runCompare(const BenchArgs& args) {
     const int status = runProgram("/usr/bin/python3", {script, args.compare->first, args.compare->second, *args.outDir});
     // Status 1: bad input, which the script has named in its one line (file and problem).
     if (status == 1) return 1;
-    if (status != 0) throw Error("--compare", script + " exited with status " + std::to_string(status));
+    if (status != 0) {
+        endAsTheChildEnded(status);
+        throw Error("--compare", script + " exited with status " + std::to_string(status));
+    }
     std::printf("bench: compared %s with %s; wrote %s/compare.html\n", args.compare->first.c_str(),
                 args.compare->second.c_str(), args.outDir->c_str());
     return 0;
@@ -437,7 +449,10 @@ int runBenchCommand(const std::vector<std::string>& args) {
         std::printf("bench: no charts: %s\n", why.c_str());
         return 0;
     }
-    if (!drawBenchReport(*bench.outDir, failureStudy, why)) throw Error("charts", why + " (results.csv and results.json are written)");
+    if (!drawBenchReport(*bench.outDir, failureStudy, why)) {
+        if (why.empty()) return 1;  // the chart script's one line named the file and the problem
+        throw Error("charts", why + " (results.csv and results.json are written)");
+    }
     std::printf("bench: wrote %s/index.html\n", bench.outDir->c_str());
     return 0;
 }

@@ -55,6 +55,7 @@ struct UriFiles {
     std::string baseDir;
     uint64_t maxBytes = 0;
     std::map<std::string, std::string> problems;  // path tinygltf asked for -> readRegularFile's problem
+    std::map<std::string, uint64_t> bufferBytes;   // a buffer file's path -> its byteLength (its read's limit)
 };
 
 // Checks tinygltf 2.7 does not make before it acts on the data: an image stored in a buffer

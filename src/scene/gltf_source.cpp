@@ -400,7 +400,17 @@ std::string uriExpandFilePath(const std::string& path, void* /*user*/) { return 
 
 bool uriReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     auto& files = *static_cast<UriFiles*>(user);
-    const std::string problem = readRegularFile(path, files.maxBytes, *out);
+    // A buffer's file holds exactly its byteLength (tinygltf checks after reading): a larger one
+    // is refused by its size, unread.
+    std::string problem;
+    uint64_t maxBytes = files.maxBytes;
+    if (const auto buffer = files.bufferBytes.find(path); buffer != files.bufferBytes.end()) {
+        maxBytes = buffer->second;
+        struct stat info {};
+        if (::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode) && uint64_t(info.st_size) > maxBytes)
+            problem = std::to_string(info.st_size) + " bytes, more than the buffer's byteLength " + std::to_string(maxBytes);
+    }
+    if (problem.empty()) problem = readRegularFile(path, maxBytes, *out);
     if (problem.empty()) return true;
     files.problems[path] = problem;
     if (err) *err += problem;
@@ -429,7 +439,14 @@ UriFiles::UriFiles(const nlohmann::json& gltf, std::string sceneBaseDir) : baseD
     const auto buffers = gltf.find("buffers");
     if (buffers != gltf.end() && buffers->is_array())
         for (const nlohmann::json& buffer : *buffers)
-            if (buffer.is_object()) maxBytes = std::max(maxBytes, unsignedMember(buffer, "byteLength").value_or(0));
+            if (buffer.is_object()) {
+                const uint64_t length = unsignedMember(buffer, "byteLength").value_or(0);
+                maxBytes = std::max(maxBytes, length);
+                if (buffer.contains("uri") && buffer["uri"].is_string()) {
+                    const std::string uri = buffer["uri"].get<std::string>();
+                    if (!startsWith(uri, "data:")) bufferBytes[joinedPath(baseDir, decodedUri(uri))] = length;
+                }
+            }
 }
 
 tinygltf::FsCallbacks UriFiles::callbacks() {

@@ -2,7 +2,10 @@
 // the timings (lavapipe timings are CPU timings and vary from run to run).
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -245,6 +248,23 @@ TEST(BenchCli, CompareWritesTheSideBySidePage) {
     EXPECT_NE(csv.find("mix-tiled-64s32p"), std::string::npos) << csv;
     EXPECT_NE(csv.find("0.25"), std::string::npos) << csv;  // forward: 2.5 / 10
     EXPECT_TRUE(std::filesystem::exists(out + "/compare.html"));
+
+    // A FIFO or a folder in place of a results file is refused in one line, never opened (issue 30:
+    // the C++ side checked results.json while the script blocked forever opening results.csv).
+    std::filesystem::remove(a + "/results.csv");
+    ASSERT_EQ(::mkfifo((a + "/results.csv").c_str(), 0600), 0);
+    std::filesystem::remove(b + "/results.json");
+    std::filesystem::create_directories(b + "/results.json");
+    for (const auto& [args, mention] :
+         {std::pair<std::string, std::string>{"bench --compare '" + a + "' '" + a + "' --out-dir '" + out + "'",
+                                              "results.csv: cannot be read (a named pipe (FIFO), not a regular file)"},
+          {"bench --compare '" + b + "' '" + b + "' --out-dir '" + out + "'",
+           "results.json: cannot be read (a directory, not a regular file)"}}) {
+        const auto started = std::chrono::steady_clock::now();
+        const RunResult bounded = runPunctual(folder, args);
+        EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(30)) << args;
+        testing::expectOneClearError(bounded, args, mention);
+    }
 }
 
 TEST(BenchCli, BadOptionsFailCleanly) {

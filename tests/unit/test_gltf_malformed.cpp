@@ -657,5 +657,10 @@ TEST_F(GltfMalformed, MorphTargetsAreAppliedAtTheirDefaultWeights) {
     EXPECT_NE(capture.warnings[0].find("1 weighted morph target(s) use sparse accessors"), std::string::npos);
 }
 
+TEST_F(GltfMalformed, ABufferFileLargerThanItsByteLengthIsRefusedUnread) {
+    quad.bin.resize(quad.bin.size() + 1000);  // byteLength stays 60
+    expectQuadLoadError("buffer 0: 'scene.bin' cannot be read (1060 bytes, more than the buffer's byteLength 60)");
+}
+
 }  // namespace
 }  // namespace punctual
