@@ -530,8 +530,25 @@ bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* /*err*/, s
     return true;
 }
 
+namespace {
+
+// tinygltf quotes a data URI whole in its messages ("Failed to decode 'data:...'"): keep its
+// head, say how long the rest was.
+std::string withShortDataUris(std::string line) {
+    constexpr size_t kKept = 40;
+    for (size_t at = line.find("data:"); at != std::string::npos; at = line.find("data:", at + kKept)) {
+        const size_t end = std::min(line.find_first_of("' \"", at), line.size());
+        if (end - at <= kKept + 16) continue;
+        line.replace(at + kKept, end - at - kKept, "... (" + std::to_string(end - at) + " characters)");
+    }
+    return line;
+}
+
+}  // namespace
+
 std::string describeLoadError(const std::string& tinygltfError, const nlohmann::json& gltf) {
-    const std::vector<std::string> lines = splitLines(tinygltfError);
+    std::vector<std::string> lines = splitLines(tinygltfError);
+    for (std::string& line : lines) line = withShortDataUris(std::move(line));
     for (const std::string& line : lines) {
         // Messages from tinygltf's LoadExternalFile; for buffers they are errors.
         if (startsWith(line, "File not found : ")) {

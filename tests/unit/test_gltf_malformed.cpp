@@ -601,6 +601,18 @@ TEST_F(GltfMalformed, ADataUriOfTheWrongLengthNamesBothLengths) {
     expectQuadLoadError("holds 46 bytes");
     quad.doc["buffers"][0]["uri"] = "data:application/octet-stream;base64,AAA";
     expectQuadLoadError("has 3 characters, not a multiple of 4");
+    // The right length of text that is not base64: tinygltf's message, with the URI cut short.
+    quad.doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + std::string(2000, '!');
+    quad.doc["buffers"][0]["byteLength"] = 1500;
+    try {
+        loadGltf(quad.write(dir.path()));
+        ADD_FAILURE() << "text that is not base64 was accepted";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("data:application/octet-stream;base64,!!!... (2037 characters)"), std::string::npos)
+            << message;
+        EXPECT_LT(message.size(), 300u) << message;
+    }
 }
 
 TEST_F(GltfMalformed, ABrightLightWithoutARangeIsNotBlamedForItsRange) {
