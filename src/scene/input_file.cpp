@@ -72,6 +72,21 @@ std::string openRegularFile(const std::string& path, uint64_t maxBytes, int& fil
     return "";
 }
 
+// Reads into `bytes` until it is full or the file ends, then trims it to what was read. Returns
+// the problem (a read error), or empty.
+std::string fill(int file, std::vector<unsigned char>& bytes) {
+    size_t filled = 0;
+    while (filled < bytes.size()) {
+        const ssize_t got = ::read(file, bytes.data() + filled, bytes.size() - filled);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) return readProblem(errno, bytes);
+        if (got == 0) break;
+        filled += size_t(got);
+    }
+    bytes.resize(filled);
+    return "";
+}
+
 }  // namespace
 
 std::string regularFileProblem(const std::string& path, uint64_t maxBytes) {
@@ -98,16 +113,7 @@ std::string readRegularFileHead(const std::string& path, uint64_t maxBytes, size
     const FileDescriptor file(descriptor);
     if (!problem.empty()) return problem;
     bytes.resize(headBytes);
-    size_t filled = 0;
-    while (filled < bytes.size()) {
-        const ssize_t got = ::read(file.get(), bytes.data() + filled, bytes.size() - filled);
-        if (got < 0 && errno == EINTR) continue;
-        if (got < 0) return readProblem(errno, bytes);
-        if (got == 0) break;
-        filled += size_t(got);
-    }
-    bytes.resize(filled);
-    return "";
+    return fill(file.get(), bytes);
 }
 
 std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vector<unsigned char>& bytes) {
@@ -121,16 +127,8 @@ std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vec
     // st_size is a hint (a file may grow or shrink while we read, and some kernel files report
     // 0): read what it announces, then on until end of file, but never past maxBytes.
     bytes.resize(size_t(info.st_size));
-    size_t filled = 0;
-    while (filled < bytes.size()) {
-        const ssize_t got = ::read(file.get(), bytes.data() + filled, bytes.size() - filled);
-        if (got < 0 && errno == EINTR) continue;
-        if (got < 0) return readProblem(errno, bytes);
-        if (got == 0) break;  // shrank
-        filled += size_t(got);
-    }
-    bytes.resize(filled);
-    if (filled < size_t(info.st_size)) return "";
+    if (std::string failure = fill(file.get(), bytes); !failure.empty()) return failure;
+    if (bytes.size() < size_t(info.st_size)) return "";  // shrank
     std::vector<unsigned char> chunk(65536);
     while (true) {
         const ssize_t got = ::read(file.get(), chunk.data(), chunk.size());

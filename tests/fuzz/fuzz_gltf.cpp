@@ -40,22 +40,11 @@ void setUpFrame(const punctual::Scene& scene) {
     (void)punctual::buildPerObjectLightLists(scene, lights);
 }
 
-void removeFolder() {
-    std::error_code ignored;
-    std::filesystem::remove_all(gFolder, ignored);
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
-    std::string pattern = (std::filesystem::temp_directory_path() / "punctual-fuzz-gltf-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) {
-        std::perror("fuzz_gltf: mkdtemp");
-        std::abort();
-    }
-    gFolder = pattern;
+    gFolder = punctual::fuzzing::makeInputFolder("gltf");
     gInputPath = gFolder + "/input.gltf";
-    std::atexit(removeFolder);
     // Warnings (an undecodable texture, a skipped primitive) are part of the contract, not news.
     punctual::log::setSink([](const std::string&, const std::string&) {});
     return 0;

@@ -165,22 +165,11 @@ std::string buildDocument(Choices& choices) {
     return text;
 }
 
-void removeFolder() {
-    std::error_code ignored;
-    std::filesystem::remove_all(gFolder, ignored);
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
-    std::string pattern = (std::filesystem::temp_directory_path() / "punctual-fuzz-gltf-json-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) {
-        std::perror("fuzz_gltf_json: mkdtemp");
-        std::abort();
-    }
-    gFolder = pattern;
+    gFolder = punctual::fuzzing::makeInputFolder("gltf-json");
     gInputPath = gFolder + "/input.gltf";
-    std::atexit(removeFolder);
     punctual::log::setSink([](const std::string&, const std::string&) {});
     return 0;
 }

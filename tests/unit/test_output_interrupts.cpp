@@ -14,7 +14,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -24,6 +23,7 @@
 #include "core/input_files_read.h"
 #include "core/output_files.h"
 #include "core/output_target.h"
+#include "gltf_test_files.h"
 #include "scene/input_file.h"
 
 namespace punctual {
@@ -31,27 +31,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class Scratch {
+// A fresh folder per test (gltf_test_files.h), with names in it.
+class Scratch : public unit_testing::TempDir {
 public:
-    Scratch() {
-        std::random_device random;
-        path_ = fs::temp_directory_path() / ("punctual_interrupts_" + std::to_string(random()));
-        fs::create_directories(path_);
-    }
-    ~Scratch() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    Scratch(const Scratch&) = delete;
-    Scratch& operator=(const Scratch&) = delete;
-    std::string file(const std::string& name) const { return (path_ / name).string(); }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
+    std::string file(const std::string& name) const { return (path() / name).string(); }
 };
-
-void writeText(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 std::string readText(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -59,6 +43,8 @@ std::string readText(const std::string& path) {
     s << in.rdbuf();
     return s.str();
 }
+
+void writeText(const std::string& path, const std::string& text) { unit_testing::writeFile(path, text); }
 
 // Every name in the folder, recursively, relative to it (temporaries are hidden ".NAME.XXXXXX").
 std::vector<std::string> listing(const fs::path& folder) {
