@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (tests/fuzz) with clang into build-fuzz/ and runs both at once for
-# a bounded time, all at once: the glTF loader's on bytes (gltf) and on JSON built structure first
+# Builds the libFuzzer targets (tests/fuzz) with clang into build-fuzz/ and runs them side by side
+# for a bounded time: the glTF loader's on bytes (gltf) and on JSON built structure first
 # (gltf_json: deep nesting, huge numbers, long strings), and the render options parser's:
 #   scripts/fuzz.sh [SECONDS]      (default 60)
 # Installs clang and its sanitizer runtimes first (install-deps.sh --fuzz). Each target starts
