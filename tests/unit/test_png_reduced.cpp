@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <png.h>
+#include <webp/encode.h>
 
 #include <cmath>
 #include <string>
@@ -133,6 +134,30 @@ TEST(ImageDecoding, AnImageTooLargeToDecodeWholeIsDecodedReducedOrRefusedByItsHe
         ASSERT_EQ(image.rgba[i + 1], 100) << i;
         ASSERT_EQ(image.rgba[i + 2], 50) << i;
         ASSERT_EQ(image.rgba[i + 3], 255) << i;
+    }
+    // The same as a WebP: libwebp scales while decoding, straight to the fitted size.
+    {
+        const std::vector<uint8_t> rgba = [] {
+            std::vector<uint8_t> pixels(size_t(4200) * 4100 * 4);
+            for (size_t i = 0; i < pixels.size(); i += 4) {
+                pixels[i] = 200;
+                pixels[i + 1] = 100;
+                pixels[i + 2] = 50;
+                pixels[i + 3] = 255;
+            }
+            return pixels;
+        }();
+        uint8_t* encoded = nullptr;
+        const size_t size = WebPEncodeLosslessRGBA(rgba.data(), 4200, 4100, 4200 * 4, &encoded);
+        ASSERT_GT(size, 0u);
+        const std::vector<unsigned char> webp(encoded, encoded + size);
+        WebPFree(encoded);
+        ASSERT_TRUE(decodeFittedRgba8(webp.data(), webp.size(), 256, image, failure)) << failure;
+        EXPECT_EQ(image.original.width, 4200u);
+        EXPECT_EQ(image.size.width, 256u);
+        EXPECT_EQ(image.size.height, 250u);
+        ASSERT_EQ(image.rgba.size(), size_t(256) * 250 * 4);
+        EXPECT_EQ(std::vector<uint8_t>(image.rgba.begin(), image.rgba.begin() + 4), (std::vector<uint8_t>{200, 100, 50, 255}));
     }
     // A TGA header declaring 16384 x 16384 (1 GiB): no reduced decoder, refused before decoding.
     std::vector<unsigned char> tga(18 + 16, 0);
