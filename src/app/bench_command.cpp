@@ -11,25 +11,22 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/bench_failures.h"
-#include "app/bench_plan.h"
-#include "app/bench_provenance.h"
-#include "app/bench_report.h"
-#include "app/bench_rows.h"
 #include "app/options.h"
 #include "app/output_paths.h"
 #include "app/scene_source.h"
+#include "bench/bench_failures.h"
+#include "bench/bench_plan.h"
+#include "bench/bench_provenance.h"
+#include "bench/bench_report.h"
+#include "bench/bench_rows.h"
+#include "bench/bench_run.h"
 #include "core/error.h"
-#include "core/memory_usage.h"
 #include "core/output_files.h"
 #include "core/output_folder.h"
 #include "lights/shadow_filters.h"
-#include "metrics/heatmap.h"
-#include "metrics/image_diff.h"
-#include "reference/embree_scene.h"
+#include "metrics/round_statistics.h"
 #include "render/renderer.h"
 #include "scene/input_file.h"
-#include "scene/light_generator.h"
 #include "vk/context.h"
 
 namespace punctual::app {
@@ -48,7 +45,7 @@ std::string usage() {
         if (filter.quickBench) quickFilters.emplace_back(filter.name);
     }
     std::string series;
-    for (const BenchSeries& s : benchSeries()) series += "  " + std::string(s.name) + ": " + s.description + "\n";
+    for (const bench::BenchSeries& s : bench::benchSeries()) series += "  " + std::string(s.name) + ": " + s.description + "\n";
     return R"(usage: punctual bench [SCENE|--scene NAME] [--quick] --out-dir DIR [--size WxH] [--rounds R]
                      [--best-of K] [--seed N] [--series NAME[,NAME...]]
        punctual bench --compare DIR_A DIR_B --out-dir DIR
@@ -77,25 +74,6 @@ configuration each pass's time in both and the ratio, and the counters, which sh
 Default size: 1280x720 (quick: 320x180).
 )";
 }
-
-class ProgressBar {
-public:
-    explicit ProgressBar(size_t total) : total_(total), terminal_(isatty(2) != 0) {}
-    void step(const std::string& what) {
-        ++done_;
-        if (!terminal_) return;
-        const int width = 30;
-        const int filled = int(double(done_) / double(std::max<size_t>(total_, 1)) * width);
-        std::fprintf(stderr, "\r[%s%s] %zu/%zu %-40.40s", std::string(size_t(filled), '#').c_str(),
-                     std::string(size_t(width - std::min(filled, width)), '.').c_str(), done_, total_, what.c_str());
-        if (done_ == total_) std::fputc('\n', stderr);
-    }
-
-private:
-    size_t total_;
-    size_t done_ = 0;
-    bool terminal_;
-};
 
 struct BenchArgs {
     std::vector<std::string> renderArgs;
@@ -139,7 +117,7 @@ BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
         } else if (arg == "--out-dir") {
             parsed.outDir = value(i);
         } else if (arg == "--series") {
-            parsed.series = parseBenchSeries(value(i));
+            parsed.series = bench::parseBenchSeries(value(i));
         } else if (arg == "--rounds") {
             parsed.rounds = uint32_t(parseCount(arg, value(i), 1, 1000));
         } else if (arg == "--best-of") {
@@ -179,12 +157,12 @@ int runCompare(const BenchArgs& args) {
         }
     }
     if (access("/usr/bin/python3", X_OK) != 0) throw Error("--compare", "needs /usr/bin/python3 (apt-get install python3)");
-    const std::string script = benchScriptDir() + "/compare_runs.py";
-    const int status = runProgram("/usr/bin/python3", {script, args.compare->first, args.compare->second, *args.outDir});
+    const std::string script = bench::benchScriptDir() + "/compare_runs.py";
+    const int status = bench::runProgram("/usr/bin/python3", {script, args.compare->first, args.compare->second, *args.outDir});
     // Status 1: bad input, which the script has named in its one line (file and problem).
     if (status == 1) return 1;
     if (status != 0) {
-        endAsTheChildEnded(status);
+        bench::endAsTheChildEnded(status);
         throw Error("--compare", script + " exited with status " + std::to_string(status));
     }
     std::printf("bench: compared %s with %s; wrote %s/compare.html\n", args.compare->first.c_str(),
@@ -192,17 +170,63 @@ int runCompare(const BenchArgs& args) {
     return 0;
 }
 
-// One configuration while its group is measured: its scene, renderer and rounds.
-struct Measurement {
-    BenchConfig config;
-    std::unique_ptr<Scene> ownScene;  // generated lights: a copy of the bench's scene
-    const Scene* scene = nullptr;
-    const reference::EmbreeScene* geometry = nullptr;
-    std::unique_ptr<render::Renderer> renderer;
-    std::vector<render::PassTimings> rounds;  // one sample a round: the fastest of its frames
-    std::vector<double> frameTotals;          // every timed frame, for the run's frame noise
-    ImageRgba8 image;
-};
+
+
+// Writes results.csv, failures.csv and results.json (which lists every file of the run, so the
+// next run into DIR removes the images it does not write again) and commits them all.
+void commitResults(OutputFiles& outputs, const std::string& outDir, const bench::BenchRecord& record,
+                   const std::vector<bench::FailureRow>& failures, nlohmann::json document) {
+    const std::vector<std::string> columns = bench::benchColumns(record.passes);
+    document["configurations"] = bench::resultsConfigurations(record, columns);
+    outputs.add(outDir + "/results.csv", bench::resultsCsv(record, columns));
+    outputs.add(outDir + "/failures.csv", bench::failuresCsv(failures));
+    const std::vector<std::string> files = outputFolderFiles(outputs, outDir, kFolderLayout);
+    document["files"] = files;
+    outputs.add(outDir + "/results.json", document.dump(2) + "\n");
+    prepareOutputFolder(outputs, outDir, kFolderLayout, files);
+    outputs.commit();
+}
+
+// The variant and pass names, so the chart scripts list what this run has without a list of their
+// own; where the numbers come from; how noisy the run was.
+nlohmann::json resultsDocument(const vk::Context& context, const Scene& scene, const RenderOptions& options,
+                               const BenchArgs& bench, const bench::BenchRunSettings& run,
+                               const bench::BenchRecord& record, const std::vector<std::string>& args) {
+    return {{"scene", scene.source},
+            {"device", context.deviceName()},
+            {"size", {{"width", options.width}, {"height", options.height}}},
+            {"quick", bench.quick},
+            {"methods", render::methodNames()},
+            {"shadow_filters", shadowFilterNames()},
+            {"point_layouts", pointShadowLayoutNames()},
+            {"passes", record.passes},
+            {"provenance", bench::benchProvenance(context, args, {scene.source, scene.triangleCount()}, options.width,
+                                                  options.height)},
+            {"noise",
+             {{"rounds", run.rounds},
+              {"best_of", run.bestOf},
+              {"seed", bench.seed},
+              {"median_cv", medianOf(record.frameCvs)},
+              {"frame_median_cv", medianOf(record.singleFrameCvs)},
+              {"flag_limit", bench::kSpreadFlagLimit},
+              {"flagged", record.flagged}}}};
+}
+
+// The charts and index.html, when python3-matplotlib is there; 1 when a chart script failed and
+// named the problem itself.
+int drawCharts(const std::string& outDir, bool failureStudy) {
+    std::string why;
+    if (!bench::chartsAvailable(why)) {
+        std::printf("bench: no charts: %s\n", why.c_str());
+        return 0;
+    }
+    if (!bench::drawBenchReport(outDir, failureStudy, why)) {
+        if (why.empty()) return 1;  // the chart script's one line named the file and the problem
+        throw Error("charts", why + " (results.csv and results.json are written)");
+    }
+    std::printf("bench: wrote %s/index.html\n", outDir.c_str());
+    return 0;
+}
 
 }  // namespace
 
@@ -214,247 +238,53 @@ int runBenchCommand(const std::vector<std::string>& args) {
     }
     if (!bench.outDir) throw Error("--out-dir", "bench needs an output folder (--out-dir DIR)");
     if (bench.compare) return runCompare(bench);
-    checkOutputFolder(*bench.outDir, kFolderLayout);
+    const std::string& outDir = *bench.outDir;
+    checkOutputFolder(outDir, kFolderLayout);
 
-    RenderOptions options = parseRenderOptions(bench.renderArgs);
+    bench::BenchRunSettings run;
+    run.options = parseRenderOptions(bench.renderArgs);
+    RenderOptions& options = run.options;
     const bool sizeGiven = std::find(bench.renderArgs.begin(), bench.renderArgs.end(), "--size") != bench.renderArgs.end();
     if (bench.quick && !sizeGiven) {
         options.width = 320;
         options.height = 180;
     }
-    const uint32_t rounds = bench.rounds ? bench.rounds : (bench.quick ? 3u : 5u);
-    const uint32_t bestOf = bench.bestOf ? bench.bestOf : (bench.quick ? kQuickBestOf : kDefaultBestOf);
-    Scene baseScene = loadSceneForOptions(options);
-    checkOutputFolder(*bench.outDir, kFolderLayout);  // again, now that the files the scene reads are known
+    run.rounds = bench.rounds ? bench.rounds : (bench.quick ? 3u : 5u);
+    run.bestOf = bench.bestOf ? bench.bestOf : (bench.quick ? bench::kQuickBestOf : bench::kDefaultBestOf);
+    run.seed = bench.seed;
+    run.outDir = outDir;
+    const Scene baseScene = loadSceneForOptions(options);
+    checkOutputFolder(outDir, kFolderLayout);  // again, now that the files the scene reads are known
     vk::Context context(contextOptionsFrom(options));
-    const reference::EmbreeScene embree(baseScene);  // geometry only: shared by every configuration
-    // The generated lights: the largest set once; each configuration takes its first lights at its
-    // range (nested sets, docs/BENCH_RESULTS.md).
-    Scene fullSet = baseScene;
-    replaceLights(fullSet, kBenchSpots, kBenchPoints, 1);
-    // The series with built-in scenes of their own (the cascades' outdoor scene, the rooms at each
-    // size): each built once, on first use, its Embree scene only when a configuration validates
-    // against it. A sized scene replaces the previous size's, so memory holds one size.
-    struct OwnScene {
-        Scene scene;
-        std::unique_ptr<reference::EmbreeScene> embree;
-    };
-    std::map<std::pair<const BuiltinScene*, uint64_t>, OwnScene> ownScenes;
 
     auto wanted = [&](const std::string& series) {
         return !bench.series || std::find(bench.series->begin(), bench.series->end(), series) != bench.series->end();
     };
-    std::vector<BenchConfig> configs;
-    for (const BenchConfig& config : benchPlan(bench.quick)) {
+    std::vector<bench::BenchConfig> configs;
+    for (const bench::BenchConfig& config : bench::benchPlan(bench.quick)) {
         if (wanted(config.series)) configs.push_back(config);
     }
     const bool failureStudy = wanted("failures");
-    ProgressBar progress(configs.size() + (failureStudy ? failureStudySize(context, bench.quick) : 0));
+    bench::ProgressBar progress(configs.size() + (failureStudy ? bench::failureStudySize(context, bench.quick) : 0));
     OutputFiles outputs;
-    std::vector<BenchRow> rows;
-    std::vector<double> frameCvs;        // each configuration's CV over its rounds
-    std::vector<double> singleFrameCvs;  // each configuration's CV over every timed frame
-    uint32_t flagged = 0;
-    std::vector<std::string> passes;  // the frame's pass names, from the first renderer
-    std::map<std::string, ImageRgba8> bruteImages;  // by what brute force's image is compared on
-    std::map<std::string, nlohmann::json> shadowLights;  // validated configurations: per-light counts
-    std::map<std::string, nlohmann::json> sunCascades;   // validated configurations with a sun: per cascade
-    std::map<std::string, nlohmann::json> frameSamples;  // every configuration: its timed frames' totals
-
-    uint32_t groupIndex = 0;
-    for (size_t first = 0; first < configs.size(); ++groupIndex) {
-        size_t end = first;
-        while (end < configs.size() && benchGroupKey(configs[end]) == benchGroupKey(configs[first])) ++end;
-        // The group's renderers, all alive while its rounds run.
-        std::vector<Measurement> group;
-        for (size_t c = first; c < end; ++c) {
-            Measurement m;
-            m.config = configs[c];
-            const BenchConfig& config = m.config;
-            if (config.scene) {
-                const std::pair key{config.scene, config.triangles};
-                auto own = ownScenes.find(key);
-                if (own == ownScenes.end()) {
-                    if (config.triangles) {  // a new size: the previous one's memory goes first
-                        std::erase_if(ownScenes, [&](const auto& entry) { return entry.first.first == config.scene; });
-                        resetPeakResident();
-                    }
-                    own = ownScenes
-                              .emplace(key, OwnScene{makeBuiltinScene(*config.scene, config.triangles
-                                                                                        ? std::optional(config.triangles)
-                                                                                        : std::nullopt),
-                                                     nullptr})
-                              .first;
-                }
-                OwnScene& made = own->second;
-                if (config.validateShadows && !made.embree) made.embree = std::make_unique<reference::EmbreeScene>(made.scene);
-                m.scene = &made.scene;
-                m.geometry = made.embree.get();
-            } else {
-                m.ownScene = std::make_unique<Scene>(fullSet);
-                setLightRanges(*m.ownScene, config.lightRange);
-                keepFirstLights(*m.ownScene, config.spot, config.point);
-                m.scene = m.ownScene.get();
-                m.geometry = &embree;
-            }
-            render::RenderSettings settings = renderSettingsFrom(options);
-            if (config.width) {
-                settings.width = config.width;
-                settings.height = config.height;
-            }
-            settings.method = config.method;
-            settings.coarseTiles = config.coarseTiles;
-            settings.shadows = config.shadows;
-            settings.collectLightStats = true;  // rendered apart, untimed (addCounters)
-            settings.collectShadowFactors = config.validateShadows;
-            settings.warnReducedShadows = false;  // recorded in shadow_reduced_views
-            m.renderer = std::make_unique<render::Renderer>(context, *m.scene, settings);
-            m.renderer->render(1, 0);  // warm-up: pipelines compiled, memory touched
-            group.push_back(std::move(m));
-        }
-        for (uint32_t round = 0; round < rounds; ++round) {
-            for (uint32_t i : roundOrder(uint32_t(group.size()), bench.seed, groupIndex, round)) {
-                // The round's visit: bestOf frames back to back, the fastest per pass kept.
-                std::vector<render::PassTimings> frames;
-                for (uint32_t frame = 0; frame < bestOf; ++frame) {
-                    render::FrameResult result = group[i].renderer->render(1, 0);
-                    frames.push_back(result.framesMs.front());
-                    group[i].frameTotals.push_back(result.framesMs.front().total);
-                    group[i].image = std::move(result.image);
-                }
-                group[i].rounds.push_back(fastestPerPass(frames));
-            }
-        }
-        for (Measurement& m : group) {
-            const BenchConfig& config = m.config;
-            render::Renderer& renderer = *m.renderer;
-            if (passes.empty()) passes = renderer.passNames();
-            BenchRow row;
-            addConfiguration(row, config, *m.scene, renderer, rounds, bestOf);
-            const RoundSummary frame = addTimings(row, m.rounds);
-            frameCvs.push_back(frame.cv);
-            singleFrameCvs.push_back(summarizeRounds(m.frameTotals).cv);
-            flagged += row["flagged"] == "1" ? 1u : 0u;
-            const LightStatsImage pixelWork = renderer.readLightStats();
-            addCounters(row, renderer, &pixelWork);
-            const std::string name = row["config"];
-            // The raw samples, in the order they were taken (round by round, bestOf frames each),
-            // so that a reader can look at the spread behind a flag.
-            frameSamples[name] = m.frameTotals;
-            // Sample heat maps: every method at the largest mixed count.
-            if (config.series == "mix" && config.spot == kBenchSpots) {
-                std::vector<uint8_t> background(pixelWork.covered.size());
-                for (size_t i = 0; i < background.size(); ++i) background[i] = pixelWork.covered[i] ? 0 : 1;
-                HeatmapOptions heatmap;
-                heatmap.title = std::string("lights tested per pixel: ") + render::methodName(config.method);
-                heatmap.maxValue = 32;
-                outputs.add(*bench.outDir + "/images/heatmap-" + render::methodName(config.method) + ".png",
-                            encodePng(renderHeatmap(pixelWork.tested, background, renderer.settings().width,
-                                                    renderer.settings().height, heatmap)));
-            }
-            // Brute force's image, for the other methods of the same frame.
-            const std::string bruteKey = config.series + "/" + std::to_string(config.spot) + "," +
-                                         std::to_string(config.point) + "/" + benchNumber(config.lightRange) + "/" +
-                                         row["width"] + "x" + row["height"] + (config.shadows.enabled ? "/s" : "") +
-                                         "/" + std::to_string(config.triangles);
-            if (!config.validateShadows && config.method == render::referenceMethod()) {
-                bruteImages[bruteKey] = m.image;
-            } else if (!config.validateShadows && bruteImages.count(bruteKey)) {
-                const ImageDifference difference = compareImages(m.image, bruteImages[bruteKey]);
-                row["image_error"] = benchNumber(difference.meanAbsolute);
-                row["pixels_off"] = benchNumber(difference.pixelsOff);
-            }
-            if (config.validateShadows && m.geometry) {
-                ShadowValidationRows validation = addShadowValidation(row, renderer, *m.geometry, *m.scene);
-                shadowLights[name] = validation.perLight;
-                if (!validation.perCascade.is_null()) sunCascades[name] = validation.perCascade;
-                if (validation.mismatch) {
-                    outputs.add(*bench.outDir + "/images/mismatch-" + name + "-light0.png", encodePng(*validation.mismatch));
-                }
-            }
-            m.renderer.reset();  // the group's memory goes as its rows are written
-            rows.push_back(std::move(row));
-            progress.step(name);
-        }
-        first = end;
-    }
+    bench::BenchRun measured(context, baseScene, run, outputs);
+    measured.measure(configs, progress);
     // Where methods fail: one scene per known failure, error against the provoking parameter.
-    const std::vector<FailureRow> failures =
-        failureStudy ? runFailureStudy(context, bench.quick, options.width, options.height,
-                                       [&](const std::string& what) { progress.step(what); })
-                     : std::vector<FailureRow>{};
+    const std::vector<bench::FailureRow> failures =
+        failureStudy ? bench::runFailureStudy(context, bench.quick, options.width, options.height,
+                                              [&](const std::string& what) { progress.step(what); })
+                     : std::vector<bench::FailureRow>{};
     if (context.validationMessageCount() > 0) {
         throw Error("vulkan", std::to_string(context.validationMessageCount()) + " validation message(s); no output written");
     }
-
-    const std::vector<std::string> columns = benchColumns(passes);
-    std::string csv;
-    for (size_t i = 0; i < columns.size(); ++i) csv += (i ? "," : "") + columns[i];
-    csv += "\n";
-    nlohmann::json json = nlohmann::json::array();
-    for (const BenchRow& row : rows) {
-        nlohmann::json entry;
-        for (size_t i = 0; i < columns.size(); ++i) {
-            const auto it = row.find(columns[i]);
-            const std::string value = it == row.end() ? "" : it->second;
-            // Only flag_reason holds free text; it never has a comma or a quote.
-            csv += (i ? "," : "") + value;
-            entry[columns[i]] = value;
-        }
-        const auto lightsIt = shadowLights.find(row.at("config"));
-        if (lightsIt != shadowLights.end()) entry["shadow_lights"] = lightsIt->second;
-        const auto cascadesIt = sunCascades.find(row.at("config"));
-        if (cascadesIt != sunCascades.end()) entry["sun_cascades"] = cascadesIt->second;
-        entry["frame_total_ms"] = frameSamples.at(row.at("config"));
-        csv += "\n";
-        json.push_back(entry);
-    }
-    // The variant and pass names, so the chart scripts list what this run has without a list of
-    // their own; where the numbers come from; how noisy the run was.
-    nlohmann::json document = {
-        {"scene", baseScene.source},
-        {"device", context.deviceName()},
-        {"size", {{"width", options.width}, {"height", options.height}}},
-        {"quick", bench.quick},
-        {"methods", render::methodNames()},
-        {"shadow_filters", shadowFilterNames()},
-        {"point_layouts", pointShadowLayoutNames()},
-        {"passes", passes},
-        {"provenance", benchProvenance(context, args, {baseScene.source, baseScene.triangleCount()}, options.width,
-                                       options.height)},
-        {"noise",
-         {{"rounds", rounds},
-          {"best_of", bestOf},
-          {"seed", bench.seed},
-          {"median_cv", medianOf(frameCvs)},
-          {"frame_median_cv", medianOf(singleFrameCvs)},
-          {"flag_limit", kSpreadFlagLimit},
-          {"flagged", flagged}}},
-        {"configurations", json}};
-    outputs.add(*bench.outDir + "/results.csv", csv);
-    outputs.add(*bench.outDir + "/failures.csv", failuresCsv(failures));
-    // results.json lists every file of this run, so the next run into DIR removes the images
-    // it does not write again (a full run's extra resolutions after a --quick one, say).
-    const std::vector<std::string> files = outputFolderFiles(outputs, *bench.outDir, kFolderLayout);
-    document["files"] = files;
-    outputs.add(*bench.outDir + "/results.json", document.dump(2) + "\n");
-    prepareOutputFolder(outputs, *bench.outDir, kFolderLayout, files);
-    outputs.commit();
+    const bench::BenchRecord& record = measured.record();
+    commitResults(outputs, outDir, record, failures,
+                  resultsDocument(context, baseScene, options, bench, run, record, args));
     std::printf("bench: %zu configurations on %s, %u rounds of the fastest of %u frames (noise: median CV %.1f%%, "
                 "%.1f%% frame to frame; %u flagged); wrote %s/results.csv\n",
-                rows.size(), baseScene.source.c_str(), rounds, bestOf, 100.0 * medianOf(frameCvs),
-                100.0 * medianOf(singleFrameCvs), flagged, bench.outDir->c_str());
-    std::string why;
-    if (!chartsAvailable(why)) {
-        std::printf("bench: no charts: %s\n", why.c_str());
-        return 0;
-    }
-    if (!drawBenchReport(*bench.outDir, failureStudy, why)) {
-        if (why.empty()) return 1;  // the chart script's one line named the file and the problem
-        throw Error("charts", why + " (results.csv and results.json are written)");
-    }
-    std::printf("bench: wrote %s/index.html\n", bench.outDir->c_str());
-    return 0;
+                record.rows.size(), baseScene.source.c_str(), run.rounds, run.bestOf, 100.0 * medianOf(record.frameCvs),
+                100.0 * medianOf(record.singleFrameCvs), record.flagged, outDir.c_str());
+    return drawCharts(outDir, failureStudy);
 }
 
 }  // namespace punctual::app

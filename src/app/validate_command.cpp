@@ -48,39 +48,111 @@ float parseEdgeBandPixels(const std::string& text) {
     return value;
 }
 
-}  // namespace
-
-int runValidateCommand(const std::vector<std::string>& args) {
+// validate's own options; the rest are render options.
+struct ValidateArgs {
     std::vector<std::string> renderArgs;
     std::optional<std::string> outDir;
     bool exportExr = false;
     float edgeBandPixels = 0.0f;  // one shadow texel
+    bool help = false;
+};
+
+ValidateArgs parseValidateArgs(const std::vector<std::string>& args) {
+    ValidateArgs parsed;
     for (size_t i = 0; i < args.size(); ++i) {
         if (args[i] == "--help" || args[i] == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
+            parsed.help = true;
+            return parsed;
         } else if (args[i] == "--out-dir") {
             if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--out-dir", "needs a value");
-            outDir = args[++i];
+            parsed.outDir = args[++i];
         } else if (args[i] == "--export-exr") {
-            exportExr = true;
+            parsed.exportExr = true;
         } else if (args[i] == "--edge-band-px") {
             if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--edge-band-px", "needs a value");
-            edgeBandPixels = parseEdgeBandPixels(args[++i]);
+            parsed.edgeBandPixels = parseEdgeBandPixels(args[++i]);
         } else if (args[i] == "--out" || args[i] == "--stats" || args[i] == "--heatmap") {
             throw Error(args[i], "not an option of validate (it writes into --out-dir)");
         } else {
-            renderArgs.push_back(args[i]);
+            parsed.renderArgs.push_back(args[i]);
         }
     }
-    if (!outDir) throw Error("--out-dir", "validate needs an output folder (--out-dir DIR)");
-    const OutputFolderLayout& layout = validationFolderLayout();
-    checkOutputFolder(*outDir, layout);
+    if (!parsed.outDir) throw Error("--out-dir", "validate needs an output folder (--out-dir DIR)");
+    return parsed;
+}
 
-    const RenderOptions options = parseRenderOptions(renderArgs);
+// Every file of the run, report.json last: it lists them all, so the next run into DIR removes
+// the ones it does not write again (a light that is gone leaves no mismatch map behind).
+void commitValidationFiles(const std::string& dir, nlohmann::json& report, const ImageRgba8& gpuImage,
+                           const ImageRgba8& referenceImage, const reference::ShadowValidation& validation,
+                           const ShadowFactorImage& factors, bool exportExr) {
+    const OutputFolderLayout& layout = validationFolderLayout();
+    OutputFiles outputs;
+    outputs.add(dir + "/report.html", validationHtml(report));
+    outputs.add(dir + "/gpu.png", encodePng(gpuImage));
+    outputs.add(dir + "/reference.png", encodePng(referenceImage));
+    for (const reference::LightShadowValidation& light : validation.lights) {
+        outputs.add(dir + "/mismatch-" + std::to_string(light.slot) + ".png",
+                    encodePng(mismatchMap(light, validation.width, validation.height)));
+    }
+    if (validation.sun) {
+        outputs.add(dir + "/mismatch-sun.png",
+                    encodePng(mismatchMap(validation.sun->verdicts, validation.sun->inBand, validation.width, validation.height)));
+        outputs.add(dir + "/cascades.png", encodePng(cascadeOverlay(gpuImage, factors.sunCascades)));
+    }
+    if (exportExr) addExrImages(outputs, dir, factors);
+    const std::vector<std::string> files = outputFolderFiles(outputs, dir, layout);
+    report["files"] = files;
+    outputs.add(dir + "/report.json", report.dump(2) + "\n");
+    prepareOutputFolder(outputs, dir, layout, files);
+    outputs.commit();
+}
+
+// The summary on stdout: a line per light type (and per cascade), then all.
+void printValidationSummary(const Scene& scene, const RenderOptions& options, const render::Renderer& renderer,
+                            const reference::ShadowValidation& validation) {
+    auto line = [](const char* name, const reference::ShadowCounts& c) {
+        std::printf("%-7s compared %10llu  false shadow %8llu  false lit %8llu  edge band %8llu  misclassified outside "
+                    "band %.3f%%\n",
+                    name, static_cast<unsigned long long>(c.compared), static_cast<unsigned long long>(c.falseShadow),
+                    static_cast<unsigned long long>(c.falseLit), static_cast<unsigned long long>(c.edgeBand),
+                    100.0 * c.misclassifiedOutsideBand());
+    };
+    const ShadowSettings& shadows = renderer.settings().shadows;
+    std::printf("shadow validation: %s, %ux%u, %zu shadowed lights, %s filter, %s resolution (views at %s), %s, %s "
+                "point layout\n",
+                scene.source.c_str(), options.width, options.height, validation.lights.size(),
+                shadowFilterName(shadows.filter), shadowResolutionName(shadows).c_str(),
+                describeShadowTiers(renderer.shadowPlan()).c_str(), shadowFormatName(shadows.format),
+                pointShadowLayoutName(shadows.pointLayout));
+    line("spots", validation.spots);
+    line("points", validation.points);
+    if (validation.sun) {
+        line("sun", validation.sun->counts);
+        for (size_t i = 0; i < validation.sun->cascades.size(); ++i) {
+            line(("  c" + std::to_string(i)).c_str(), validation.sun->cascades[i]);
+        }
+        line("  split", validation.sun->splitBand);
+    }
+    line("all", validation.overall);
+}
+
+}  // namespace
+
+int runValidateCommand(const std::vector<std::string>& args) {
+    const ValidateArgs parsed = parseValidateArgs(args);
+    if (parsed.help) {
+        std::fputs(kUsage, stdout);
+        return 0;
+    }
+    const std::string dir = *parsed.outDir;
+    const OutputFolderLayout& layout = validationFolderLayout();
+    checkOutputFolder(dir, layout);
+
+    const RenderOptions options = parseRenderOptions(parsed.renderArgs);
     if (!options.shadows.enabled) throw Error("--shadows", "validate compares shadows: they must be on");
     const Scene scene = loadSceneForOptions(options);
-    checkOutputFolder(*outDir, layout);  // again, now that the files the scene reads are known
+    checkOutputFolder(dir, layout);  // again, now that the files the scene reads are known
 
     vk::Context context(contextOptionsFrom(options));
     render::RenderSettings settings = renderSettingsFrom(options);
@@ -101,58 +173,14 @@ int runValidateCommand(const std::vector<std::string>& args) {
     referenceSettings.transparentShadows = options.shadows.transparent;
     const reference::ReferenceRenderer referenceRenderer(scene, referenceSettings);
     const ImageRgba8 referenceImage = referenceRenderer.render();
+    const float band = parsed.edgeBandPixels;
     const reference::ShadowValidation validation = reference::validateShadows(
         referenceRenderer.embree(), factors, renderer.lights(), renderer.shadowPlan(),
-        edgeBandPixels > 0.0f ? reference::EdgeBand::ofScreenPixels(edgeBandPixels, scene.camera, options.height)
-                              : reference::EdgeBand{});
+        band > 0.0f ? reference::EdgeBand::ofScreenPixels(band, scene.camera, options.height) : reference::EdgeBand{});
 
-    nlohmann::json report = validationJson(validation, scene, renderer, edgeBandPixels);
-    OutputFiles outputs;
-    const std::string dir = *outDir;
-    outputs.add(dir + "/report.html", validationHtml(report));
-    outputs.add(dir + "/gpu.png", encodePng(gpuImage));
-    outputs.add(dir + "/reference.png", encodePng(referenceImage));
-    for (const reference::LightShadowValidation& light : validation.lights) {
-        outputs.add(dir + "/mismatch-" + std::to_string(light.slot) + ".png",
-                    encodePng(mismatchMap(light, validation.width, validation.height)));
-    }
-    if (validation.sun) {
-        outputs.add(dir + "/mismatch-sun.png",
-                    encodePng(mismatchMap(validation.sun->verdicts, validation.sun->inBand, validation.width, validation.height)));
-        outputs.add(dir + "/cascades.png", encodePng(cascadeOverlay(gpuImage, factors.sunCascades)));
-    }
-    if (exportExr) addExrImages(outputs, dir, factors);
-    // report.json lists every file of this run, so the next run into DIR removes the ones it
-    // does not write again (a light that is gone leaves no mismatch map of its own behind).
-    const std::vector<std::string> files = outputFolderFiles(outputs, dir, layout);
-    report["files"] = files;
-    outputs.add(dir + "/report.json", report.dump(2) + "\n");
-    prepareOutputFolder(outputs, dir, layout, files);
-    outputs.commit();
-
-    auto line = [](const char* name, const reference::ShadowCounts& c) {
-        std::printf("%-7s compared %10llu  false shadow %8llu  false lit %8llu  edge band %8llu  misclassified outside "
-                    "band %.3f%%\n",
-                    name, static_cast<unsigned long long>(c.compared), static_cast<unsigned long long>(c.falseShadow),
-                    static_cast<unsigned long long>(c.falseLit), static_cast<unsigned long long>(c.edgeBand),
-                    100.0 * c.misclassifiedOutsideBand());
-    };
-    std::printf("shadow validation: %s, %ux%u, %zu shadowed lights, %s filter, %s resolution (views at %s), %s, %s "
-                "point layout\n",
-                scene.source.c_str(), options.width, options.height, validation.lights.size(),
-                shadowFilterName(settings.shadows.filter), shadowResolutionName(settings.shadows).c_str(),
-                describeShadowTiers(renderer.shadowPlan()).c_str(), shadowFormatName(settings.shadows.format),
-                pointShadowLayoutName(settings.shadows.pointLayout));
-    line("spots", validation.spots);
-    line("points", validation.points);
-    if (validation.sun) {
-        line("sun", validation.sun->counts);
-        for (size_t i = 0; i < validation.sun->cascades.size(); ++i) {
-            line(("  c" + std::to_string(i)).c_str(), validation.sun->cascades[i]);
-        }
-        line("  split", validation.sun->splitBand);
-    }
-    line("all", validation.overall);
+    nlohmann::json report = validationJson(validation, scene, renderer, band);
+    commitValidationFiles(dir, report, gpuImage, referenceImage, validation, factors, parsed.exportExr);
+    printValidationSummary(scene, options, renderer, validation);
     std::printf("wrote %s/report.json and report.html\n", dir.c_str());
     return 0;
 }

@@ -165,113 +165,137 @@ void OutputFiles::addFolder(const std::string& path) { folders_.push_back(path);
 
 void OutputFiles::removeAfterCommit(const std::string& path) { stale_.push_back(path); }
 
-void OutputFiles::commit() {
-    const DeferredSignals deferred;  // all new or all old, whatever signal arrives (core/deferred_signals.h)
-    std::vector<std::string> createdFolders;
-    std::vector<Step> steps(files_.size());
-    auto rollback = [&] {
-        for (auto step = steps.rbegin(); step != steps.rend(); ++step) {
-            if (step->stream >= 0) ::close(step->stream);
-            if (step->published) {
-                if (!step->backup.empty()) {
-                    ::rename(step->backup.c_str(), step->target.file.c_str());  // the old file, as it was
-                } else if (step->target.kind == OutputTarget::Kind::Missing) {
-                    ::unlink(step->target.file.c_str());  // new: nothing was there
-                }
-                // (A replaced file without a backup keeps its new contents: the old are gone, and
-                // removing the name too would lose both. Such files are renamed last, see below.)
-            } else {
-                if (!step->temporary.empty()) ::unlink(step->temporary.c_str());
-                if (!step->backup.empty()) ::unlink(step->backup.c_str());
+namespace {
+
+// Undoes what the commit did so far, newest first (see output_files.h).
+void rollback(std::vector<Step>& steps, const std::vector<std::string>& createdFolders) {
+    for (auto step = steps.rbegin(); step != steps.rend(); ++step) {
+        if (step->stream >= 0) ::close(step->stream);
+        if (step->published) {
+            if (!step->backup.empty()) {
+                ::rename(step->backup.c_str(), step->target.file.c_str());  // the old file, as it was
+            } else if (step->target.kind == OutputTarget::Kind::Missing) {
+                ::unlink(step->target.file.c_str());  // new: nothing was there
             }
+            // (A replaced file without a backup keeps its new contents: the old are gone, and
+            // removing the name too would lose both. Such files are renamed last, see publishAll.)
+        } else {
+            if (!step->temporary.empty()) ::unlink(step->temporary.c_str());
+            if (!step->backup.empty()) ::unlink(step->backup.c_str());
         }
-        for (auto folder = createdFolders.rbegin(); folder != createdFolders.rend(); ++folder) ::rmdir(folder->c_str());
-    };
-    try {
-        for (const std::string& folder : folders_) {
-            if (::mkdir(folder.c_str(), 0777) == 0) {
-                createdFolders.push_back(folder);
-                stepDone("folder");
-                continue;
-            }
-            const int error = errno;
-            std::error_code ec;
-            if (error == EEXIST && fs::is_directory(folder, ec)) continue;  // a symbolic link to a folder will do
-            throw Error(folder, error == EEXIST ? "exists and is not a folder"
-                                                : concat("cannot create the folder: ", std::strerror(error)));
-        }
-        for (size_t i = 0; i < files_.size(); ++i) {
-            steps[i].path = &files_[i].first;
-            steps[i].contents = &files_[i].second;
-            steps[i].target = resolveOutputTarget(files_[i].first);
-            for (size_t j = 0; j < i; ++j) {
-                if (steps[i].target.sameFileAs(steps[j].target)) {
-                    throw Error(files_[i].first,
-                                concat("is the same file as '", files_[j].first, "'; two outputs cannot share a file"));
-                }
-            }
-        }
-        // Streams are opened first: a FIFO without a reader fails before anything is replaced.
-        for (Step& step : steps) {
-            if (step.target.kind == OutputTarget::Kind::Stream) step.stream = openStream(step.target);
-        }
-        for (Step& step : steps) {
-            if (step.target.kind != OutputTarget::Kind::Stream) {
-                writeTemporary(step);
-                stepDone("temporary");
-            }
-        }
-        for (Step& step : steps) {
-            if (step.target.kind == OutputTarget::Kind::Regular) {
-                keepBackup(step);
-                stepDone("backup");
-            }
-        }
-        // Renames: the undoable ones first, then those without a backup.
-        std::vector<Step*> order;
-        for (Step& step : steps) {
-            if (step.target.kind != OutputTarget::Kind::Stream) order.push_back(&step);
-        }
-        std::stable_partition(order.begin(), order.end(), [](const Step* step) {
-            return step->target.kind == OutputTarget::Kind::Missing || !step->backup.empty();
-        });
-        for (Step* step : order) {
-            if (const int error = publish(*step); error != 0) {
-                if (error == EEXIST) throw Error(*step->path, "appeared while punctual was running; not replaced");
-                throw Error(*step->path, concat("cannot write file: ", std::strerror(error)));
-            }
-            step->published = true;
-            stepDone("rename");
-        }
-        {
-            const IgnoreSigpipe ignoreSigpipe;
-            for (Step& step : steps) {
-                if (step.stream < 0) continue;
-                int error = writeAll(step.stream, *step.contents);
-                if (::close(step.stream) != 0 && error == 0) error = errno;
-                step.stream = -1;
-                if (error == EPIPE) throw Error(*step.path, "the reader closed it before everything was written");
-                if (error != 0) throw Error(*step.path, concat("cannot write to it: ", std::strerror(error)));
-                stepDone("stream");
-            }
-        }
-    } catch (...) {
-        rollback();
-        throw;
     }
-    for (const Step& step : steps) {
-        if (!step.backup.empty()) ::unlink(step.backup.c_str());
+    for (auto folder = createdFolders.rbegin(); folder != createdFolders.rend(); ++folder) ::rmdir(folder->c_str());
+}
+
+// Creates the missing folders, in order, noting each in `created` (for the rollback).
+void createFolders(const std::vector<std::string>& folders, std::vector<std::string>& created) {
+    for (const std::string& folder : folders) {
+        if (::mkdir(folder.c_str(), 0777) == 0) {
+            created.push_back(folder);
+            stepDone("folder");
+            continue;
+        }
+        const int error = errno;
+        std::error_code ec;
+        if (error == EEXIST && fs::is_directory(folder, ec)) continue;  // a symbolic link to a folder will do
+        throw Error(folder, error == EEXIST ? "exists and is not a folder"
+                                            : concat("cannot create the folder: ", std::strerror(error)));
     }
-    // Stale files go only now that everything is in place. unlink() never follows a symbolic
-    // link and never removes a folder; a stale file already gone is no error.
-    // A stale name that is now a file this run read (a texture saved under an old output's name)
-    // is the user's input, not an old output: it stays.
-    for (const std::string& path : stale_) {
+}
+
+// Resolves every output's target; two outputs naming one file are refused.
+void resolveTargets(const std::vector<std::pair<std::string, std::string>>& files, std::vector<Step>& steps) {
+    for (size_t i = 0; i < files.size(); ++i) {
+        steps[i].path = &files[i].first;
+        steps[i].contents = &files[i].second;
+        steps[i].target = resolveOutputTarget(files[i].first);
+        for (size_t j = 0; j < i; ++j) {
+            if (steps[i].target.sameFileAs(steps[j].target)) {
+                throw Error(files[i].first,
+                            concat("is the same file as '", files[j].first, "'; two outputs cannot share a file"));
+            }
+        }
+    }
+}
+
+// Renames every temporary over its target: the undoable ones first, then those without a backup.
+void publishAll(std::vector<Step>& steps) {
+    std::vector<Step*> order;
+    for (Step& step : steps) {
+        if (step.target.kind != OutputTarget::Kind::Stream) order.push_back(&step);
+    }
+    std::stable_partition(order.begin(), order.end(), [](const Step* step) {
+        return step->target.kind == OutputTarget::Kind::Missing || !step->backup.empty();
+    });
+    for (Step* step : order) {
+        if (const int error = publish(*step); error != 0) {
+            if (error == EEXIST) throw Error(*step->path, "appeared while punctual was running; not replaced");
+            throw Error(*step->path, concat("cannot write file: ", std::strerror(error)));
+        }
+        step->published = true;
+        stepDone("rename");
+    }
+}
+
+// Writes into the open devices and FIFOs, last: their bytes cannot be taken back.
+void writeStreams(std::vector<Step>& steps) {
+    const IgnoreSigpipe ignoreSigpipe;
+    for (Step& step : steps) {
+        if (step.stream < 0) continue;
+        int error = writeAll(step.stream, *step.contents);
+        if (::close(step.stream) != 0 && error == 0) error = errno;
+        step.stream = -1;
+        if (error == EPIPE) throw Error(*step.path, "the reader closed it before everything was written");
+        if (error != 0) throw Error(*step.path, concat("cannot write to it: ", std::strerror(error)));
+        stepDone("stream");
+    }
+}
+
+// Stale files go only once everything is in place. unlink() never follows a symbolic link and
+// never removes a folder; a stale file already gone is no error. A stale name that is now a file
+// this run read (a texture saved under an old output's name) is the user's input: it stays.
+void removeStale(const std::vector<std::string>& stale) {
+    for (const std::string& path : stale) {
         struct stat st {};
         if (::lstat(path.c_str(), &st) == 0 && findInputFileRead(st.st_dev, st.st_ino)) continue;
         ::unlink(path.c_str());
         stepDone("stale");
     }
+}
+
+}  // namespace
+
+void OutputFiles::commit() {
+    const DeferredSignals deferred;  // all new or all old, whatever signal arrives (core/deferred_signals.h)
+    std::vector<std::string> createdFolders;
+    std::vector<Step> steps(files_.size());
+    try {
+        createFolders(folders_, createdFolders);
+        resolveTargets(files_, steps);
+        // Streams are opened first: a FIFO without a reader fails before anything is replaced.
+        for (Step& step : steps) {
+            if (step.target.kind == OutputTarget::Kind::Stream) step.stream = openStream(step.target);
+        }
+        for (Step& step : steps) {
+            if (step.target.kind == OutputTarget::Kind::Stream) continue;
+            writeTemporary(step);
+            stepDone("temporary");
+        }
+        for (Step& step : steps) {
+            if (step.target.kind != OutputTarget::Kind::Regular) continue;
+            keepBackup(step);
+            stepDone("backup");
+        }
+        publishAll(steps);
+        writeStreams(steps);
+    } catch (...) {
+        rollback(steps, createdFolders);
+        throw;
+    }
+    for (const Step& step : steps) {
+        if (!step.backup.empty()) ::unlink(step.backup.c_str());
+    }
+    removeStale(stale_);
     files_.clear();
     folders_.clear();
     stale_.clear();

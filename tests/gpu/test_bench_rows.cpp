@@ -4,9 +4,9 @@
 
 #include <algorithm>
 
-#include "app/bench_rows.h"
+#include "bench/bench_rows.h"
 
-namespace punctual::app {
+namespace punctual::bench {
 namespace {
 
 render::PassTimings frame(double depth, double forward, double total) {
@@ -44,4 +44,4 @@ TEST(BenchRows, EveryRowSaysHowManyFramesEachRoundKept) {
 }
 
 }  // namespace
-}  // namespace punctual::app
+}  // namespace punctual::bench

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "app/bench_cascade_failures.h"
+#include "bench/bench_cascade_failures.h"
 #include "gpu_test_support.h"
 #include "scene/outdoor_scene.h"
 #include "scene/study_scenes.h"
@@ -32,7 +32,7 @@ TEST(CascadeFailures, FlipsAreCountedWhereTheGpuChangesAndTheTruthDoesNot) {
                                               PixelVerdict::FalseLit, PixelVerdict::NotCompared, PixelVerdict::AgreeLit};
     const std::vector<PixelVerdict> after = {PixelVerdict::FalseShadow, PixelVerdict::AgreeShadow, PixelVerdict::FalseShadow,
                                              PixelVerdict::FalseLit, PixelVerdict::AgreeLit, PixelVerdict::NotCompared};
-    const app::ShimmerCounts counts = app::countShimmerFlips(before, after);
+    const bench::ShimmerCounts counts = bench::countShimmerFlips(before, after);
     EXPECT_EQ(counts.compared, 4u);
     EXPECT_EQ(counts.gpuFlips, 2u);          // pixels 0 and 1
     EXPECT_EQ(counts.truthFlips, 2u);        // pixels 1 and 2
@@ -42,7 +42,7 @@ TEST(CascadeFailures, FlipsAreCountedWhereTheGpuChangesAndTheTruthDoesNot) {
 
 TEST(CascadeFailures, TheWalkMovesFiveCentimetresAndTurnsATenthOfADegreeAFrame) {
     const Scene scene = study::cascadeFieldScene();
-    const std::vector<Camera> path = app::walkingCameraPath(scene.camera, 30);
+    const std::vector<Camera> path = bench::walkingCameraPath(scene.camera, 30);
     ASSERT_EQ(path.size(), 30u);
     EXPECT_EQ(path.front().view, scene.camera.view);
     for (size_t k = 1; k < path.size(); ++k) {
@@ -63,15 +63,15 @@ TEST(CascadeFailures, UnsnappedCascadesShimmerOnStillReceiversSnappedOnesHardlyD
     auto context = testing::makeValidatedContext();
     const Scene scene = study::cascadeFieldScene();
     const reference::EmbreeScene embree(scene);
-    const std::vector<Camera> path = app::walkingCameraPath(scene.camera, 5);
+    const std::vector<Camera> path = bench::walkingCameraPath(scene.camera, 5);
     render::RenderSettings settings = cascadeSettings(320, 180, 512, 200.0f);
     settings.shadows.filter = ShadowFilter::Hardware;
     settings.shadows.cascades.snapToTexels = true;
-    const app::ShimmerCounts snapped =
-        app::measureShimmer(*context, scene, embree, path, app::ShimmerView::FixedReceivers, settings);
+    const bench::ShimmerCounts snapped =
+        bench::measureShimmer(*context, scene, embree, path, bench::ShimmerView::FixedReceivers, settings);
     settings.shadows.cascades.snapToTexels = false;
-    const app::ShimmerCounts unsnapped =
-        app::measureShimmer(*context, scene, embree, path, app::ShimmerView::FixedReceivers, settings);
+    const bench::ShimmerCounts unsnapped =
+        bench::measureShimmer(*context, scene, embree, path, bench::ShimmerView::FixedReceivers, settings);
     std::printf("[ shimmer ] still receivers: snapped %llu flips, not snapped %llu, of %llu\n",
                 static_cast<unsigned long long>(snapped.gpuFlips), static_cast<unsigned long long>(unsnapped.gpuFlips),
                 static_cast<unsigned long long>(unsnapped.compared));
@@ -84,8 +84,8 @@ TEST(CascadeFailures, UnsnappedCascadesShimmerOnStillReceiversSnappedOnesHardlyD
 
     settings.shadows.cascades.snapToTexels = true;
     const std::vector<Camera> shortPath(path.begin(), path.begin() + 3);
-    const app::ShimmerCounts moving =
-        app::measureShimmer(*context, scene, embree, shortPath, app::ShimmerView::MovingView, settings);
+    const bench::ShimmerCounts moving =
+        bench::measureShimmer(*context, scene, embree, shortPath, bench::ShimmerView::MovingView, settings);
     EXPECT_GT(moving.truthFlips, 50u);  // the view moves: shadow edges cross pixels in Embree's image too
     testing::expectNoValidationMessages(*context);
 }
@@ -98,15 +98,15 @@ TEST(CascadeFailures, BlendsLoseShadowsInTheBlendZoneThatHardKeeps) {
     const Scene scene = study::cascadeSeamScene();
     const reference::EmbreeScene embree(scene);
     const reference::EdgeBand band = reference::EdgeBand::ofScreenPixels(1.0f, scene.camera, 360);
-    std::vector<app::CascadeSeamCounts> seams;
+    std::vector<bench::CascadeSeamCounts> seams;
     for (const CascadeBlend blend : {CascadeBlend::Hard, CascadeBlend::Soft, CascadeBlend::Dither}) {
         render::RenderSettings settings = cascadeSettings(640, 360, 1024, 100.0f);
         settings.shadows.cascades.blend = blend;
-        const app::ValidatedFrame frame = app::renderAndValidate(*context, scene, embree, settings, band);
+        const bench::ValidatedFrame frame = bench::renderAndValidate(*context, scene, embree, settings, band);
         ASSERT_TRUE(frame.validation.sun.has_value());
-        seams.push_back(app::cascadeSeamCounts(frame.factors, *frame.validation.sun, frame.plan, settings.shadows.cascades,
+        seams.push_back(bench::cascadeSeamCounts(frame.factors, *frame.validation.sun, frame.plan, settings.shadows.cascades,
                                                scene.camera.view));
-        const app::CascadeSeamCounts& s = seams.back();
+        const bench::CascadeSeamCounts& s = seams.back();
         std::printf("[ seams ] %s: split band %.3f%% of %llu, blend zone %.3f%% of %llu, inside %.3f%% of %llu\n",
                     cascadeBlendName(blend), 100.0 * s.splitBand.misclassifiedOutsideBand(),
                     static_cast<unsigned long long>(s.splitBand.comparedOutsideBand), 100.0 * s.blendZone.misclassifiedOutsideBand(),
@@ -138,9 +138,9 @@ TEST(CascadeFailures, PracticalSplitsCutTheNearErrorOfTheSeedRatios) {
     for (const float lambda : {-1.0f, 0.9f}) {
         render::RenderSettings settings = cascadeSettings(320, 180, 256, 200.0f);
         settings.shadows.cascades.lambda = lambda;
-        const app::ValidatedFrame frame = app::renderAndValidate(*context, scene, embree, settings, band);
+        const bench::ValidatedFrame frame = bench::renderAndValidate(*context, scene, embree, settings, band);
         ASSERT_TRUE(frame.validation.sun.has_value());
-        buckets.push_back(app::sunCountsByViewDepth(frame.factors, *frame.validation.sun, scene.camera.view, ends));
+        buckets.push_back(bench::sunCountsByViewDepth(frame.factors, *frame.validation.sun, scene.camera.view, ends));
         // Every compared pixel lies in one bucket or the other.
         EXPECT_EQ(buckets.back()[0].compared + buckets.back()[1].compared, frame.validation.sun->counts.compared);
         std::printf("[ perspective ] lambda %.1f: %.3f%% within 5 m, %.3f%% beyond\n", double(lambda),
@@ -163,13 +163,13 @@ TEST(CascadeFailures, ClippingLosesTheShadowOfACasterInFrontOfTheNearPlanePancak
     for (const bool clamp : {true, false}) {
         render::RenderSettings settings = cascadeSettings(320, 180, 1024, 100.0f);
         settings.shadows.cascades.depthClamp = clamp;
-        const app::ValidatedFrame frame = app::renderAndValidate(*context, scene, embree, settings, band);
+        const bench::ValidatedFrame frame = bench::renderAndValidate(*context, scene, embree, settings, band);
         ASSERT_TRUE(frame.validation.sun.has_value());
         sun.push_back(frame.validation.sun->counts);
     }
     EXPECT_GT(sun[0].comparedOutsideBand, 30000u);
-    EXPECT_LT(app::fraction(sun[0].falseLitOutsideBand, sun[0].comparedOutsideBand), 0.001);
-    EXPECT_GT(app::fraction(sun[1].falseLitOutsideBand, sun[1].comparedOutsideBand), 0.1);
+    EXPECT_LT(bench::fraction(sun[0].falseLitOutsideBand, sun[0].comparedOutsideBand), 0.001);
+    EXPECT_GT(bench::fraction(sun[1].falseLitOutsideBand, sun[1].comparedOutsideBand), 0.1);
     testing::expectNoValidationMessages(*context);
 }
 

@@ -10,7 +10,7 @@ namespace punctual::vk {
 class Context;
 }
 
-namespace punctual::app {
+namespace punctual::bench {
 
 struct FailureRow {
     std::string study;      // e.g. "acne-vs-bias"
@@ -29,4 +29,4 @@ size_t failureStudySize(vk::Context& context, bool quick);  // configurations ru
 
 std::string failuresCsv(const std::vector<FailureRow>& rows);
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

@@ -1,4 +1,4 @@
-#include "app/bench_rows.h"
+#include "bench/bench_rows.h"
 
 #include <algorithm>
 #include <sstream>
@@ -11,7 +11,7 @@
 #include "reference/embree_scene.h"
 #include "reference/shadow_validation.h"
 
-namespace punctual::app {
+namespace punctual::bench {
 namespace {
 
 std::string sunCascadeColumn(uint32_t cascade) { return "sun_cascade" + std::to_string(cascade) + "_misclassified_1px"; }
@@ -218,9 +218,9 @@ ShadowValidationRows addShadowValidation(BenchRow& row, render::Renderer& render
         }
     }
     if (!validation.lights.empty()) {
-        out.mismatch = mismatchMap(validation.lights.front(), validation.width, validation.height);
+        out.mismatch = app::mismatchMap(validation.lights.front(), validation.width, validation.height);
     }
     return out;
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

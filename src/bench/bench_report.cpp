@@ -1,4 +1,4 @@
-#include "app/bench_report.h"
+#include "bench/bench_report.h"
 
 #include <spawn.h>
 #include <sys/wait.h>
@@ -11,7 +11,7 @@
 
 extern char** environ;
 
-namespace punctual::app {
+namespace punctual::bench {
 namespace {
 
 // Debian's interpreter, the one python3-matplotlib installs into (a python3 earlier on PATH, a
@@ -111,4 +111,4 @@ bool drawBenchReport(const std::string& outDir, bool failures, std::string& prob
     return true;
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

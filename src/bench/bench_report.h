@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace punctual::app {
+namespace punctual::bench {
 
 // Where the scripts are: $PUNCTUAL_BENCH_SCRIPTS, else the source tree's bench/ (fixed at build
 // time), else bench/ beside the working directory.
@@ -29,4 +29,4 @@ bool chartsAvailable(std::string& why);
 // `problem` set to one line, when a script failed.
 bool drawBenchReport(const std::string& outDir, bool failures, std::string& problem);
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

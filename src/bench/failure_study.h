@@ -18,7 +18,7 @@ namespace punctual::vk {
 class Context;
 }
 
-namespace punctual::app {
+namespace punctual::bench {
 
 // One known failure: the error `metric` against the `parameter` that provokes it, at each of
 // `values`, for each of `variants` (a line each in bench/plot_failures.py's chart).
@@ -51,4 +51,4 @@ ValidatedFrame renderAndValidate(vk::Context& context, const Scene& scene, const
 // part / whole, 0 when whole is 0.
 inline double fraction(uint64_t part, uint64_t whole) { return whole > 0 ? double(part) / double(whole) : 0.0; }
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

@@ -1,4 +1,4 @@
-#include "app/bench_provenance.h"
+#include "bench/bench_provenance.h"
 
 #include <ctime>
 #include <fstream>
@@ -9,7 +9,7 @@
 #include "punctual_git.h"  // generated at build time (cmake/GitCommit.cmake)
 #include "vk/context.h"
 
-namespace punctual::app {
+namespace punctual::bench {
 namespace {
 
 std::string versionText(uint32_t version) {
@@ -86,4 +86,4 @@ nlohmann::json benchProvenance(const vk::Context& context, const std::vector<std
             {"size", {{"width", width}, {"height", height}}}};
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/bench_plan.h"
+#include "bench/bench_plan.h"
 #include "metrics/round_statistics.h"
 #include "render/renderer.h"
 
@@ -15,7 +15,7 @@ namespace punctual::reference {
 class EmbreeScene;
 }
 
-namespace punctual::app {
+namespace punctual::bench {
 
 using BenchRow = std::map<std::string, std::string>;
 
@@ -59,4 +59,4 @@ struct ShadowValidationRows {
 ShadowValidationRows addShadowValidation(BenchRow& row, render::Renderer& renderer,
                                          const reference::EmbreeScene& geometry, const Scene& scene);
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

@@ -1,6 +1,6 @@
-#include "app/failure_study.h"
+#include "bench/failure_study.h"
 
-namespace punctual::app {
+namespace punctual::bench {
 
 ValidatedFrame renderAndValidate(vk::Context& context, const Scene& scene, const reference::EmbreeScene& embree,
                                  render::RenderSettings settings, const reference::EdgeBand& band) {
@@ -20,4 +20,4 @@ ValidatedFrame renderAndValidate(vk::Context& context, const Scene& scene, const
     return renderAndValidate(context, scene, embree, settings, band);
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

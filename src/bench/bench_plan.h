@@ -10,7 +10,7 @@
 #include "render/light_list_method.h"
 #include "scene/builtin_scenes.h"
 
-namespace punctual::app {
+namespace punctual::bench {
 
 // The range every generated light gets in the series that hold the overlap fixed, as a share of
 // the scene's bounds diagonal: the middle of the generator's 0.25-0.45.
@@ -61,4 +61,4 @@ std::string benchConfigName(const BenchConfig& config);
 // The series --series names, comma-separated; throws Error("--series", ...) naming the known ones.
 std::vector<std::string> parseBenchSeries(const std::string& text);
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

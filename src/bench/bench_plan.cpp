@@ -1,4 +1,4 @@
-#include "app/bench_plan.h"
+#include "bench/bench_plan.h"
 
 #include <algorithm>
 #include <sstream>
@@ -8,7 +8,7 @@
 #include "core/variant_table.h"
 #include "lights/shadow_filters.h"
 
-namespace punctual::app {
+namespace punctual::bench {
 namespace {
 
 // Methods in table order; --quick keeps the entries marked for it.
@@ -306,4 +306,4 @@ std::vector<std::string> parseBenchSeries(const std::string& text) {
     return series;
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

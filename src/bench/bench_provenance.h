@@ -11,7 +11,7 @@ namespace punctual::vk {
 class Context;
 }
 
-namespace punctual::app {
+namespace punctual::bench {
 
 struct BenchScene {
     std::string source;
@@ -28,4 +28,4 @@ std::string cpuModelName();
 // where it holds anything but [A-Za-z0-9_./,:=+-].
 std::string shellCommandLine(const std::vector<std::string>& benchArgs);
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

@@ -1,16 +1,16 @@
-#include "app/bench_failures.h"
+#include "bench/bench_failures.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "app/bench_cascade_failures.h"
-#include "app/failure_study.h"
+#include "bench/bench_cascade_failures.h"
+#include "bench/failure_study.h"
 #include "scene/study_scenes.h"
 #include "shading.h"
 #include "shadows.h"
 
-namespace punctual::app {
+namespace punctual::bench {
 namespace {
 
 constexpr float kDegree = 0.0174532925f;
@@ -218,4 +218,4 @@ std::string failuresCsv(const std::vector<FailureRow>& rows) {
     return csv.str();
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "app/failure_study.h"
+#include "bench/failure_study.h"
 #include "lights/cascade_settings.h"
 #include "lights/shadow_setup.h"
 #include "metrics/shadow_factor_image.h"
@@ -24,7 +24,7 @@ namespace punctual::vk {
 class Context;
 }
 
-namespace punctual::app {
+namespace punctual::bench {
 
 // The cascade studies at `width` x `height` (fewer values and variants when `quick`).
 std::vector<FailureStudy> cascadeFailureStudies(vk::Context& context, bool quick, uint32_t width, uint32_t height);
@@ -100,4 +100,4 @@ std::vector<reference::ShadowCounts> sunCountsByViewDepth(const ShadowFactorImag
                                                           const reference::SunShadowValidation& sun,
                                                           const glm::mat4& view, const std::vector<float>& bucketEnds);
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

@@ -1,4 +1,4 @@
-#include "app/bench_cascade_failures.h"
+#include "bench/bench_cascade_failures.h"
 
 #include <algorithm>
 #include <bit>
@@ -13,7 +13,7 @@
 #include "scene/outdoor_scene.h"
 #include "scene/study_scenes.h"
 
-namespace punctual::app {
+namespace punctual::bench {
 
 void ShimmerCounts::add(const ShimmerCounts& other) {
     compared += other.compared;
@@ -341,4 +341,4 @@ std::vector<FailureStudy> cascadeFailureStudies(vk::Context& context, bool quick
     return list;
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::bench

@@ -1,0 +1,193 @@
+#include "app/render_option_table.h"
+
+
+#include "app/option_values.h"
+#include "core/error.h"
+#include "core/variant_table.h"
+#include "scene/builtin_scenes.h"
+
+namespace punctual::app {
+namespace {
+
+// Help text starts in this column; a longer name and value take two spaces instead.
+constexpr size_t kHelpColumn = 23;
+// Variant lists are indented under their option by this much.
+constexpr size_t kListIndent = 25;
+
+using Notes = RenderOptionNotes;
+
+// --shadow-res: auto, or a whole number (0 is refused here: it is how auto is stored).
+void applyShadowResolution(RenderOptions& o, const std::string& v, Notes&) {
+    o.shadows.resolution = v == "auto" ? ShadowSettings::kAutoResolution : parseWhole("--shadow-res", v);
+    if (v != "auto" && o.shadows.resolution == ShadowSettings::kAutoResolution) {
+        throw Error("--shadow-res", "must be auto or a power of two from 16 to 8192, got 0");
+    }
+}
+
+void applyShadowFormat(RenderOptions& o, const std::string& v, Notes&) {
+    if (v != "d16" && v != "d32") throw Error("--shadow-format", "expected d16 or d32, got '" + v + "'");
+    o.shadows.format = v == "d16" ? ShadowFormat::D16 : ShadowFormat::D32;
+}
+
+void applyShadowBias(RenderOptions& o, const std::string& v, Notes&) {
+    const std::vector<float> bias = parseNumberList("--shadow-bias", v, 4, "four numbers DEPTH,SLOPE,NORMAL,SIN_NORMAL");
+    o.shadows.bias = glm::vec4(bias[0], bias[1], bias[2], bias[3]);
+}
+
+void applyCascadeSplits(RenderOptions& o, const std::string& v, Notes& notes) {
+    const std::vector<float> splits =
+        parseNumberList("--cascade-splits", v, 3, "three fractions of the shadow distance, e.g. 0.1,0.25,0.5");
+    o.shadows.cascades.splits = {splits[0], splits[1], splits[2]};
+    o.shadows.cascades.lambda = -1.0f;
+    notes.cascadeSplits = true;
+}
+
+void applyCascadeLambda(RenderOptions& o, const std::string& v, Notes& notes) {
+    o.shadows.cascades.lambda = parseFloat("--cascade-lambda", v);
+    if (o.shadows.cascades.lambda < 0.0f) throw Error("--cascade-lambda", "must be from 0 to 1");
+    notes.cascadeLambda = true;
+}
+
+void applyShadowDistance(RenderOptions& o, const std::string& v, Notes&) {
+    o.shadows.cascades.shadowDistance = v == "auto" ? 0.0f : parseFloat("--shadow-distance", v);
+    if (v != "auto" && !(o.shadows.cascades.shadowDistance > 0.0f)) {
+        throw Error("--shadow-distance", "must be auto or a distance in metres above 0");
+    }
+}
+
+const RenderOptionSpec kRenderOptions[] = {
+    {"--scene", "NAME", "a built-in scene instead of a file:",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.sceneName = parseBuiltinScene(v).name; },
+     [](const RenderOptions&, size_t indent) { return variantHelp(kBuiltinScenes, kDefaultBuiltinScene.value, indent); }},
+    {"--scene-triangles", "N", "the size of --scene rooms, 10k to 10M triangles (e.g. 250k, 2M, 1e6;\ndefault 100k)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.sceneTriangles = parseSceneTriangles(v); }},
+    {"--lights", "S,P[,SEED]",
+     "replace the scene's lights with S spot (<= 64) and P point (<= 32)\nlights generated inside its bounds (same seed, "
+     "same lights; seed 1)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.lights = parseLightCounts(v); }},
+    {"--size", "WxH", "output size in pixels (default 1280x720)",
+     [](RenderOptions& o, const std::string& v, Notes&) { parseSize(v, o.width, o.height); }},
+    {"--out", "FILE.png", "write the tone-mapped image",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.outPath = v; }},
+    {"--stats", "FILE.json", "write per-pass GPU times, light counts and culling statistics",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.statsPath = v; }},
+    {"--culling", "METHOD", "how each pixel finds its lights:",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.culling = render::parseMethod(v); },
+     [](const RenderOptions& d, size_t indent) { return variantHelp(render::kLightListMethods, d.culling, indent); }},
+    {"--tile-size", "N", "tile size in pixels for tiled and clustered culling (default 16)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.tileSize = parseWhole("--tile-size", v); }},
+    {"--slices", "N", "depth slices for clustered culling, 1 to 32 (default 16)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.slices = parseWhole("--slices", v); }},
+    {"--coarse-tiles", "on|off",
+     "on (default): the grid methods cull the lights to 64x64-pixel big\ntiles first, and the tile (or cluster) tests "
+     "start from those",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.coarseTiles = parseOnOff("--coarse-tiles", v); }},
+    {"--subgroup-tiles", "on|off",
+     "on (default): the grid methods cull each tile with one subgroup (no\nshared-memory atomics, no barriers) where "
+     "the device has subgroup\narithmetic; off: with the shared-memory kernel (same lists)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.subgroupTiles = parseOnOff("--subgroup-tiles", v); }},
+    {"--heatmap", "FILE.png", "draw the lights tested per pixel as a colour map with a legend",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.heatmapPath = v; }},
+    {"--shadow-density", "FILE.png",
+     "draw the shadow texels per screen pixel (1 is the target of auto\nresolution) where shadowed lights reach, with "
+     "a legend",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.shadowDensityPath = v; }},
+    {"--shadows", "on|off", "spot and point shadows (default on: every spot and point light)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.shadows.enabled = parseOnOff("--shadows", v); }},
+    {"--shadowed", "S,P", "shadow at most S spot and P point lights, the most important\n(default 64,32: all of them)",
+     [](RenderOptions& o, const std::string& v, Notes&) { parseShadowedCounts(v, o.shadows); }},
+    {"--shadow-res", "auto|N",
+     "auto (default): each shadow view the power-of-two resolution at which\none texel covers about one screen pixel "
+     "where it is seen, within\n--shadow-budget; N: every view N x N texels (a power of two, 16-8192)",
+     &applyShadowResolution},
+    {"--shadow-texels-per-pixel", "X",
+     "auto: the shadow texels a screen pixel should span where a\nview's receivers are seen, 0.25 to 16 (default 1)",
+     [](RenderOptions& o, const std::string& v, Notes&) {
+         o.shadows.texelsPerPixel = parseFloat("--shadow-texels-per-pixel", v);
+     }},
+    {"--shadow-budget", "MiB", "the most memory auto resolution may give the shadow atlas (default 64)",
+     [](RenderOptions& o, const std::string& v, Notes&) {
+         o.shadows.budgetBytes = uint64_t(parseWhole("--shadow-budget", v)) << 20;
+     }},
+    {"--shadow-format", "F", "d16 (default) or d32: the shadow maps' depth format", &applyShadowFormat},
+    {"--shadow-filter", "F", "the shadow filter:",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.shadows.filter = parseShadowFilter(v); },
+     [](const RenderOptions& d, size_t indent) { return variantHelp(kShadowFilters, d.shadows.filter, indent); }},
+    {"--shadow-samples", "N", "disk filter samples, 1 to 64 (default 16)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.shadows.diskSamples = parseWhole("--shadow-samples", v); }},
+    {"--shadow-penumbra", "W", "disk radius in shadow-map UV units (default 0.00244 = 2.5/1024)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.shadows.diskRadius = parseFloat("--shadow-penumbra", v); }},
+    {"--shadow-bias", "D,S,N,SN",
+     "depth, slope-scaled, normal and sin-scaled normal bias, in texels\nat the receiver (default 1,1,0,0), widened by "
+     "the filter's reach\nwhere receiver-plane compares are off",
+     &applyShadowBias},
+    {"--cascades", "N", "the sun's shadow cascades, 1 to 4 (default 4)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.shadows.cascades.count = parseWhole("--cascades", v); }},
+    {"--cascade-splits", "A,B,C",
+     "where cascades 1-3 end, as fractions of the shadow distance\n(default 0.1,0.25,0.5, the design notes')",
+     &applyCascadeSplits},
+    {"--cascade-lambda", "L", "instead: the practical split scheme, 0 (linear) to 1 (logarithmic)", &applyCascadeLambda},
+    {"--shadow-distance", "D",
+     "how far the sun's shadow reaches, in metres; auto (default): the\nfarthest surface the frame shows, at most 200",
+     &applyShadowDistance},
+    {"--cascade-blend", "B", "between cascades:",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.shadows.cascades.blend = parseCascadeBlend(v); },
+     [](const RenderOptions& d, size_t indent) { return variantHelp(kCascadeBlends, d.shadows.cascades.blend, indent); }},
+    {"--shadow-receiver-plane", "on|off",
+     "on (default): hw and tent filters compare each texel with\nthe receiver's plane under it, so the bias need not "
+     "cover the filter's\nreach; off: the design notes' compares (disk and cube maps always)",
+     [](RenderOptions& o, const std::string& v, Notes&) {
+         o.shadows.receiverPlane = parseOnOff("--shadow-receiver-plane", v);
+     }},
+    {"--transparent-shadows", "M", "how alphaMode BLEND surfaces cast shadows:",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.shadows.transparent = parseTransparentShadows(v); },
+     [](const RenderOptions& d, size_t indent) {
+         return variantHelp(kTransparentShadowModes, d.shadows.transparent, indent);
+     }},
+    {"--shadow-strength", "S", "0 (no shadow) to 1 (default 1), times each light's own strength",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.shadows.strength = parseFloat("--shadow-strength", v); }},
+    {"--point-shadow-layout", "L", "how point lights' shadow maps are stored:",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.shadows.pointLayout = parsePointShadowLayout(v); },
+     [](const RenderOptions& d, size_t indent) { return variantHelp(kPointShadowLayouts, d.shadows.pointLayout, indent); }},
+    {"--exposure", "X", "linear exposure before tone mapping (default 1)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.exposure = parseFloat("--exposure", v); }},
+    {"--frames", "N", "render N frames and report the median GPU times (default 1)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.frames = parseCount("--frames", v, 1, 1000); }},
+    {"--device", "N", "use Vulkan device N (see `punctual devices`); default: the best one",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.deviceIndex = int(parseCount("--device", v, 0, 64)); }},
+    {"--validate", nullptr, "enable the Vulkan validation layers; any message fails the run",
+     [](RenderOptions& o, const std::string&, Notes&) { o.validate = true; }},
+};
+
+}  // namespace
+
+std::span<const RenderOptionSpec> renderOptionTable() { return kRenderOptions; }
+
+const RenderOptionSpec* findRenderOption(const std::string& name) {
+    for (const RenderOptionSpec& spec : kRenderOptions) {
+        if (name == spec.name) return &spec;
+    }
+    return nullptr;
+}
+
+std::string renderOptionsHelp() {
+    const RenderOptions defaults;
+    std::string help;
+    for (const RenderOptionSpec& spec : kRenderOptions) {
+        std::string line = std::string("  ") + spec.name + (spec.valueName ? std::string(" ") + spec.valueName : "");
+        line += line.size() < kHelpColumn ? std::string(kHelpColumn - line.size(), ' ') : "  ";
+        const std::string text = spec.help;
+        size_t start = 0;
+        while (true) {
+            const size_t end = text.find('\n', start);
+            help += line + text.substr(start, end == std::string::npos ? std::string::npos : end - start) + "\n";
+            if (end == std::string::npos) break;
+            line = std::string(kHelpColumn, ' ');
+            start = end + 1;
+        }
+        if (spec.variants) help += spec.variants(defaults, kListIndent);
+    }
+    return help;
+}
+
+}  // namespace punctual::app
