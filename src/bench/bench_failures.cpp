@@ -62,15 +62,22 @@ std::vector<std::string> gridMethodNames(bool quick) {
     return names;
 }
 
-std::vector<FailureStudy> studies(vk::Context& context, bool quick, uint32_t width, uint32_t height) {
-    auto base = [=](render::LightListMethod method = render::LightListMethod::Brute) {
+// The frame every study starts from: brute force (or `method`), shadows at 512.
+struct StudyFrame {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    render::RenderSettings operator()(render::LightListMethod method = render::LightListMethod::Brute) const {
         render::RenderSettings settings;
         settings.width = width;
         settings.height = height;
         settings.method = method;
         settings.shadows.resolution = 512;
         return settings;
-    };
+    }
+};
+
+// Where spot and point shadows fail: bias (acne, peter-panning), cube seams, pancaking, wide spots.
+void appendShadowStudies(std::vector<FailureStudy>& list, vk::Context& context, bool quick, StudyFrame base) {
     // Acne and peter-panning: one scene rendered with every bias scaled by `value`, measuring
     // false shadows (acne) or false lights (peter-panning) outside the edge band.
     auto biasStudy = [&context, base](Scene (*makeScene)(), bool countFalseShadow) {
@@ -84,7 +91,6 @@ std::vector<FailureStudy> studies(vk::Context& context, bool quick, uint32_t wid
             return std::pair{fraction(wrong, c.comparedOutsideBand), f.result.medianMs.total};
         };
     };
-    std::vector<FailureStudy> list;
     list.push_back({"acne-vs-bias", "bias scale (x the default 1,1,0,0)", "false_shadow fraction outside the edge band",
                     quick ? std::vector<double>{0.0, 0.5, 1.0} : std::vector<double>{0.0, 0.25, 0.5, 1.0, 2.0},
                     quick ? std::vector<std::string>{"hw"} : std::vector<std::string>{"hw", "tent5"},
@@ -124,6 +130,11 @@ std::vector<FailureStudy> studies(vk::Context& context, bool quick, uint32_t wid
                         const ValidatedFrame f = renderAndValidate(context, study::wideSpotScene(float(value) * kDegree), base());
                         return std::pair{f.validation.overall.misclassifiedOutsideBand(), f.result.medianMs.total};
                     }});
+}
+
+// Where light lists fail: tile depth discontinuities, per-object lists on large objects, the
+// caps, transparent surfaces in tiles bounded by opaque depth.
+void appendCullingStudies(std::vector<FailureStudy>& list, vk::Context& context, bool quick, StudyFrame base) {
     list.push_back({"tile-depth-discontinuities", "tile size (pixels)", "lights tested / lights reaching (efficiency)",
                     quick ? std::vector<double>{16.0, 64.0} : std::vector<double>{8.0, 16.0, 32.0, 64.0},
                     gridMethodNames(quick),
@@ -178,6 +189,12 @@ std::vector<FailureStudy> studies(vk::Context& context, bool quick, uint32_t wid
                         const CullingStats stats = computeCullingStats(renderer.readLightStats());
                         return std::pair{fraction(stats.transparentFragmentsMissingLight, stats.transparentFragments), ms};
                     }});
+}
+
+std::vector<FailureStudy> studies(vk::Context& context, bool quick, uint32_t width, uint32_t height) {
+    std::vector<FailureStudy> list;
+    appendShadowStudies(list, context, quick, StudyFrame{width, height});
+    appendCullingStudies(list, context, quick, StudyFrame{width, height});
     // The sun's cascades: shimmering, seams, perspective aliasing and pancaking.
     for (FailureStudy& study : cascadeFailureStudies(context, quick, width, height)) list.push_back(std::move(study));
     return list;

@@ -230,6 +230,81 @@ glm::mat4 cubeFaceViewProjection(const glm::vec3& position, uint32_t face, float
     return m;
 }
 
+namespace {
+
+// Spot `index`'s view (packed light `index`), appended to the plan.
+void planSpotView(const Scene& scene, FrameLights& lights, uint32_t index, const ShadowSettings& settings,
+                  ShadowPlan& plan) {
+    const Light& source = scene.lights[lights.sceneLightIndex[index]];
+    gpu::GpuPunctualLight& light = lights.packed[index];
+    const glm::vec3 position(light.positionInvRangeSq);
+    const glm::vec3 direction(light.directionAngleScale);
+    const float range = light.radiantColor.w;
+    const float halfAngle = std::min(std::acos(std::clamp(light.angleOffsetShadow.z, -1.0f, 1.0f)), kMaxSpotShadowHalfAngle);
+    // Casters are found between the light's plane and the range (see findCasters), then the
+    // near and far planes move in to just short of the shallowest one and just past the
+    // deepest object along the axis.
+    DepthSpan span;
+    ShadowView view;
+    // The side planes do not depend on the near and far planes given here (see findCasters).
+    view.casters = findCasters(scene, spotViewProjection(position, direction, halfAngle, 1.0f, 2.0f), position,
+                               direction, range, std::tan(halfAngle), span);
+    // The failure study's fixed near plane (a share of the range) keeps the range as far.
+    const bool fixedNear = settings.spotNearFraction > 0.0f;
+    view.farPlane = fixedNear ? range : farPlaneFor(span, range);
+    view.nearPlane = fixedNear ? range * settings.spotNearFraction : nearPlaneFor(span.nearestReach, view.farPlane);
+    view.gpu.viewProjection = spotViewProjection(position, direction, halfAngle, view.nearPlane, view.farPlane);
+    view.tanSpan = 2.0f * std::tan(halfAngle);
+    view.packedLight = index;
+    plan.shadowedSpots++;
+    light.angleOffsetShadow.y = float(plan.views.size());
+    light.angleOffsetShadow.w = settings.strength * source.shadowStrength;
+    plan.views.push_back(std::move(view));
+}
+
+// Point `index`'s six faces (packed light `index`), appended to the plan.
+void planPointViews(const Scene& scene, FrameLights& lights, uint32_t index, const ShadowSettings& settings,
+                    ShadowPlan& plan) {
+    const Light& source = scene.lights[lights.sceneLightIndex[index]];
+    gpu::GpuPunctualLight& light = lights.packed[index];
+    const glm::vec3 position(light.positionInvRangeSq);
+    const float range = light.radiantColor.w;
+    const uint32_t cube = plan.shadowedPoints++;
+    light.angleOffsetShadow.y = float(plan.views.size());
+    light.angleOffsetShadow.w = settings.strength * source.shadowStrength;
+    // One near and one far plane for the whole light: the cube layout's hardware filters across
+    // face edges (seamless cube sampling), so every face must map depth the same way, and the
+    // slices keep the same planes so that the two layouts differ only in their storage.
+    std::vector<ShadowView> faces(6);
+    DepthSpan cubeSpan;
+    for (uint32_t face = 0; face < 6; ++face) {
+        DepthSpan span;
+        // Slices: a guard band of up to twice the face (at the smallest tier and the widest
+        // filter the widening stays below 1.6) bounds every face's frustum, whatever its
+        // resolution turns out to be.
+        const float widest = settings.pointLayout == PointShadowLayout::Slices ? 2.0f : 1.0f;
+        faces[face].casters = findCasters(scene, cubeFaceViewProjection(position, face, 1.0f, 2.0f, widest), position,
+                                          gpu::cubeFaceAxis(face), range, widest, span);
+        cubeSpan.extend(span);
+    }
+    const float farPlane = farPlaneFor(cubeSpan, range);
+    const float nearPlane = nearPlaneFor(cubeSpan.nearestReach, farPlane);
+    for (uint32_t face = 0; face < 6; ++face) {
+        ShadowView& view = faces[face];
+        view.farPlane = farPlane;
+        view.nearPlane = nearPlane;
+        view.tanSpan = 2.0f;  // widened by the slices' guard band once the resolution is known
+        view.gpu.viewProjection = cubeFaceViewProjection(position, face, nearPlane, farPlane);
+        view.cubeLayer = cube * 6 + face;
+        view.packedLight = index;
+        view.face = face;
+        view.isPoint = true;
+        plan.views.push_back(std::move(view));
+    }
+}
+
+}  // namespace
+
 ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3& cameraPosition,
                        const ShadowSettings& settings) {
     ShadowPlan plan;
@@ -262,72 +337,8 @@ ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3&
     const std::vector<uint32_t> points = rankedCasters(
         lights.spotCount, lights.pointCount, std::min<uint32_t>(settings.maxShadowedPoints, PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS));
 
-    for (uint32_t index : spots) {
-        const Light& source = scene.lights[lights.sceneLightIndex[index]];
-        gpu::GpuPunctualLight& light = lights.packed[index];
-        const glm::vec3 position(light.positionInvRangeSq);
-        const glm::vec3 direction(light.directionAngleScale);
-        const float range = light.radiantColor.w;
-        const float halfAngle = std::min(std::acos(std::clamp(light.angleOffsetShadow.z, -1.0f, 1.0f)), kMaxSpotShadowHalfAngle);
-        // Casters are found between the light's plane and the range (see findCasters), then the
-        // near and far planes move in to just short of the shallowest one and just past the
-        // deepest object along the axis.
-        DepthSpan span;
-        ShadowView view;
-        // The side planes do not depend on the near and far planes given here (see findCasters).
-        view.casters = findCasters(scene, spotViewProjection(position, direction, halfAngle, 1.0f, 2.0f), position,
-                                   direction, range, std::tan(halfAngle), span);
-        // The failure study's fixed near plane (a share of the range) keeps the range as far.
-        const bool fixedNear = settings.spotNearFraction > 0.0f;
-        view.farPlane = fixedNear ? range : farPlaneFor(span, range);
-        view.nearPlane = fixedNear ? range * settings.spotNearFraction : nearPlaneFor(span.nearestReach, view.farPlane);
-        view.gpu.viewProjection = spotViewProjection(position, direction, halfAngle, view.nearPlane, view.farPlane);
-        view.tanSpan = 2.0f * std::tan(halfAngle);
-        view.packedLight = index;
-        plan.shadowedSpots++;
-        light.angleOffsetShadow.y = float(plan.views.size());
-        light.angleOffsetShadow.w = settings.strength * source.shadowStrength;
-        plan.views.push_back(std::move(view));
-    }
-
-    for (uint32_t index : points) {
-        const Light& source = scene.lights[lights.sceneLightIndex[index]];
-        gpu::GpuPunctualLight& light = lights.packed[index];
-        const glm::vec3 position(light.positionInvRangeSq);
-        const float range = light.radiantColor.w;
-        const uint32_t cube = plan.shadowedPoints++;
-        light.angleOffsetShadow.y = float(plan.views.size());
-        light.angleOffsetShadow.w = settings.strength * source.shadowStrength;
-        // One near and one far plane for the whole light: the cube layout's hardware filters across
-        // face edges (seamless cube sampling), so every face must map depth the same way, and the
-        // slices keep the same planes so that the two layouts differ only in their storage.
-        std::vector<ShadowView> faces(6);
-        DepthSpan cubeSpan;
-        for (uint32_t face = 0; face < 6; ++face) {
-            DepthSpan span;
-            // Slices: a guard band of up to twice the face (at the smallest tier and the widest
-            // filter the widening stays below 1.6) bounds every face's frustum, whatever its
-            // resolution turns out to be.
-            const float widest = settings.pointLayout == PointShadowLayout::Slices ? 2.0f : 1.0f;
-            faces[face].casters = findCasters(scene, cubeFaceViewProjection(position, face, 1.0f, 2.0f, widest), position,
-                                              gpu::cubeFaceAxis(face), range, widest, span);
-            cubeSpan.extend(span);
-        }
-        const float farPlane = farPlaneFor(cubeSpan, range);
-        const float nearPlane = nearPlaneFor(cubeSpan.nearestReach, farPlane);
-        for (uint32_t face = 0; face < 6; ++face) {
-            ShadowView& view = faces[face];
-            view.farPlane = farPlane;
-            view.nearPlane = nearPlane;
-            view.tanSpan = 2.0f;  // widened by the slices' guard band once the resolution is known
-            view.gpu.viewProjection = cubeFaceViewProjection(position, face, nearPlane, farPlane);
-            view.cubeLayer = cube * 6 + face;
-            view.packedLight = index;
-            view.face = face;
-            view.isPoint = true;
-            plan.views.push_back(std::move(view));
-        }
-    }
+    for (uint32_t index : spots) planSpotView(scene, lights, index, settings, plan);
+    for (uint32_t index : points) planPointViews(scene, lights, index, settings, plan);
     return plan;
 }
 

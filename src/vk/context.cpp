@@ -144,6 +144,62 @@ std::vector<DeviceInfo> Context::listDevices() {
     return infos;
 }
 
+namespace {
+
+// The device --device N names (refused when unusable, with the reason), else the usable one of the
+// best type (discrete, integrated, virtual, CPU).
+size_t chooseDevice(const std::vector<VkPhysicalDevice>& devices, int deviceIndex) {
+    if (deviceIndex >= 0) {
+        if (deviceIndex >= int(devices.size())) {
+            throw Error("--device", "no device " + std::to_string(deviceIndex) + " (found " +
+                                        std::to_string(devices.size()) + ", see `punctual devices`)");
+        }
+        const DeviceInfo info = describe(devices[size_t(deviceIndex)], uint32_t(deviceIndex));
+        if (!info.usable) throw Error("--device", "device " + std::to_string(deviceIndex) + " (" + info.name +
+                                                      ") is not usable: " + info.whyNotUsable);
+        return size_t(deviceIndex);
+    }
+    int chosen = -1;
+    int bestScore = -1;
+    for (uint32_t i = 0; i < devices.size(); ++i) {
+        const DeviceInfo info = describe(devices[i], i);
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(devices[i], &props);
+        const int score = typeScore(props.deviceType);
+        if (info.usable && score > bestScore) {
+            bestScore = score;
+            chosen = int(i);
+        }
+    }
+    if (chosen < 0) throw Error("vulkan", "no usable Vulkan 1.2 device with graphics, compute and timestamps");
+    return size_t(chosen);
+}
+
+// The subgroup size, and whether compute shaders have subgroup arithmetic (the one-subgroup tile kernels).
+void readSubgroupSupport(VkPhysicalDevice device, uint32_t& size, bool& computeArithmetic) {
+    VkPhysicalDeviceSubgroupProperties subgroup{};
+    subgroup.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
+    VkPhysicalDeviceProperties2 properties2{};
+    properties2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+    properties2.pNext = &subgroup;
+    vkGetPhysicalDeviceProperties2(device, &properties2);
+    size = std::max(subgroup.subgroupSize, 1u);
+    computeArithmetic = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
+                        (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT) != 0;
+}
+
+// The bits of a timestamp the queue family's timestamps fill.
+uint64_t timestampMaskOf(VkPhysicalDevice device, uint32_t family) {
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+    const uint32_t bits = families[family].timestampValidBits;
+    return bits >= 64 ? ~0ull : ((1ull << bits) - 1ull);
+}
+
+}  // namespace
+
 Context::Context(const ContextOptions& options)
     : validation_(options.validation), printValidation_(options.printValidationMessages) {
     instance_ = createInstance(validation_, hasInstanceExtension(VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME));
@@ -165,53 +221,12 @@ Context::Context(const ContextOptions& options)
 
         const auto devices = enumerateDevices(instance_);
         if (devices.empty()) throw Error("vulkan", "no Vulkan device found (apt-get install mesa-vulkan-drivers)");
-        int chosen = -1;
-        if (options.deviceIndex >= 0) {
-            if (options.deviceIndex >= int(devices.size())) {
-                throw Error("--device", "no device " + std::to_string(options.deviceIndex) + " (found " +
-                                            std::to_string(devices.size()) + ", see `punctual devices`)");
-            }
-            const DeviceInfo info = describe(devices[size_t(options.deviceIndex)], uint32_t(options.deviceIndex));
-            if (!info.usable) throw Error("--device", "device " + std::to_string(options.deviceIndex) + " (" +
-                                                          info.name + ") is not usable: " + info.whyNotUsable);
-            chosen = options.deviceIndex;
-        } else {
-            int bestScore = -1;
-            for (uint32_t i = 0; i < devices.size(); ++i) {
-                const DeviceInfo info = describe(devices[i], i);
-                VkPhysicalDeviceProperties props;
-                vkGetPhysicalDeviceProperties(devices[i], &props);
-                const int score = typeScore(props.deviceType);
-                if (info.usable && score > bestScore) {
-                    bestScore = score;
-                    chosen = int(i);
-                }
-            }
-            if (chosen < 0) throw Error("vulkan", "no usable Vulkan 1.2 device with graphics, compute and timestamps");
-        }
-        physicalDevice_ = devices[size_t(chosen)];
+        physicalDevice_ = devices[chooseDevice(devices, options.deviceIndex)];
         vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
-        {
-            VkPhysicalDeviceSubgroupProperties subgroup{};
-            subgroup.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
-            VkPhysicalDeviceProperties2 properties2{};
-            properties2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
-            properties2.pNext = &subgroup;
-            vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
-            subgroupSize_ = std::max(subgroup.subgroupSize, 1u);
-            computeSubgroupArithmetic_ = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
-                                         (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT) != 0;
-        }
+        readSubgroupSupport(physicalDevice_, subgroupSize_, computeSubgroupArithmetic_);
         std::string ignored;
         queueFamily_ = pickQueueFamily(physicalDevice_, ignored);
-        {
-            uint32_t count = 0;
-            vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &count, nullptr);
-            std::vector<VkQueueFamilyProperties> families(count);
-            vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &count, families.data());
-            const uint32_t bits = families[queueFamily_].timestampValidBits;
-            timestampMask_ = bits >= 64 ? ~0ull : ((1ull << bits) - 1ull);
-        }
+        timestampMask_ = timestampMaskOf(physicalDevice_, queueFamily_);
 
         // Enable only the optional features the passes use, where present.
         VkPhysicalDeviceFeatures supported;
