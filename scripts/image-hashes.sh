@@ -11,6 +11,18 @@ binary="${1:-$root/build}/punctual"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
+# The variants, from `punctual render --help` (which prints the tables): a new method or filter is
+# hashed without an edit here. A variant line is indented 25 columns under its option's line.
+variants() {  # OPTION: the names --help lists under it
+  "$binary" render --help | awk -v option="  $1 " '
+    index($0, option) == 1 { listing = 1; next }
+    listing && /^  --/ { exit }
+    listing && substr($0, 1, 25) ~ /^ +$/ && substr($0, 26, 1) != " " { print $1 }'
+}
+methods=($(variants --culling))
+filters=($(variants --shadow-filter))
+[ ${#methods[@]} -gt 1 ] && [ ${#filters[@]} -gt 1 ] || { echo "image-hashes: no variants in render --help" >&2; exit 1; }
+
 scenes=("default:" "small-room:$root/data/small-room.gltf")
 cornell="$root/../shared/data/cornell-box/cornellBox.gltf"
 [ -f "$cornell" ] && scenes+=("cornell-box:$cornell")
@@ -31,13 +43,13 @@ hash_render() {  # NAME SCENE_PATH ARGS...
 for entry in "${scenes[@]}"; do
   scene_name=${entry%%:*}
   scene_path=${entry#*:}
-  for method in brute per-object tiled clustered tiled-2.5d zbin zbin-2d; do
+  for method in "${methods[@]}"; do
     hash_render "$scene_name $method shadows-off" "$scene_path" --culling "$method" --shadows off \
       --heatmap "$work/heat.png"
     hash_render "$scene_name $method shadows-auto" "$scene_path" --culling "$method"
   done
   # Point shadows in a cube array need one fixed resolution for every face; slices take auto too.
-  for filter in hw tent3 tent5 tent7 disk; do
+  for filter in "${filters[@]}"; do
     hash_render "$scene_name tiled $filter-cube-512" "$scene_path" --shadow-filter "$filter" \
       --point-shadow-layout cube --shadow-res 512
     hash_render "$scene_name tiled $filter-slices" "$scene_path" --shadow-filter "$filter" \

@@ -56,14 +56,14 @@ void applyShadowDistance(RenderOptions& o, const std::string& v, Notes&) {
 }
 
 const RenderOptionSpec kRenderOptions[] = {
-    {"--scene", "NAME", "a built-in scene instead of a file:",
+    {"--scene", "NAME", "a built-in scene instead of a file (every command that takes a SCENE\ntakes --scene, and not both):",
      [](RenderOptions& o, const std::string& v, Notes&) { o.sceneName = parseBuiltinScene(v).name; },
      [](const RenderOptions&, size_t indent) { return variantHelp(kBuiltinScenes, kDefaultBuiltinScene.value, indent); }},
     {"--scene-triangles", "N", "the size of --scene rooms, 10k to 10M triangles (e.g. 250k, 2M, 1e6;\ndefault 100k)",
      [](RenderOptions& o, const std::string& v, Notes&) { o.sceneTriangles = parseSceneTriangles(v); }},
     {"--lights", "S,P[,SEED]",
-     "replace the scene's lights with S spot (<= 64) and P point (<= 32)\nlights generated inside its bounds (same seed, "
-     "same lights; seed 1)",
+     "replace the scene's lights with S spot (<= 64) and P point (<= 32)\nlights generated inside its bounds, each "
+     "reaching something the\ncamera sees (same seed, same lights; seed 1)",
      [](RenderOptions& o, const std::string& v, Notes&) { o.lights = parseLightCounts(v); }},
     {"--size", "WxH", "output size in pixels (default 1280x720)",
      [](RenderOptions& o, const std::string& v, Notes&) { parseSize(v, o.width, o.height); }},
@@ -151,7 +151,7 @@ const RenderOptionSpec kRenderOptions[] = {
      [](const RenderOptions& d, size_t indent) { return variantHelp(kPointShadowLayouts, d.shadows.pointLayout, indent); }},
     {"--exposure", "X", "linear exposure before tone mapping (default 1)",
      [](RenderOptions& o, const std::string& v, Notes&) { o.exposure = parseFloat("--exposure", v); }},
-    {"--frames", "N", "render N frames and report the median GPU times (default 1)",
+    {"--frames", "N", "render N frames and report the median GPU times (default 1, after\none warm-up frame)",
      [](RenderOptions& o, const std::string& v, Notes&) { o.frames = parseCount("--frames", v, 1, 1000); }},
     {"--device", "N", "use Vulkan device N (see `punctual devices`); default: the best one",
      [](RenderOptions& o, const std::string& v, Notes&) { o.deviceIndex = int(parseCount("--device", v, 0, 64)); }},

@@ -4,9 +4,13 @@
 // work: --help exits before any device is made.)
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "app/options.h"
+#include "core/variant_table.h"
 #include "gpu_test_support.h"
 #include "lights/shadow_filters.h"
 #include "render/light_list_method.h"
@@ -55,10 +59,37 @@ TEST(VariantHelp, BenchHelpNamesTheSweptVariants) {
     testing::TempFolder folder;
     const RunResult run = runPunctual(folder, "bench --help");
     ASSERT_EQ(run.exitCode, 0) << run.err;
-    EXPECT_NE(run.out.find("the methods brute, per-object, tiled, clustered, tiled-2.5d, zbin, zbin-2d (shadows off)"), std::string::npos)
+    // Every name from its table, in table order; the quick subset from the tables' flags.
+    std::vector<std::string> quickFilters;
+    for (const ShadowFilterInfo& filter : kShadowFilters) {
+        if (filter.quickBench) quickFilters.emplace_back(filter.name);
+    }
+    EXPECT_NE(run.out.find("the methods " + joinNames(render::methodNames(), ", ") + " (shadows off)"),
+              std::string::npos)
         << run.out;
-    EXPECT_NE(run.out.find("the filters hw, tent3, tent5, tent7, disk at auto resolution"), std::string::npos) << run.out;
-    EXPECT_NE(run.out.find("filters hw and tent5 (under 3 minutes"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("the filters " + joinNames(shadowFilterNames(), ", ") + " at auto resolution"),
+              std::string::npos)
+        << run.out;
+    EXPECT_NE(run.out.find("filters " + joinNames(quickFilters, " and ") + " (under 3 minutes"), std::string::npos)
+        << run.out;
+}
+
+// The README's synopsis of `punctual render` is the options part of its --help, word for word:
+// one table (src/app/render_option_table.cpp) says both.
+TEST(VariantHelp, ReadmeSynopsisIsTheRenderHelp) {
+    std::ifstream in(std::string(PUNCTUAL_DATA_DIR) + "/../README.md");
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string readme = text.str();
+    const std::string head = "punctual render [SCENE.gltf|SCENE.glb|--scene NAME] [options]\n";
+    const size_t start = readme.find(head);
+    ASSERT_NE(start, std::string::npos) << "README has no `punctual render` synopsis";
+    const size_t end = readme.find("punctual reference ", start);
+    ASSERT_NE(end, std::string::npos);
+    const std::string synopsis = readme.substr(start + head.size(), end - start - head.size());
+    const std::string usage = app::renderUsage();
+    const std::string options = usage.substr(usage.find("options:\n") + 9);
+    EXPECT_EQ(synopsis, options) << "regenerate README's synopsis from `punctual render --help`";
 }
 
 }  // namespace
