@@ -15,8 +15,8 @@ trap 'rm -rf "$work"' EXIT
 # hashed without an edit here. A variant line is indented 25 columns under its option's line.
 variants() {  # OPTION: the names --help lists under it
   "$binary" render --help | awk -v option="  $1 " '
-    index($0, option) == 1 { listing = 1; next }
-    listing && /^  --/ { exit }
+    !done && index($0, option) == 1 { listing = 1; next }
+    listing && /^  --/ { listing = 0; done = 1 }  # read on: an early exit would break the pipe
     listing && substr($0, 1, 25) ~ /^ +$/ && substr($0, 26, 1) != " " { print $1 }'
 }
 methods=($(variants --culling))

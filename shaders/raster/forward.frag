@@ -321,25 +321,28 @@ void main() {
         bruteRadiance += emission;
         uvec2 pixel = uvec2(gl_FragCoord.xy);
         uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
+        uint pixels = uint(frame.viewport.x * frame.viewport.y);
         if (TRANSPARENT) {
-            uint base = (uint(frame.viewport.x * frame.viewport.y) + index) * 4u;
-            atomicAdd(lightStatWords[base + 0u], tested);
-            atomicAdd(lightStatWords[base + 1u], affecting);
-            atomicAdd(lightStatWords[base + 2u], 1u);
+            uint base = lightStatsWord(PUNCTUAL_LIGHT_STATS_TRANSPARENT, pixels, index, 0u);
+            atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_TESTED], tested);
+            atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_REACHING], affecting);
+            atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_FRAGMENTS], 1u);
             // Light went missing: the statistics' own test (culling_stats.cpp), per fragment.
-            if (luminance(radiance) < luminance(bruteRadiance) * (1.0 - 1e-6)) atomicAdd(lightStatWords[base + 3u], 1u);
+            if (luminance(radiance) < luminance(bruteRadiance) * (1.0 - 1e-6)) {
+                atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_MISSING], 1u);
+            }
         } else {
-            lightStatWords[index * 4u + 0u] = work;
-            lightStatWords[index * 4u + 1u] = affecting | 0x80000000u;
-            lightStatWords[index * 4u + 2u] = floatBitsToUint(luminance(radiance));
-            lightStatWords[index * 4u + 3u] = floatBitsToUint(luminance(bruteRadiance));
-            // Third block (after the opaque and the transparent ones): the reaching lights' mask and
-            // the pixel's list cell, for the exact-list floor.
-            uint exact = (2u * uint(frame.viewport.x * frame.viewport.y) + index) * 4u;
+            uint base = lightStatsWord(PUNCTUAL_LIGHT_STATS_OPAQUE, pixels, index, 0u);
+            lightStatWords[base + PUNCTUAL_LIGHT_STATS_WORK] = work;
+            lightStatWords[base + PUNCTUAL_LIGHT_STATS_REACHING] = affecting | PUNCTUAL_LIGHT_STATS_COVERED;
+            lightStatWords[base + PUNCTUAL_LIGHT_STATS_LUMINANCE] = floatBitsToUint(luminance(radiance));
+            lightStatWords[base + PUNCTUAL_LIGHT_STATS_BRUTE_LUMINANCE] = floatBitsToUint(luminance(bruteRadiance));
+            // The reaching lights' mask and the pixel's list cell, for the exact-list floor.
+            uint exact = lightStatsWord(PUNCTUAL_LIGHT_STATS_EXACT, pixels, index, 0u);
             lightStatWords[exact + 0u] = affectingWords.x;
             lightStatWords[exact + 1u] = affectingWords.y;
             lightStatWords[exact + 2u] = affectingWords.z;
-            lightStatWords[exact + 3u] = pixelListCell();
+            lightStatWords[exact + PUNCTUAL_LIGHT_STATS_LIST_CELL] = pixelListCell();
         }
     }
 }

@@ -143,6 +143,37 @@ PUNCTUAL_FN uint unpackTested(uint word) { return word & ((1u << PUNCTUAL_STATS_
 PUNCTUAL_FN uint unpackShadowLookups(uint word) { return (word >> PUNCTUAL_STATS_LOOKUP_SHIFT) & 0xFFu; }
 PUNCTUAL_FN uint unpackShadowTaps(uint word) { return word >> PUNCTUAL_STATS_TAP_SHIFT; }
 
+// Light statistics buffer (PUNCTUAL_BINDING_LIGHT_STATS, the forward shader's WRITE_LIGHT_STATS
+// variant), in 32-bit words: three blocks, each PUNCTUAL_LIGHT_STATS_PIXEL_WORDS words for every
+// pixel of the frame (width x height), in this order:
+//   OPAQUE      the pixel's opaque surface: WORK packPixelWork(tested, lookups, taps);
+//               REACHING the lights that reach it, with PUNCTUAL_LIGHT_STATS_COVERED set (every
+//               shaded pixel: 0 marks background); LUMINANCE and BRUTE_LUMINANCE the float bits
+//               of the method's and brute force's luminance there.
+//   TRANSPARENT summed by atomics over the pixel's alphaMode BLEND fragments: TESTED, REACHING,
+//               FRAGMENTS, and MISSING, the fragments whose luminance fell short of brute force's.
+//   EXACT       the exact-list floor: the PUNCTUAL_GRID_WORDS mask words of the lights reaching the
+//               opaque surface, then (LIST_CELL) the light-list cell the pixel read.
+#define PUNCTUAL_LIGHT_STATS_PIXEL_WORDS 4u
+#define PUNCTUAL_LIGHT_STATS_BLOCKS 3u
+#define PUNCTUAL_LIGHT_STATS_OPAQUE 0u
+#define PUNCTUAL_LIGHT_STATS_TRANSPARENT 1u
+#define PUNCTUAL_LIGHT_STATS_EXACT 2u
+#define PUNCTUAL_LIGHT_STATS_WORK 0u            // OPAQUE's words
+#define PUNCTUAL_LIGHT_STATS_REACHING 1u
+#define PUNCTUAL_LIGHT_STATS_LUMINANCE 2u
+#define PUNCTUAL_LIGHT_STATS_BRUTE_LUMINANCE 3u
+#define PUNCTUAL_LIGHT_STATS_TESTED 0u          // TRANSPARENT's words (REACHING is word 1 in both)
+#define PUNCTUAL_LIGHT_STATS_FRAGMENTS 2u
+#define PUNCTUAL_LIGHT_STATS_MISSING 3u
+#define PUNCTUAL_LIGHT_STATS_LIST_CELL 3u       // EXACT's last word, after the mask words
+#define PUNCTUAL_LIGHT_STATS_COVERED 0x80000000u
+
+// The index of word `word` of `pixel` in `block`, for a frame of `pixels` pixels.
+PUNCTUAL_FN uint lightStatsWord(uint block, uint pixels, uint pixel, uint word) {
+    return (block * pixels + pixel) * PUNCTUAL_LIGHT_STATS_PIXEL_WORDS + word;
+}
+
 // A spot or point light. Spots and points share one struct: a point light is a spot whose
 // angular attenuation is constant 1 (scale 0, offset 1), so one loop body serves both.
 struct GpuPunctualLight {

@@ -140,7 +140,7 @@ struct Renderer::Resources {
           objectLights(storageWords(context, perObject.lights, "object lights")),
           // Four words per pixel for the opaque surfaces, four for the transparent fragments, four
           // for the opaque surface's reaching-light mask and list cell.
-          lightStats(debugOutput(context, settings.collectLightStats, VkDeviceSize(settings.width) * settings.height * 48,
+          lightStats(debugOutput(context, settings.collectLightStats, VkDeviceSize(settings.width) * settings.height * PUNCTUAL_LIGHT_STATS_BLOCKS * PUNCTUAL_LIGHT_STATS_PIXEL_WORDS * 4,
                                  "light stats")),
           shadowDebug(debugOutput(context, settings.collectShadowFactors,
                                   VkDeviceSize(settings.width) * settings.height *
@@ -492,8 +492,11 @@ LightStatsImage Renderer::readLightStats() {
     submitAndWait(resources_->lightStatsCommands);
     const std::vector<uint8_t> bytes = readBuffer(resources_->lightStats);
     const size_t pixels = size_t(settings_.width) * settings_.height;
-    std::vector<uint32_t> words(pixels * 12);
+    std::vector<uint32_t> words(pixels * PUNCTUAL_LIGHT_STATS_BLOCKS * PUNCTUAL_LIGHT_STATS_PIXEL_WORDS);
     std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
+    const auto at = [&](uint32_t block, size_t pixel) {
+        return &words[gpu::lightStatsWord(block, uint32_t(pixels), uint32_t(pixel), 0u)];
+    };
     LightStatsImage stats;
     stats.width = settings_.width;
     stats.height = settings_.height;
@@ -511,26 +514,28 @@ LightStatsImage Renderer::readLightStats() {
     stats.affectingMasks.resize(pixels * PUNCTUAL_GRID_WORDS);
     stats.listCells.resize(pixels);
     for (size_t i = 0; i < pixels; ++i) {
-        const uint32_t* e = &words[(2 * pixels + i) * 4];
+        const uint32_t* e = at(PUNCTUAL_LIGHT_STATS_EXACT, i);
         std::copy(e, e + PUNCTUAL_GRID_WORDS, &stats.affectingMasks[i * PUNCTUAL_GRID_WORDS]);
-        stats.listCells[i] = e[3];
+        stats.listCells[i] = e[PUNCTUAL_LIGHT_STATS_LIST_CELL];
     }
     for (size_t i = 0; i < pixels; ++i) {
-        const uint32_t* t = &words[(pixels + i) * 4];
-        stats.transparentTested[i] = t[0];
-        stats.transparentAffecting[i] = t[1];
-        stats.transparentFragments[i] = t[2];
-        stats.transparentMissingLight[i] = t[3];
+        const uint32_t* t = at(PUNCTUAL_LIGHT_STATS_TRANSPARENT, i);
+        stats.transparentTested[i] = t[PUNCTUAL_LIGHT_STATS_TESTED];
+        stats.transparentAffecting[i] = t[PUNCTUAL_LIGHT_STATS_REACHING];
+        stats.transparentFragments[i] = t[PUNCTUAL_LIGHT_STATS_FRAGMENTS];
+        stats.transparentMissingLight[i] = t[PUNCTUAL_LIGHT_STATS_MISSING];
     }
     for (size_t i = 0; i < pixels; ++i) {
-        const uint32_t* w = &words[i * 4];
-        stats.covered[i] = (w[1] & 0x80000000u) ? uint8_t{1} : uint8_t{0};  // the shader marks every pixel it shades
-        stats.tested[i] = gpu::unpackTested(w[0]);
-        stats.shadowLookups[i] = gpu::unpackShadowLookups(w[0]);
-        stats.shadowTaps[i] = gpu::unpackShadowTaps(w[0]);
-        stats.affecting[i] = w[1] & 0x7FFFFFFFu;
-        std::memcpy(&stats.methodLuminance[i], &w[2], sizeof(float));
-        std::memcpy(&stats.bruteLuminance[i], &w[3], sizeof(float));
+        const uint32_t* w = at(PUNCTUAL_LIGHT_STATS_OPAQUE, i);
+        const uint32_t work = w[PUNCTUAL_LIGHT_STATS_WORK];
+        const uint32_t reaching = w[PUNCTUAL_LIGHT_STATS_REACHING];
+        stats.covered[i] = (reaching & PUNCTUAL_LIGHT_STATS_COVERED) ? uint8_t{1} : uint8_t{0};  // every shaded pixel
+        stats.tested[i] = gpu::unpackTested(work);
+        stats.shadowLookups[i] = gpu::unpackShadowLookups(work);
+        stats.shadowTaps[i] = gpu::unpackShadowTaps(work);
+        stats.affecting[i] = reaching & ~PUNCTUAL_LIGHT_STATS_COVERED;
+        std::memcpy(&stats.methodLuminance[i], &w[PUNCTUAL_LIGHT_STATS_LUMINANCE], sizeof(float));
+        std::memcpy(&stats.bruteLuminance[i], &w[PUNCTUAL_LIGHT_STATS_BRUTE_LUMINANCE], sizeof(float));
     }
     return stats;
 }

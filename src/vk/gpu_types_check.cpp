@@ -67,4 +67,11 @@ static_assert(offsetof(GpuMaterial, baseColorTexture) == 104);
 static_assert(offsetof(GpuMaterial, flags) == 108);
 static_assert(offsetof(GpuMaterial, emissiveTexture) == 112);
 
+// The light statistics buffer: the exact block's mask words and list cell fit a pixel's words, and
+// the covered bit leaves room for every light a frame can hold.
+static_assert(PUNCTUAL_GRID_WORDS + 1 <= PUNCTUAL_LIGHT_STATS_PIXEL_WORDS);
+static_assert(PUNCTUAL_LIGHT_STATS_LIST_CELL == PUNCTUAL_GRID_WORDS);
+static_assert(PUNCTUAL_LIGHT_STATS_EXACT < PUNCTUAL_LIGHT_STATS_BLOCKS);
+static_assert(PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS < PUNCTUAL_LIGHT_STATS_COVERED);
+
 }  // namespace punctual::gpu
