@@ -48,7 +48,7 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) writeonly buffer 
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_COARSE_GRID) readonly buffer CoarseGridBlock { uint coarseGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
 // The transparent surfaces' depth span per pixel (transparent_depth.frag), when the frame has any
-// (frame.lightCounts.w): nearest transparent depth, then (second half) the farthest.
+// (frame.transparentSpans): nearest transparent depth, then (second half) the farthest.
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
     uint transparentDepth[];
 };
@@ -115,7 +115,7 @@ void main() {
     vec2 ndcB = min(vec2((tile + 1u) * TILE_SIZE), frame.viewport.xy) * pixelToNdc - 1.0;
     vec2 tileMin = min(ndcA, ndcB);
     vec2 tileMax = max(ndcA, ndcB);
-    bool spans = frame.lightCounts.w != 0u;  // transparent spans: read pixel by pixel
+    bool spans = frame.transparentSpans != 0u;  // transparent spans: read pixel by pixel
 
     // 1. The tile's extent.
     vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) depth; x = 0: none

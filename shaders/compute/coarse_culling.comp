@@ -39,10 +39,10 @@ void main() {
         column = makeTileColumn(min(ndcA, ndcB), max(ndcA, ndcB), frame.depthToView.xy, frame.ndcToView);
     }
     barrier();
-    uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
+    uint lightCount = frame.spotCount + frame.pointCount;
     for (uint light = thread; light < lightCount; light += gl_WorkGroupSize.x) {
         if (!lightMayTouchTile(frameCullLights[light], column)) continue;
-        atomicOr(coarseMask[lightGridWord(light, frame.lightCounts.x)], 1u << lightGridBit(light, frame.lightCounts.x));
+        atomicOr(coarseMask[lightGridWord(light, frame.spotCount)], 1u << lightGridBit(light, frame.spotCount));
     }
     barrier();
     uint coarseTilesAcross = (uint(frame.viewport.x) + TILE_SIZE * COARSE_TILES - 1u) / (TILE_SIZE * COARSE_TILES);

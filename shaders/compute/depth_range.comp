@@ -34,7 +34,7 @@ layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame 
 layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_CULL_LIGHTS) readonly buffer CullLightBlock { CullLight frameCullLights[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) coherent buffer DepthRangeBlock { GpuDepthRange depthRange; };
-// The transparent surfaces' depth span per pixel, when the frame has any (frame.lightCounts.w):
+// The transparent surfaces' depth span per pixel, when the frame has any (frame.transparentSpans):
 // the range covers them too, so that their depths fall inside the slices.
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
     uint transparentDepth[];
@@ -69,8 +69,8 @@ shared uint subgroupCounts[PUNCTUAL_DEPTH_RANGE_THREADS];
 // Slice s: sliceStartDepth[s] = depth of D_s = Dnear (Dfar / Dnear)^(s / S) (culling.h), and its
 // lights: those whose view-distance extent meets the slice's distances.
 void cutSlices(uint minDepthBits, uint maxDepthBits) {
-    uint spotCount = frame.lightCounts.x;
-    uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
+    uint spotCount = frame.spotCount;
+    uint lightCount = frame.spotCount + frame.pointCount;
     for (uint light = gl_SubgroupInvocationID; light < lightCount; light += gl_SubgroupSize) {
         lightExtents[light] = lightDistanceExtent(frameCullLights[light]);
     }
@@ -130,7 +130,7 @@ void main() {
     }
     uint threadMin = extent.x > 0.0 ? floatBitsToUint(extent.y) : 0xFFFFFFFFu;
     uint threadMax = extent.x > 0.0 ? floatBitsToUint(extent.x) : 0u;
-    if (frame.lightCounts.w != 0u) {
+    if (frame.transparentSpans != 0u) {
         for (uint y = origin.y; y < end.y; ++y) {
             for (uint x = origin.x; x < end.x; ++x) {
                 uint index = y * viewport.x + x;

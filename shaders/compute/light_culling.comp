@@ -53,7 +53,7 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) writeonly buffer 
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_COARSE_GRID) readonly buffer CoarseGridBlock { uint coarseGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
 // The transparent surfaces' depth span per pixel (transparent_depth.frag), when the frame has
-// any (frame.lightCounts.w): a pixel then shades every depth from its opaque surface (or, over
+// any (frame.transparentSpans): a pixel then shades every depth from its opaque surface (or, over
 // the background, its farthest transparent one) to its nearest transparent one.
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
     uint transparentDepth[];
@@ -93,8 +93,8 @@ shared TileVolume cellVolumes[DEPTH_MASK ? PUNCTUAL_DEPTH_MASK_CELLS : 1u];  // 
 // Marks packed light `light` in the masks of `slice` (spots in words 0-1, points in word 2; see
 // lightGridWord in culling.h).
 void setLightBit(uint slice, uint light) {
-    uint word = lightGridWord(light, frame.lightCounts.x);
-    uint bit = lightGridBit(light, frame.lightCounts.x);
+    uint word = lightGridWord(light, frame.spotCount);
+    uint bit = lightGridBit(light, frame.spotCount);
     atomicOr(sliceMasks[slice * PUNCTUAL_GRID_WORDS + word], 1u << bit);
 }
 
@@ -160,7 +160,7 @@ SliceRun addPixelToSliceRun(SliceRun run, float depth, uvec2 local) {
 
 void main() {
     uint thread = gl_LocalInvocationIndex;
-    uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
+    uint lightCount = frame.spotCount + frame.pointCount;
     for (uint i = thread; i < SLICE_COUNT; i += kThreads) {
         sliceMinDistance[i] = 0x7F7FFFFFu;  // FLT_MAX
         sliceMaxDistance[i] = 0u;
@@ -189,8 +189,8 @@ void main() {
         uint coarseTilesAcross = (frame.lightGrid.y + COARSE_TILES - 1u) / COARSE_TILES;
         uint coarseBase = (coarseTile.y * coarseTilesAcross + coarseTile.x) * PUNCTUAL_GRID_WORDS;
         for (uint light = thread; light < lightCount; light += kThreads) {
-            uint word = lightGridWord(light, frame.lightCounts.x);
-            if ((coarseGrid[coarseBase + word] & (1u << lightGridBit(light, frame.lightCounts.x))) != 0u) {
+            uint word = lightGridWord(light, frame.spotCount);
+            if ((coarseGrid[coarseBase + word] & (1u << lightGridBit(light, frame.spotCount))) != 0u) {
                 candidateLights[atomicAdd(candidateCount, 1u)] = light;
             }
         }
@@ -210,7 +210,7 @@ void main() {
     // lavapipe at 1280x720 with no lights: 27 ms before, 10 ms after. Clustered reads blocks
     // next; the per-pixel loop after it serves frames with transparent spans.
     uvec2 tileEnd = min((tile + 1u) * TILE_SIZE, viewport);  // one past the tile's last pixel
-    bool foldDepths = SLICE_COUNT == 1u && !DEPTHLESS_TILES && frame.lightCounts.w == 0u;
+    bool foldDepths = SLICE_COUNT == 1u && !DEPTHLESS_TILES && frame.transparentSpans == 0u;
     if (foldDepths) {
         vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) geometry depth; x = 0: none
         for (uint block = thread; block < kBlocks * kBlocks; block += kThreads) {
@@ -226,7 +226,7 @@ void main() {
     // distances to that slice with two searches and two divisions instead of four each; a block
     // across a slice boundary adds its pixels one by one. (Measured on lavapipe, default scene at
     // 1280x720: the clustered culling pass 13% faster, A/B under load.)
-    bool clusterBlocks = SLICE_COUNT > 1u && !DEPTHLESS_TILES && frame.lightCounts.w == 0u;
+    bool clusterBlocks = SLICE_COUNT > 1u && !DEPTHLESS_TILES && frame.transparentSpans == 0u;
     SliceRun run = SliceRun(0xFFFFFFFFu, 0xFFFFFFFFu, 0u, 0u, 0u);
     for (uint block = thread; clusterBlocks && block < kBlocks * kBlocks; block += kThreads) {
         uvec2 local = 2u * uvec2(block % kBlocks, block / kBlocks);  // the block's top-left pixel in the tile
@@ -259,7 +259,7 @@ void main() {
         uvec2 pixel = tile * TILE_SIZE + uvec2(tilePixel % TILE_SIZE, tilePixel / TILE_SIZE);
         if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
         float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
-        if (frame.lightCounts.w != 0u) {
+        if (frame.transparentSpans != 0u) {
             uint index = pixel.y * viewport.x + pixel.x;
             uint nearestBits = transparentDepth[index];
             if (nearestBits != 0u) {
@@ -337,7 +337,7 @@ void main() {
             uvec2 pixel = tile * TILE_SIZE + uvec2(tilePixel % TILE_SIZE, tilePixel / TILE_SIZE);
             if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
             float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
-            if (frame.lightCounts.w != 0u) {
+            if (frame.transparentSpans != 0u) {
                 uint index = pixel.y * viewport.x + pixel.x;
                 uint nearestBits = transparentDepth[index];
                 if (nearestBits != 0u) {

@@ -49,7 +49,7 @@ layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) writeonly buffer GridBlock { uint lightGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_COARSE_GRID) readonly buffer CoarseGridBlock { uint coarseGrid[]; };
 // The transparent surfaces' depth span per pixel (transparent_depth.frag), when the frame has any
-// (frame.lightCounts.w): nearest transparent depth, then (second half) the farthest.
+// (frame.transparentSpans): nearest transparent depth, then (second half) the farthest.
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
     uint transparentDepth[];
 };
@@ -73,7 +73,7 @@ void main() {
     const uint kBlocks = (TILE_SIZE + 1u) / 2u;  // 2x2 blocks a side (an odd size's last is half outside)
     // A lane's rounds of blocks in tiles of at most 32 pixels (16 blocks a side, 4 lanes at least).
     const uint kMaxBlockRounds = 16u * 16u / 4u;
-    bool spans = frame.lightCounts.w != 0u;  // transparent spans: read pixel by pixel
+    bool spans = frame.transparentSpans != 0u;  // transparent spans: read pixel by pixel
     vec2 distances = vec2(0.0);  // the tile's nearest and farthest view distance
     if (DEPTHLESS_TILES) {
         segment = makeTileColumn(min(ndcA, ndcB), max(ndcA, ndcB), frame.depthToView.xy, frame.ndcToView);

@@ -211,8 +211,8 @@ void main() {
                                   material.metallicRoughness.x, material.metallicRoughness.y);
 
     precise vec3 radiance = shadeSun(surface);
-    uint spotCount = frame.lightCounts.x;
-    uint lightCount = frame.lightCounts.x + frame.lightCounts.y;
+    uint spotCount = frame.spotCount;
+    uint lightCount = frame.spotCount + frame.pointCount;
     uint tested = 0u;
     uvec3 gridWords = uvec3(0u);  // the light-grid methods: the pixel's three mask words
     bool walkGridWords = false;

@@ -196,15 +196,20 @@ struct GpuFrame {
     mat4 inverseViewProjection;
     vec4 cameraPosition;  // xyz: world position
     vec4 viewport;        // xy: size in pixels; zw: 1 / size
-    uvec4 lightCounts;    // x: spot lights, y: point lights (stored after the spots), z: directional (0/1)
+    uint spotCount;        // spot lights (the light array's first)
+    uint pointCount;       // point lights (stored after the spots)
+    uint directionalCount; // 0 or 1
+    uint transparentSpans; // 1: the frame has alphaMode BLEND surfaces, and the kernels bound tiles and
+                           // clusters by their depth spans (PUNCTUAL_BINDING_TRANSPARENT_DEPTH); 0: none
     vec4 exposure;        // x: linear exposure multiplier applied before tone mapping
     GpuDirectionalLight sun;
     uvec4 lightGrid;      // x: tile size in pixels, y: tiles across, z: tiles down, w: depth slices (1 = tiled)
     vec4 depthToView;     // xy: (a, b) with view distance = a / (depth + b) (see culling.h); zw: unused
     vec4 ndcToView;       // (1/P00, 1/P11, P20, P21): view ray through an NDC point (see culling.h)
     vec4 shadowBias;      // depth, slope-scaled depth, normal, sin-scaled normal offsets (x texel size x (1 + penumbra))
-    vec4 shadowMap;       // xy: the atlas's size in texels, z: disk radius (a view's UV units), w: the depth
-                          // format's rounding, subtracted by receiver-plane compares (shadowDepthQuantum)
+    vec2 shadowAtlasSize;      // the shadow atlas's size in texels
+    float diskRadius;          // the disk filter's radius (a view's UV units)
+    float shadowDepthQuantum;  // the depth format's rounding, subtracted by receiver-plane compares
     uvec4 shadowCounts;   // x: shadowed spots (their views come first), y: shadowed points
     // The sun's cascades (shaders/shared/cascades.h, lights/cascade_setup.h):
     uvec4 sunShadow;      // x: the first cascade's view (after the points'), y: cascades (0: unshadowed)

@@ -67,7 +67,7 @@ vec3 filterSample(uint i, float angle, vec2 uv, float resolution) {
         case PUNCTUAL_SHADOW_FILTER_DISK: {
             // Vogel disk: radius sqrt((i + 0.5) / N) of the full radius, golden-angle steps, so
             // samples cover the disk evenly for any N.
-            float r = sqrt((float(i) + 0.5) / float(SHADOW_SAMPLES)) * frame.shadowMap.z;
+            float r = sqrt((float(i) + 0.5) / float(SHADOW_SAMPLES)) * frame.diskRadius;
             float a = float(i) * 2.39996323 + angle;
             return vec3(r * cos(a), r * sin(a), 1.0);
         }
@@ -111,9 +111,9 @@ float shadowReference(float depth) { return min(depth, 1.0); }
 // One texel's compare with the receiver plane (receiverPlaneDepthSlope, shadows.h): lit (1) when
 // the plane's depth under the texel's centre, at most 1 (shadowReference), is no deeper than the
 // caster's. The planes are exact, so what is left to cover is the depth format's rounding
-// (frame.shadowMap.w, a constant in depth units like a rasterizer's constant depth bias).
+// (frame.shadowDepthQuantum, a constant in depth units like a rasterizer's constant depth bias).
 float compareWithPlane(float casterDepth, float planeDepth) {
-    return shadowReference(planeDepth) - frame.shadowMap.w <= casterDepth ? 1.0 : 0.0;
+    return shadowReference(planeDepth) - frame.shadowDepthQuantum <= casterDepth ? 1.0 : 0.0;
 }
 
 // The hardware 2 x 2 or N x N tent footprint (filterFootprint) with each texel compared with the

@@ -71,8 +71,8 @@ uvec3 laneCandidates(uvec2 tile, uint coarseTiles, uint lane, uint threads) {
         candidates = uvec3(coarseGrid[coarseBase], coarseGrid[coarseBase + 1u], coarseGrid[coarseBase + 2u]);
     } else {
         // Spots fill words 0-1 from bit 0, points word 2 (lightGridWord).
-        uint spots = frame.lightCounts.x;
-        uint points = frame.lightCounts.y;
+        uint spots = frame.spotCount;
+        uint points = frame.pointCount;
         candidates = uvec3(spots >= 32u ? 0xFFFFFFFFu : (1u << spots) - 1u,
                            spots >= 64u ? 0xFFFFFFFFu : (spots <= 32u ? 0u : (1u << (spots - 32u)) - 1u),
                            points >= 32u ? 0xFFFFFFFFu : (1u << points) - 1u);
@@ -88,7 +88,7 @@ uvec3 laneCandidates(uvec2 tile, uint coarseTiles, uint lane, uint threads) {
 // walks its masks so, and why).
 const uint kAnyDepthCell = 0xFFFFFFFFu;
 uvec3 lightsMeetingDepthCell(uvec3 lights, TileVolume segment, uint cell, float maskNear, float maskScale) {
-    uint spotCount = frame.lightCounts.x;
+    uint spotCount = frame.spotCount;
     uvec3 meeting = uvec3(0u);
     while ((lights.x | lights.y | lights.z) != 0u) {
         uint word = lights.x != 0u ? 0u : (lights.y != 0u ? 1u : 2u);
@@ -115,7 +115,7 @@ uvec3 lightsMeetingSegment(uvec3 lights, TileVolume segment) {
 vec2 pixelSpan(uvec2 pixel) {
     float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
     uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
-    uint nearestBits = frame.lightCounts.w != 0u ? transparentDepth[index] : 0u;
+    uint nearestBits = frame.transparentSpans != 0u ? transparentDepth[index] : 0u;
     if (nearestBits != 0u) {
         float farthest = isBackgroundDepth(depth) ? uintBitsToFloat(transparentDepth[uint(frame.viewport.x * frame.viewport.y) + index])
                                                   : depth;

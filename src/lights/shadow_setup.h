@@ -79,7 +79,7 @@ struct ShadowSettings {
 };
 
 const char* shadowFormatName(ShadowFormat format);
-// What receiver-plane compares subtract from the plane's depth (frame.shadowMap.w): the format's
+// What receiver-plane compares subtract from the plane's depth (frame.shadowDepthQuantum): the format's
 // rounding, in depth units. D16 stores round(depth x 65535), off by up to half a step, and the
 // rasterizer's interpolated depth may be off by about as much again: two steps. D32 floats hold
 // depth near 1 to 2^-24; 2^-20 covers the interpolation (measured: bench/RESULTS.md).

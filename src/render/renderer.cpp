@@ -250,7 +250,10 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     frame.cameraPosition = glm::vec4(scene.camera.position(), 1.0f);
     frame.viewport = glm::vec4(float(settings.width), float(settings.height), 1.0f / float(settings.width),
                                1.0f / float(settings.height));
-    frame.lightCounts = glm::uvec4(lights.spotCount, lights.pointCount, lights.directionalCount, 0u);
+    frame.spotCount = lights.spotCount;
+    frame.pointCount = lights.pointCount;
+    frame.directionalCount = lights.directionalCount;
+    frame.transparentSpans = 0u;  // set once the passes are built (they know whether any is drawn)
     frame.exposure = glm::vec4(settings.exposure, 0.0f, 0.0f, 0.0f);
     frame.sun = lights.sun;
     frame.lightGrid = glm::uvec4(grid.tileSize, grid.tilesX, grid.tilesY, grid.slices);
@@ -263,8 +266,9 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     frame.ndcToView = glm::vec4(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
     const ShadowSettings& shadows = settings.shadows;
     frame.shadowBias = shadows.bias;
-    frame.shadowMap = glm::vec4(float(shadowPlan.atlas.width), float(shadowPlan.atlas.height), shadows.diskRadius,
-                                shadowDepthQuantum(shadows.format));
+    frame.shadowAtlasSize = glm::vec2(float(shadowPlan.atlas.width), float(shadowPlan.atlas.height));
+    frame.diskRadius = shadows.diskRadius;
+    frame.shadowDepthQuantum = shadowDepthQuantum(shadows.format);
     frame.shadowCounts = glm::uvec4(shadowPlan.shadowedSpots, shadowPlan.shadowedPoints, 0u, 0u);
     const CascadePlan& cascades = shadowPlan.cascades;
     if (cascades.count > 0) {
@@ -335,7 +339,7 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
                                              shadowPlan_, view_, inView, zBins_, cameraDraws_);
     Resources& r = *resources_;
     gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_, gridLayout_, shadowPlan_);
-    frame.lightCounts.w = r.transparentDepth->needed() ? 1u : 0u;
+    frame.transparentSpans = r.transparentDepth->needed() ? 1u : 0u;
     r.frameUniform.write(&frame, sizeof(frame));
 
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};

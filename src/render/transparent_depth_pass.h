@@ -8,7 +8,7 @@
 //
 // Allocated only when the frame has alphaMode BLEND objects and culls into a light grid; then it
 // is cleared and filled every frame (a one-word placeholder otherwise, which nothing reads:
-// GpuFrame::lightCounts.w tells the kernels).
+// GpuFrame::transparentSpans tells the kernels).
 #include <cstdint>
 #include <vector>
 

@@ -290,16 +290,6 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
     return check;
 }
 
-// The sanitizer build (PUNCTUAL_SANITIZED_BUILD) runs the tile-size sweeps below on fewer sizes:
-// the CPU code is the same at every size (only the shaders' loops differ, which ASan does not
-// see), and each renderer costs lavapipe ~3x as much under ASan's allocator. Every method, scene,
-// kernel and the coarse pass on and off still run there; the Release suite runs every size.
-#ifdef PUNCTUAL_SANITIZED_BUILD
-constexpr bool kSanitizedBuild = true;
-#else
-constexpr bool kSanitizedBuild = false;
-#endif
-
 std::vector<testing::NamedScene> allScenes() {
     std::vector<testing::NamedScene> scenes = testing::adversarialCullingScenes();
     scenes.insert(scenes.begin(), testing::NamedScene{"default scene", makeDefaultScene()});
@@ -316,10 +306,8 @@ TEST(Culling, CulledImagesAreBitIdenticalToBruteForce) {
         EXPECT_GT(testing::fractionBrighterThan(brute, 24), 0.02);
         for (LightListMethod method : render::gridMethods()) {
             // Tile sizes 8, 16 and 32 with the coarse pass (8 and 4 fine tiles a big tile's side,
-            // 2 at 32), and 16 without it (sanitized: 8 with it, 16 without).
-            const std::vector<std::pair<uint32_t, bool>> tilings =
-                kSanitizedBuild ? std::vector<std::pair<uint32_t, bool>>{{8u, true}, {16u, false}}
-                                : std::vector<std::pair<uint32_t, bool>>{{8u, true}, {16u, true}, {32u, true}, {16u, false}};
+            // 2 at 32), and 16 without it.
+            const std::vector<std::pair<uint32_t, bool>> tilings = {{8u, true}, {16u, true}, {32u, true}, {16u, false}};
             for (const auto& [tileSize, coarse] : tilings) {
                 render::RenderSettings settings = settingsFor(method);
                 settings.tileSize = tileSize;
@@ -387,8 +375,7 @@ TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
     };
     const std::vector<std::pair<testing::NamedScene, std::vector<Case>>> runs = {
         {{"default scene", makeDefaultScene()},
-         kSanitizedBuild ? std::vector<Case>{{16u, true, 0u}, {13u, false, 0u}, {16u, true, 64u}}
-                         : std::vector<Case>{{8u, true, 0u}, {16u, true, 0u}, {16u, false, 0u}, {13u, false, 0u}, {16u, true, 64u}}},
+         {{8u, true, 0u}, {16u, true, 0u}, {16u, false, 0u}, {13u, false, 0u}, {16u, true, 64u}}},
         {{"glass panes", study::glassPanesScene(9.0f)}, {{16u, true, 0u}}},
         {testing::adversarialCullingScenes()[3], {{13u, false, 0u}}},
         // Sky between the street's objects: blocks holding background pixels, which give their
