@@ -154,10 +154,7 @@ vec3 shadeLight(Surface surface, GpuPunctualLight light) {
         facesLight(surface, arrival.toLight)) {
         shadow = shadowVisibility(light, arrival.toLight, surface.position, surface.normal);
         if (WRITE_SHADOW_FACTORS) {
-            // The light's slot: its view index for spots; shadowed spots + cube index for points.
-            uint first = uint(light.angleOffsetShadow.y);
-            uint spots = frame.shadowCounts.x;
-            recordShadowFactor(first < spots ? first : spots + (first - spots) / 6u, shadow);
+            recordShadowFactor(shadowSlot(uint(light.angleOffsetShadow.y), frame.shadowCounts.x), shadow);
         }
     }
     return shadeLightSample(surface, light, arrival, shadow);

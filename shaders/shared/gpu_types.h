@@ -169,6 +169,14 @@ PUNCTUAL_FN uint unpackShadowTaps(uint word) { return word >> PUNCTUAL_STATS_TAP
 #define PUNCTUAL_LIGHT_STATS_LIST_CELL 3u       // EXACT's last word, after the mask words
 #define PUNCTUAL_LIGHT_STATS_COVERED 0x80000000u
 
+// A shadowed light's slot among the validation buffer's factor bytes (spots, then points), from
+// the index of its first shadow view: the plan lists every shadowed spot's one view first, then
+// each shadowed point's six faces, so a spot's slot is its view and a point's is the spots'
+// count plus its cube's index. The forward shader writes by it; shadow validation reads by it.
+PUNCTUAL_FN uint shadowSlot(uint firstView, uint shadowedSpots) {
+    return firstView < shadowedSpots ? firstView : shadowedSpots + (firstView - shadowedSpots) / 6u;
+}
+
 // The index of word `word` of `pixel` in `block`, for a frame of `pixels` pixels.
 PUNCTUAL_FN uint lightStatsWord(uint block, uint pixels, uint pixel, uint word) {
     return (block * pixels + pixel) * PUNCTUAL_LIGHT_STATS_PIXEL_WORDS + word;

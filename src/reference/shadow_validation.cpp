@@ -6,6 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/check.h"
 #include "lights/cascade_setup.h"
 #include "reference/reference_renderer.h"
 #include "shadows.h"
@@ -165,12 +166,13 @@ ShadowValidation validateShadows(const EmbreeScene& embree, const ShadowFactorIm
     result.width = factors.width;
     result.height = factors.height;
 
-    // The slot of each shadowed light, in the order the GPU numbers them.
+    // Each shadowed light, by the slot the GPU writes its factors to (gpu::shadowSlot).
     for (uint32_t viewIndex = 0; viewIndex < plan.views.size(); ++viewIndex) {
         const ShadowView& view = plan.views[viewIndex];
         if (view.isCascade || (view.isPoint && view.face != 0)) continue;
         LightShadowValidation light;
-        light.slot = uint32_t(result.lights.size());
+        light.slot = gpu::shadowSlot(viewIndex, plan.shadowedSpots);
+        PUNCTUAL_CHECK(light.slot == result.lights.size(), "shadow slots out of plan order");
         light.packedLight = view.packedLight;
         light.sceneLight = lights.sceneLightIndex[view.packedLight];
         light.isPoint = view.isPoint;

@@ -113,6 +113,21 @@ TEST(ShadowPlan, EveryLightIsShadowedByDefault) {
     EXPECT_EQ(plan.shadowedPoints, 12u);
     EXPECT_EQ(plan.droppedByCap, 0u);
     EXPECT_EQ(plan.views.size(), 40u + 6u * 12u);
+    // Each light's slot, from its first view (gpu::shadowSlot, as the shader and the validation
+    // compute it): spots 0..39 by view, then the points 40..51, whichever of its faces is given.
+    EXPECT_EQ(gpu::shadowSlot(0u, 40u), 0u);
+    EXPECT_EQ(gpu::shadowSlot(39u, 40u), 39u);
+    EXPECT_EQ(gpu::shadowSlot(40u, 40u), 40u);       // the first point's +X face
+    EXPECT_EQ(gpu::shadowSlot(45u, 40u), 40u);       // its -Z face
+    EXPECT_EQ(gpu::shadowSlot(46u, 40u), 41u);       // the second point
+    EXPECT_EQ(gpu::shadowSlot(40u + 6u * 11u, 40u), 51u);
+    for (uint32_t i = 0; i < plan.views.size(); ++i) {
+        const ShadowView& view = plan.views[i];
+        const gpu::GpuPunctualLight& light = lights.packed[view.packedLight];
+        EXPECT_EQ(gpu::shadowSlot(uint32_t(light.angleOffsetShadow.y), plan.shadowedSpots),
+                  view.isPoint ? 40u + (i - 40u) / 6u : i)
+            << "view " << i;
+    }
 }
 
 TEST(ShadowPlan, SpotWithoutCasterIsSkipped) {
