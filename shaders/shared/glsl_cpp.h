@@ -16,10 +16,13 @@
 #define PUNCTUAL_NAMESPACE_BEGIN namespace punctual::gpu { using namespace glm; using uint = std::uint32_t;
 #define PUNCTUAL_NAMESPACE_END }
 #define PUNCTUAL_FN inline
+// Integer-only helpers the C++ tables evaluate at compile time (a filter's taps from its size).
+#define PUNCTUAL_CONSTEXPR_FN constexpr
 #else
 #define PUNCTUAL_NAMESPACE_BEGIN
 #define PUNCTUAL_NAMESPACE_END
 #define PUNCTUAL_FN
+#define PUNCTUAL_CONSTEXPR_FN
 #endif
 
 #endif

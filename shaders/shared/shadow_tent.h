@@ -46,8 +46,8 @@
 PUNCTUAL_NAMESPACE_BEGIN
 
 // Bilinear fetches along one axis of the N x N tent, and in all.
-PUNCTUAL_FN uint tentFetchesPerAxis(uint n) { return (n + 1u) / 2u; }
-PUNCTUAL_FN uint tentFetchCount(uint n) { return tentFetchesPerAxis(n) * tentFetchesPerAxis(n); }
+PUNCTUAL_CONSTEXPR_FN uint tentFetchesPerAxis(uint n) { return (n + 1u) / 2u; }
+PUNCTUAL_CONSTEXPR_FN uint tentFetchCount(uint n) { return tentFetchesPerAxis(n) * tentFetchesPerAxis(n); }
 
 // Integral of the unit-area tent of half-width h centred at 0 over the texel [x - 0.5, x + 0.5].
 PUNCTUAL_FN float tentTexelWeight(float x, float h) {

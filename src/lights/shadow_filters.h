@@ -10,6 +10,7 @@
 
 #include "core/variant_table.h"
 #include "gpu_types.h"
+#include "shadow_tent.h"
 
 namespace punctual {
 
@@ -32,9 +33,10 @@ struct ShadowFilterFootprint {
 
 // An N x N tent (N odd) reaches N / 2 texels from the centre. Its ((N + 1) / 2)^2 bilinear taps,
 // placed from the sample point's position inside its texel, cover the (N + 1) x (N + 1) texels
-// it may touch (Unity's SampleShadow_ComputeSamples_Tent_NxN; shaders/shared/shadow_tent.h).
+// it may touch (Unity's SampleShadow_ComputeSamples_Tent_NxN): gpu::tentFetchCount, the count
+// the shader's loop runs (shaders/shared/shadow_tent.h).
 constexpr ShadowFilterFootprint tentFootprint(uint32_t n) {
-    return {float(n) * 0.5f, ((n + 1) / 2) * ((n + 1) / 2), false};
+    return {float(n) * 0.5f, gpu::tentFetchCount(n), false};
 }
 
 struct ShadowFilterInfo {
