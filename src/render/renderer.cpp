@@ -15,6 +15,7 @@
 #include "lights/shadow_sizing.h"
 #include "lights/view_objects.h"
 #include "render/depth_prepass.h"
+#include "render/frame_plan.h"
 #include "render/forward_pass.h"
 #include "render/frame_bindings.h"
 #include "render/scene_gpu.h"
@@ -33,13 +34,6 @@
 namespace punctual::render {
 namespace {
 
-// The lights' culling shapes in view space, once per frame (the same function the culling tests
-// of the CPU reference use).
-std::vector<gpu::CullLight> viewCullLights(const FrameLights& frameLights, const glm::mat4& view) {
-    std::vector<gpu::CullLight> cullLights;
-    for (const gpu::GpuPunctualLight& light : frameLights.packed) cullLights.push_back(gpu::makeCullLight(light, view));
-    return cullLights;
-}
 
 }  // namespace
 
@@ -127,20 +121,20 @@ struct Renderer::Resources {
     }
 
     // `inView`: the objects the camera's passes draw, ascending; `draws` is filled with their counts.
-    Resources(vk::Context& context, const Scene& sceneData, const RenderSettings& settings,
-              const FrameLights& frameLights, const PerObjectLightLists& perObject, const LightGridLayout& gridLayout,
-              const ShadowPlan& shadowPlan, const glm::mat4& view, const std::vector<uint32_t>& inView,
-              const std::optional<ZBins>& zBins, CameraDraws& draws)
-        : scene(context, sceneData, perObject.counts),
+    Resources(vk::Context& context, const Scene& sceneData, const RenderSettings& settings, const FramePlan& plan,
+              CameraDraws& draws)
+        : scene(context, sceneData, plan.perObjectLists.counts),
           frameUniform(context, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload,
                        "frame"),
           // Sized to the lights this frame really uses; one slot when there are none.
-          lights(context, std::max<size_t>(frameLights.packed.size(), 1) * sizeof(gpu::GpuPunctualLight),
+          lights(context, std::max<size_t>(plan.lights.packed.size(), 1) * sizeof(gpu::GpuPunctualLight),
                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "lights"),
-          objectLights(storageWords(context, perObject.lights, "object lights")),
-          // Four words per pixel for the opaque surfaces, four for the transparent fragments, four
-          // for the opaque surface's reaching-light mask and list cell.
-          lightStats(debugOutput(context, settings.collectLightStats, VkDeviceSize(settings.width) * settings.height * PUNCTUAL_LIGHT_STATS_BLOCKS * PUNCTUAL_LIGHT_STATS_PIXEL_WORDS * 4,
+          objectLights(storageWords(context, plan.perObjectLists.lights, "object lights")),
+          // The light statistics' blocks (gpu_types.h): opaque surfaces, transparent fragments,
+          // the opaque surface's reaching-light mask and list cell.
+          lightStats(debugOutput(context, settings.collectLightStats,
+                                 VkDeviceSize(settings.width) * settings.height * PUNCTUAL_LIGHT_STATS_BLOCKS *
+                                     PUNCTUAL_LIGHT_STATS_PIXEL_WORDS * 4,
                                  "light stats")),
           shadowDebug(debugOutput(context, settings.collectShadowFactors,
                                   VkDeviceSize(settings.width) * settings.height *
@@ -156,13 +150,22 @@ struct Renderer::Resources {
         radianceDesc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
         radianceDesc.debugName = "radiance";
         radiance = vk::Image(context, radianceDesc);
-        if (!frameLights.packed.empty()) {
-            lights.write(frameLights.packed.data(), frameLights.packed.size() * sizeof(gpu::GpuPunctualLight));
+        if (!plan.lights.packed.empty()) {
+            lights.write(plan.lights.packed.data(), plan.lights.packed.size() * sizeof(gpu::GpuPunctualLight));
         }
-        const std::vector<gpu::CullLight> cullLights = viewCullLights(frameLights, view);
+        addPasses(context, sceneData, settings, plan, draws);
+        bindPasses(context);
+    }
 
-        // The frame, in order. The camera's passes draw the objects in view only, each list in
-        // object order as before (so every fragment is drawn in the same order: the same image).
+    // The frame, in order, and the statistics and validation variants of its forward pass. The
+    // camera's passes draw the objects in view only, each list in object order as before (so every
+    // fragment is drawn in the same order: the same image).
+    void addPasses(vk::Context& context, const Scene& sceneData, const RenderSettings& settings, const FramePlan& plan,
+                   CameraDraws& draws) {
+        const std::vector<gpu::CullLight> cullLights = viewCullLights(plan.lights, plan.view);
+        const std::vector<uint32_t>& inView = plan.objectsInView;
+        const LightGridLayout& gridLayout = plan.gridLayout;
+        const glm::vec3 eye(glm::inverse(plan.view)[3]);
         auto visible = [&](std::span<const uint32_t> objects) {
             return keepInView(std::vector<uint32_t>(objects.begin(), objects.end()), inView);
         };
@@ -185,14 +188,14 @@ struct Renderer::Resources {
                                                          usesLightGrid(settings.method) && !settings.opaqueCullingDepth,
                                                          settings.width, settings.height);
         culling = addPass<LightCullingPass>(context, gridLayout, usesLightGrid(settings.method), settings.width,
-                                            settings.height, cullLights, zBins ? &*zBins : nullptr);
-        shadows = addPass<ShadowPass>(context, shadowPlan, settings.shadows);
+                                            settings.height, cullLights, plan.zBins ? &*plan.zBins : nullptr);
+        shadows = addPass<ShadowPass>(context, plan.shadows, settings.shadows);
         addPass<ForwardPass>(context, radiance, depth->depth(), forwardVariant(settings, gridLayout, false, false),
                              unblended);
         ForwardVariant transparent = forwardVariant(settings, gridLayout, false, false);
         transparent.transparent = true;
         addPass<ForwardPass>(context, radiance, depth->depth(), transparent,
-                             backToFront(sceneData, blended, glm::vec3(glm::inverse(view)[3])));
+                             backToFront(sceneData, blended, eye));
         tonemap = addPass<TonemapPass>(context, radiance, settings.exposure);
         if (settings.collectLightStats) {
             lightStatsPass = std::make_unique<ForwardPass>(
@@ -201,14 +204,16 @@ struct Renderer::Resources {
             transparentStats.transparent = true;
             transparentStatsPass = std::make_unique<ForwardPass>(
                 context, radiance, depth->depth(), transparentStats,
-                backToFront(sceneData, blended, glm::vec3(glm::inverse(view)[3])), &lightStats);
+                backToFront(sceneData, blended, eye), &lightStats);
         }
         if (settings.collectShadowFactors) {
             shadowFactorsPass = std::make_unique<ForwardPass>(
                 context, radiance, depth->depth(), forwardVariant(settings, gridLayout, false, true), unblended, &shadowDebug);
         }
+    }
 
-        // Set 0: the frame's own buffers, then what each pass owns.
+    // Set 0: the frame's own buffers, then what each pass owns; then every pipeline.
+    void bindPasses(vk::Context& context) {
         BindingTable table;
         table.addBuffer(PUNCTUAL_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kAllStages, frameUniform);
         table.addBuffer(PUNCTUAL_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages, lights);
@@ -293,52 +298,11 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     : context_(context), scene_(scene), settings_(settings) {
     validateRenderSettings(settings);
     checkCameraPrecision(scene.camera, settings.height, scene.source);
-    view_ = scene.camera.view;
-    projection_ = scene.camera.projection(float(settings.width) / float(settings.height));
-    lights_ = setupFrameLights(scene, view_, projection_);
-    shadowPlan_ = planShadows(scene, lights_, scene.camera.position(), settings.shadows);
-    {
-        // Built on the first ray a planner casts, then shared (at 10^7 triangles a build takes
-        // seconds), and freed before the frame's resources are allocated (peak memory).
-        const LazyTriangleBvh geometry(scene);
-        if (settings.cascadeCamera) {
-            // The study's other camera: a copy of the scene seen from it (the cascades read its
-            // camera, its objects as casters and, for a fitted distance, its visible receivers).
-            Scene moved = scene;
-            moved.camera = *settings.cascadeCamera;
-            planCascades(shadowPlan_, moved, lights_, settings.width, settings.height, settings.shadows, &geometry);
-        } else {
-            planCascades(shadowPlan_, scene, lights_, settings.width, settings.height, settings.shadows, &geometry);
-        }
-        // Sized before anything is allocated: a request the device cannot hold fails here, in one line.
-        sizeShadowViews(shadowPlan_, scene, lights_, scene.camera.position(), settings.width, settings.height,
-                        settings.shadows, ShadowMaps::memoryLimits(context, settings.shadows), &geometry);
-    }
-    if (!shadowPlan_.reductions.empty() && settings.warnReducedShadows) {
-        log::warn("shadows: " + std::to_string(shadowPlan_.reductions.size()) + " view(s) got less resolution than " +
-                  "their receivers need, to fit " + shadowPlan_.reducedBy + " (the stats' shadows.reduced lists them)");
-    }
-    const LightListMethodInfo& method = methodInfo(settings.method);
-    if (method.objectLists) perObjectLists_ = buildPerObjectLightLists(scene, lights_);
-    gridLayout_ = LightGridLayout::forMethod(method, settings.width, settings.height, settings.tileSize,
-                                             settings.clusterSlices, settings.coarseTiles,
-                                             settings.tileThreads ? settings.tileThreads : context.subgroupSize(),
-                                             settings.subgroupTiles && context.computeSubgroupArithmetic());
-    if (method.zBins) {
-        zBins_ = buildZBins(viewCullLights(lights_, view_), lights_.spotCount,
-                            glm::vec2(projection_[3][2], projection_[2][2]));
-    }
-    std::vector<uint32_t> inView;
-    if (settings.cullObjectsToView) {
-        inView = objectsInView(scene, projection_ * view_);
-    } else {
-        inView.resize(scene.objects.size());
-        for (uint32_t i = 0; i < inView.size(); ++i) inView[i] = i;
-    }
-    resources_ = std::make_unique<Resources>(context, scene, settings, lights_, perObjectLists_, gridLayout_,
-                                             shadowPlan_, view_, inView, zBins_, cameraDraws_);
+    plan_ = planFrame(context, scene, settings);
+    resources_ = std::make_unique<Resources>(context, scene, settings, plan_, cameraDraws_);
     Resources& r = *resources_;
-    gpu::GpuFrame frame = packFrame(scene, settings, view_, projection_, lights_, gridLayout_, shadowPlan_);
+    gpu::GpuFrame frame = packFrame(scene, settings, plan_.view, plan_.projection, plan_.lights, plan_.gridLayout,
+                                    plan_.shadows);
     frame.transparentSpans = r.transparentDepth->needed() ? 1u : 0u;
     r.frameUniform.write(&frame, sizeof(frame));
 
@@ -480,7 +444,7 @@ std::vector<uint32_t> Renderer::readLightGrid() {
 }
 
 std::vector<uint32_t> Renderer::readCoarseGrid() {
-    if (!usesLightGrid(settings_.method) || !gridLayout_.coarseTiles) return {};
+    if (!usesLightGrid(settings_.method) || !plan_.gridLayout.coarseTiles) return {};
     return readWords(resources_->culling->coarseGrid());
 }
 
@@ -552,12 +516,12 @@ ShadowFactorImage Renderer::readShadowFactors() {
     ShadowFactorImage image;
     image.width = settings_.width;
     image.height = settings_.height;
-    image.slots = shadowPlan_.shadowedSpots + shadowPlan_.shadowedPoints;
+    image.slots = plan_.shadows.shadowedSpots + plan_.shadows.shadowedPoints;
     image.positions.resize(pixels);
     image.normals.resize(pixels);
     image.covered.resize(pixels);
     image.factors.resize(pixels * image.slots);
-    if (shadowPlan_.cascades.count > 0) {
+    if (plan_.shadows.cascades.count > 0) {
         image.sunFactors.resize(pixels);
         image.sunCascades.resize(pixels);
     }
@@ -573,7 +537,7 @@ ShadowFactorImage Renderer::readShadowFactors() {
         for (uint32_t slot = 0; slot < image.slots; ++slot) {
             image.factors[i * image.slots + slot] = image.covered[i] ? factors[slot] : uint8_t{255};
         }
-        if (shadowPlan_.cascades.count > 0) {
+        if (plan_.shadows.cascades.count > 0) {
             image.sunFactors[i] = image.covered[i] ? factors[PUNCTUAL_SUN_SHADOW_SLOT] : uint8_t{255};
             image.sunCascades[i] = image.covered[i] ? uint8_t(surface[7]) : uint8_t{0};
         }
@@ -607,7 +571,7 @@ DeviceMemory Renderer::deviceMemory() const {
 
 ShadowDraws Renderer::shadowDraws() const {
     ShadowDraws draws;
-    for (const ShadowView& view : shadowPlan_.views) {
+    for (const ShadowView& view : plan_.shadows.views) {
         if (!view.rendered()) continue;
         draws.total += view.casters.size();
         draws.maxPerView = std::max<uint64_t>(draws.maxPerView, view.casters.size());

@@ -20,6 +20,7 @@
 #include "lights/shadow_setup.h"
 #include "metrics/culling_stats.h"
 #include "metrics/shadow_factor_image.h"
+#include "render/frame_plan.h"
 #include "render/light_culling_pass.h"
 #include "render/light_list_method.h"
 #include "render/render_settings.h"
@@ -106,11 +107,11 @@ public:
     // Runs the shadow-validation variant of the forward pass (needs settings.collectShadowFactors).
     ShadowFactorImage readShadowFactors();
 
-    const LightGridLayout& gridLayout() const { return gridLayout_; }
-    const PerObjectLightLists& perObjectLists() const { return perObjectLists_; }
+    const LightGridLayout& gridLayout() const { return plan_.gridLayout; }
+    const PerObjectLightLists& perObjectLists() const { return plan_.perObjectLists; }
     // The z-bin method's bins (lights/z_bins.h); empty (nullopt) for the other methods.
-    const std::optional<ZBins>& zBins() const { return zBins_; }
-    const ShadowPlan& shadowPlan() const { return shadowPlan_; }
+    const std::optional<ZBins>& zBins() const { return plan_.zBins; }
+    const ShadowPlan& shadowPlan() const { return plan_.shadows; }
     uint64_t shadowMemoryBytes() const;
     // Device memory the renderer allocated: the scene's buffers and textures, every pass's images
     // and buffers, the frame's own buffers (debug outputs and readback included).
@@ -118,9 +119,9 @@ public:
     DeviceMemory deviceMemory() const;
     const CameraDraws& cameraDraws() const { return cameraDraws_; }
     ShadowDraws shadowDraws() const;
-    const FrameLights& lights() const { return lights_; }
-    const glm::mat4& view() const { return view_; }
-    const glm::mat4& projection() const { return projection_; }
+    const FrameLights& lights() const { return plan_.lights; }
+    const glm::mat4& view() const { return plan_.view; }
+    const glm::mat4& projection() const { return plan_.projection; }
     const RenderSettings& settings() const { return settings_; }
 
     // The names of the frame's passes, in frame order (the keys of PassTimings).
@@ -138,13 +139,7 @@ private:
     vk::Context& context_;
     const Scene& scene_;
     RenderSettings settings_;
-    glm::mat4 view_{1.0f};
-    glm::mat4 projection_{1.0f};
-    FrameLights lights_;
-    PerObjectLightLists perObjectLists_;
-    std::optional<ZBins> zBins_;
-    ShadowPlan shadowPlan_;
-    LightGridLayout gridLayout_;
+    FramePlan plan_;  // what the frame needs, decided before anything is allocated (frame_plan.h)
     CameraDraws cameraDraws_;
     std::unique_ptr<Resources> resources_;
 };
