@@ -50,6 +50,41 @@ void warnIfNoLightReaches(const Scene& scene, const ImageRgba8& image, float exp
     log::warn(message.str());
 }
 
+// What the frame was: scene, device, lights, shadows and the sun's cascades, a line each.
+void printFrameSummary(const Scene& scene, const vk::Context& context, const render::Renderer& renderer,
+                       uint32_t frames) {
+    const render::RenderSettings& settings = renderer.settings();
+    const FrameLights& lights = renderer.lights();
+    std::printf("scene: %s (%zu triangles, %zu objects)\n", scene.source.c_str(), scene.triangleCount(),
+                scene.objects.size());
+    std::printf("device: %s, %ux%u, %s culling, %u frame(s), median GPU times\n", context.deviceName().c_str(),
+                settings.width, settings.height, render::methodName(settings.method), frames);
+    std::printf("lights: %u spot, %u point, %u directional (%u outside the view, %u over the caps)\n",
+                lights.spotCount, lights.pointCount, lights.directionalCount, lights.culledByFrustum,
+                lights.droppedByCap);
+    const ShadowPlan& shadows = renderer.shadowPlan();
+    if (settings.shadows.enabled) {
+        std::printf("shadows: %u spot, %u point (%s), %u views rendered, %u skipped, %.1f MiB %s, %s filter\n",
+                    shadows.shadowedSpots, shadows.shadowedPoints, pointShadowLayoutName(settings.shadows.pointLayout),
+                    shadows.viewsRendered, shadows.viewsSkipped, double(renderer.shadowMemoryBytes()) / 1048576.0,
+                    shadowFormatName(settings.shadows.format), shadowFilterName(settings.shadows.filter));
+        std::printf("shadow resolution: %s; views at %s texels\n",
+                    settings.shadows.autoResolution() ? "auto" : "fixed", describeShadowTiers(shadows).c_str());
+        if (shadows.cascades.count > 0) {
+            std::string cascades;
+            for (uint32_t i = 0; i < shadows.cascades.count; ++i) {
+                const ShadowView& view = shadows.views[shadows.cascades.firstView + i];
+                char text[96];
+                std::snprintf(text, sizeof(text), "%s%.1f m at %u (%.3f m texels)", i ? ", " : "",
+                              double(shadows.cascades.splits[i]), view.resolution, double(cascadeTexelSize(shadows, i)));
+                cascades += text;
+            }
+            std::printf("sun: %u cascades to %s, %s blend\n", shadows.cascades.count, cascades.c_str(),
+                        cascadeBlendName(settings.shadows.cascades.blend));
+        }
+    }
+}
+
 }  // namespace
 
 int runRenderCommand(const std::vector<std::string>& args) {
@@ -82,35 +117,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
     }
     warnIfNoLightReaches(scene, result.image, settings.exposure);
 
-    const FrameLights& lights = renderer.lights();
-    std::printf("scene: %s (%zu triangles, %zu objects)\n", scene.source.c_str(), scene.triangleCount(),
-                scene.objects.size());
-    std::printf("device: %s, %ux%u, %s culling, %u frame(s), median GPU times\n", context.deviceName().c_str(),
-                settings.width, settings.height, render::methodName(settings.method), options.frames);
-    std::printf("lights: %u spot, %u point, %u directional (%u outside the view, %u over the caps)\n",
-                lights.spotCount, lights.pointCount, lights.directionalCount, lights.culledByFrustum,
-                lights.droppedByCap);
-    const ShadowPlan& shadows = renderer.shadowPlan();
-    if (settings.shadows.enabled) {
-        std::printf("shadows: %u spot, %u point (%s), %u views rendered, %u skipped, %.1f MiB %s, %s filter\n",
-                    shadows.shadowedSpots, shadows.shadowedPoints, pointShadowLayoutName(settings.shadows.pointLayout),
-                    shadows.viewsRendered, shadows.viewsSkipped, double(renderer.shadowMemoryBytes()) / 1048576.0,
-                    shadowFormatName(settings.shadows.format), shadowFilterName(settings.shadows.filter));
-        std::printf("shadow resolution: %s; views at %s texels\n",
-                    settings.shadows.autoResolution() ? "auto" : "fixed", describeShadowTiers(shadows).c_str());
-        if (shadows.cascades.count > 0) {
-            std::string cascades;
-            for (uint32_t i = 0; i < shadows.cascades.count; ++i) {
-                const ShadowView& view = shadows.views[shadows.cascades.firstView + i];
-                char text[96];
-                std::snprintf(text, sizeof(text), "%s%.1f m at %u (%.3f m texels)", i ? ", " : "",
-                              double(shadows.cascades.splits[i]), view.resolution, double(cascadeTexelSize(shadows, i)));
-                cascades += text;
-            }
-            std::printf("sun: %u cascades to %s, %s blend\n", shadows.cascades.count, cascades.c_str(),
-                        cascadeBlendName(settings.shadows.cascades.blend));
-        }
-    }
+    printFrameSummary(scene, context, renderer, options.frames);
     std::fputs(timingTable(result.medianMs).c_str(), stdout);
 
     OutputFiles outputs;
@@ -137,7 +144,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
     }
     if (options.shadowDensityPath) {
         const ShadowDensityImage density =
-            computeShadowDensity(scene, renderer.lights(), shadows, settings.width, settings.height);
+            computeShadowDensity(scene, renderer.lights(), renderer.shadowPlan(), settings.width, settings.height);
         const std::string title = "shadow texels per pixel (--shadow-res " + shadowResolutionName(settings.shadows) + ")";
         outputs.add(*options.shadowDensityPath, encodePng(renderShadowDensity(density, title)));
     }
