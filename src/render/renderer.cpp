@@ -14,6 +14,7 @@
 #include "lights/cascade_setup.h"
 #include "lights/shadow_sizing.h"
 #include "lights/view_objects.h"
+#include "metrics/debug_buffers.h"
 #include "render/depth_prepass.h"
 #include "render/frame_plan.h"
 #include "render/forward_pass.h"
@@ -132,13 +133,9 @@ struct Renderer::Resources {
           objectLights(storageWords(context, plan.perObjectLists.lights, "object lights")),
           // The light statistics' blocks (gpu_types.h): opaque surfaces, transparent fragments,
           // the opaque surface's reaching-light mask and list cell.
-          lightStats(debugOutput(context, settings.collectLightStats,
-                                 VkDeviceSize(settings.width) * settings.height * PUNCTUAL_LIGHT_STATS_BLOCKS *
-                                     PUNCTUAL_LIGHT_STATS_PIXEL_WORDS * 4,
+          lightStats(debugOutput(context, settings.collectLightStats, lightStatsBytes(settings.width, settings.height),
                                  "light stats")),
-          shadowDebug(debugOutput(context, settings.collectShadowFactors,
-                                  VkDeviceSize(settings.width) * settings.height *
-                                      (PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS + PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS) * 4,
+          shadowDebug(debugOutput(context, settings.collectShadowFactors, shadowFactorBytes(settings.width, settings.height),
                                   "shadow debug")),
           readback(context, VkDeviceSize(settings.width) * settings.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                    vk::MemoryUse::Readback, "readback"),
@@ -458,91 +455,15 @@ gpu::GpuDepthRange Renderer::readDepthRange() {
 LightStatsImage Renderer::readLightStats() {
     PUNCTUAL_CHECK(settings_.collectLightStats, "light statistics were not requested (collectLightStats)");
     submitAndWait(resources_->lightStatsCommands);
-    const std::vector<uint8_t> bytes = readBuffer(resources_->lightStats);
-    const size_t pixels = size_t(settings_.width) * settings_.height;
-    std::vector<uint32_t> words(pixels * PUNCTUAL_LIGHT_STATS_BLOCKS * PUNCTUAL_LIGHT_STATS_PIXEL_WORDS);
-    std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
-    const auto at = [&](uint32_t block, size_t pixel) {
-        return &words[gpu::lightStatsWord(block, uint32_t(pixels), uint32_t(pixel), 0u)];
-    };
-    LightStatsImage stats;
-    stats.width = settings_.width;
-    stats.height = settings_.height;
-    stats.tested.resize(pixels);
-    stats.affecting.resize(pixels);
-    stats.shadowLookups.resize(pixels);
-    stats.shadowTaps.resize(pixels);
-    stats.covered.resize(pixels);
-    stats.methodLuminance.resize(pixels);
-    stats.bruteLuminance.resize(pixels);
-    stats.transparentTested.resize(pixels);
-    stats.transparentAffecting.resize(pixels);
-    stats.transparentFragments.resize(pixels);
-    stats.transparentMissingLight.resize(pixels);
-    stats.affectingMasks.resize(pixels * PUNCTUAL_GRID_WORDS);
-    stats.listCells.resize(pixels);
-    for (size_t i = 0; i < pixels; ++i) {
-        const uint32_t* e = at(PUNCTUAL_LIGHT_STATS_EXACT, i);
-        std::copy(e, e + PUNCTUAL_GRID_WORDS, &stats.affectingMasks[i * PUNCTUAL_GRID_WORDS]);
-        stats.listCells[i] = e[PUNCTUAL_LIGHT_STATS_LIST_CELL];
-    }
-    for (size_t i = 0; i < pixels; ++i) {
-        const uint32_t* t = at(PUNCTUAL_LIGHT_STATS_TRANSPARENT, i);
-        stats.transparentTested[i] = t[PUNCTUAL_LIGHT_STATS_TESTED];
-        stats.transparentAffecting[i] = t[PUNCTUAL_LIGHT_STATS_REACHING];
-        stats.transparentFragments[i] = t[PUNCTUAL_LIGHT_STATS_FRAGMENTS];
-        stats.transparentMissingLight[i] = t[PUNCTUAL_LIGHT_STATS_MISSING];
-    }
-    for (size_t i = 0; i < pixels; ++i) {
-        const uint32_t* w = at(PUNCTUAL_LIGHT_STATS_OPAQUE, i);
-        const uint32_t work = w[PUNCTUAL_LIGHT_STATS_WORK];
-        const uint32_t reaching = w[PUNCTUAL_LIGHT_STATS_REACHING];
-        stats.covered[i] = (reaching & PUNCTUAL_LIGHT_STATS_COVERED) ? uint8_t{1} : uint8_t{0};  // every shaded pixel
-        stats.tested[i] = gpu::unpackTested(work);
-        stats.shadowLookups[i] = gpu::unpackShadowLookups(work);
-        stats.shadowTaps[i] = gpu::unpackShadowTaps(work);
-        stats.affecting[i] = reaching & ~PUNCTUAL_LIGHT_STATS_COVERED;
-        std::memcpy(&stats.methodLuminance[i], &w[PUNCTUAL_LIGHT_STATS_LUMINANCE], sizeof(float));
-        std::memcpy(&stats.bruteLuminance[i], &w[PUNCTUAL_LIGHT_STATS_BRUTE_LUMINANCE], sizeof(float));
-    }
-    return stats;
+    return decodeLightStats(readBuffer(resources_->lightStats), settings_.width, settings_.height);
 }
 
 ShadowFactorImage Renderer::readShadowFactors() {
     PUNCTUAL_CHECK(settings_.collectShadowFactors, "shadow factors were not requested (collectShadowFactors)");
     submitAndWait(resources_->shadowFactorsCommands);
-    const std::vector<uint8_t> bytes = readBuffer(resources_->shadowDebug);
-    const size_t pixels = size_t(settings_.width) * settings_.height;
-    ShadowFactorImage image;
-    image.width = settings_.width;
-    image.height = settings_.height;
-    image.slots = plan_.shadows.shadowedSpots + plan_.shadows.shadowedPoints;
-    image.positions.resize(pixels);
-    image.normals.resize(pixels);
-    image.covered.resize(pixels);
-    image.factors.resize(pixels * image.slots);
-    if (plan_.shadows.cascades.count > 0) {
-        image.sunFactors.resize(pixels);
-        image.sunCascades.resize(pixels);
-    }
-    const auto* words = reinterpret_cast<const uint32_t*>(bytes.data());
-    for (size_t i = 0; i < pixels; ++i) {
-        const uint32_t* surface = words + i * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS;
-        std::memcpy(&image.positions[i], surface, sizeof(glm::vec3));
-        std::memcpy(&image.normals[i], surface + 4, sizeof(glm::vec3));
-        image.covered[i] = surface[3] != 0 ? uint8_t{1} : uint8_t{0};
-        const auto* factors = reinterpret_cast<const uint8_t*>(words + pixels * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS +
-                                                               i * PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS);
-        // Uncovered pixels were cleared to 0: report them as not reached.
-        for (uint32_t slot = 0; slot < image.slots; ++slot) {
-            image.factors[i * image.slots + slot] = image.covered[i] ? factors[slot] : uint8_t{255};
-        }
-        if (plan_.shadows.cascades.count > 0) {
-            image.sunFactors[i] = image.covered[i] ? factors[PUNCTUAL_SUN_SHADOW_SLOT] : uint8_t{255};
-            image.sunCascades[i] = image.covered[i] ? uint8_t(surface[7]) : uint8_t{0};
-        }
-    }
-    return image;
+    return decodeShadowFactors(readBuffer(resources_->shadowDebug), settings_.width, settings_.height,
+                               plan_.shadows.shadowedSpots + plan_.shadows.shadowedPoints,
+                               plan_.shadows.cascades.count > 0);
 }
 
 uint64_t Renderer::shadowMemoryBytes() const { return resources_->shadows->memoryBytes(); }
