@@ -73,6 +73,8 @@ void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
     }
 }
 
+namespace {
+
 // What no single option can check: options that contradict each other, outputs named for another
 // format.
 void checkOptionCombinations(const RenderOptions& options, bool splitsAndLambda) {
@@ -99,6 +101,8 @@ void checkOptionCombinations(const RenderOptions& options, bool splitsAndLambda)
                                                                                    kDefaultBuiltinScene.name)));
     }
 }
+
+}  // namespace
 
 RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
     RenderOptions options;

@@ -50,6 +50,16 @@ options:
 )";
 }
 
+reference::ReferenceSettings referenceSettingsFrom(const RenderOptions& options, bool shadows) {
+    reference::ReferenceSettings settings;
+    settings.width = options.width;
+    settings.height = options.height;
+    settings.exposure = options.exposure;
+    settings.shadows = shadows;
+    settings.transparentShadows = options.shadows.transparent;
+    return settings;
+}
+
 int runReferenceCommand(const std::vector<std::string>& args) {
     std::vector<std::string> renderArgs;
     bool shadows = true;
@@ -90,12 +100,7 @@ int runReferenceCommand(const std::vector<std::string>& args) {
     const Scene scene = loadSceneForOptions(options);
     checkOutputPaths({{"--out", options.outPath}});  // again, now that the files the scene reads are known
 
-    reference::ReferenceSettings settings;
-    settings.width = options.width;
-    settings.height = options.height;
-    settings.exposure = options.exposure;
-    settings.shadows = shadows;
-    settings.transparentShadows = options.shadows.transparent;
+    reference::ReferenceSettings settings = referenceSettingsFrom(options, shadows);
     settings.showProgress = isatty(STDERR_FILENO) != 0;
     const reference::ReferenceRenderer renderer(scene, settings);
     reference::ReferenceStats stats;

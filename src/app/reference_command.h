@@ -2,6 +2,9 @@
 #include <string>
 #include <vector>
 
+#include "app/options.h"
+#include "reference/reference_renderer.h"
+
 namespace punctual::app {
 
 // `punctual reference [SCENE] [options] --out FILE.png [--no-shadows]`: ray traces the CPU
@@ -9,5 +12,9 @@ namespace punctual::app {
 int runReferenceCommand(const std::vector<std::string>& args);
 
 std::string referenceUsage();
+
+// The CPU reference's settings for what `options` ask: their size, exposure and transparent
+// shadow mode; shadows on or off. Shared by `reference` and `validate`, which compare with it.
+reference::ReferenceSettings referenceSettingsFrom(const RenderOptions& options, bool shadows);
 
 }  // namespace punctual::app

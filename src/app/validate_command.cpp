@@ -6,6 +6,7 @@
 
 #include "app/options.h"
 #include "app/output_paths.h"
+#include "app/reference_command.h"
 #include "app/scene_source.h"
 #include "app/validation_report.h"
 #include "core/error.h"
@@ -165,13 +166,7 @@ int runValidateCommand(const std::vector<std::string>& args) {
                                   " validation message(s) (printed above); no output written");
     }
 
-    reference::ReferenceSettings referenceSettings;
-    referenceSettings.width = options.width;
-    referenceSettings.height = options.height;
-    referenceSettings.exposure = options.exposure;
-    referenceSettings.shadows = true;
-    referenceSettings.transparentShadows = options.shadows.transparent;
-    const reference::ReferenceRenderer referenceRenderer(scene, referenceSettings);
+    const reference::ReferenceRenderer referenceRenderer(scene, referenceSettingsFrom(options, true));
     const ImageRgba8 referenceImage = referenceRenderer.render();
     const float band = parsed.edgeBandPixels;
     const reference::ShadowValidation validation = reference::validateShadows(

@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <optional>
 
 namespace punctual {
 namespace {
@@ -104,31 +105,23 @@ std::string regularFileProblem(const std::string& path, uint64_t maxBytes) {
     return "";
 }
 
-std::string readRegularFileHead(const std::string& path, uint64_t maxBytes, size_t headBytes,
-                                std::vector<unsigned char>& bytes) {
+namespace {
+
+// Opens `path` by the reader's rules and reads it into `bytes`: its first `headBytes` bytes when
+// given (fewer if it is shorter), else all of it, never past `maxBytes`.
+std::string readOpened(const std::string& path, uint64_t maxBytes, std::optional<size_t> headBytes,
+                       std::vector<unsigned char>& bytes) {
     bytes.clear();
     int descriptor = -1;
     struct stat info {};
     const std::string problem = openRegularFile(path, maxBytes, descriptor, info);
     const FileDescriptor file(descriptor);
     if (!problem.empty()) return problem;
-    bytes.resize(headBytes);
-    return fill(file.get(), bytes);
-}
-
-std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vector<unsigned char>& bytes) {
-    bytes.clear();
-    int descriptor = -1;
-    struct stat info {};
-    const std::string problem = openRegularFile(path, maxBytes, descriptor, info);
-    const FileDescriptor file(descriptor);
-    if (!problem.empty()) return problem;
-
     // st_size is a hint (a file may grow or shrink while we read, and some kernel files report
     // 0): read what it announces, then on until end of file, but never past maxBytes.
-    bytes.resize(size_t(info.st_size));
+    bytes.resize(headBytes ? *headBytes : size_t(info.st_size));
     if (std::string failure = fill(file.get(), bytes); !failure.empty()) return failure;
-    if (bytes.size() < size_t(info.st_size)) return "";  // shrank
+    if (headBytes || bytes.size() < size_t(info.st_size)) return "";  // the head, or a file that shrank
     std::vector<unsigned char> chunk(65536);
     while (true) {
         const ssize_t got = ::read(file.get(), chunk.data(), chunk.size());
@@ -143,6 +136,17 @@ std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vec
         bytes.insert(bytes.end(), chunk.begin(), chunk.begin() + got);
     }
     return "";
+}
+
+}  // namespace
+
+std::string readRegularFileHead(const std::string& path, uint64_t maxBytes, size_t headBytes,
+                                std::vector<unsigned char>& bytes) {
+    return readOpened(path, maxBytes, headBytes, bytes);
+}
+
+std::string readRegularFile(const std::string& path, uint64_t maxBytes, std::vector<unsigned char>& bytes) {
+    return readOpened(path, maxBytes, std::nullopt, bytes);
 }
 
 }  // namespace punctual
