@@ -38,8 +38,10 @@
 
 layout(local_size_x_id = PUNCTUAL_SPEC_TILE_THREADS) in;
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
-layout(constant_id = PUNCTUAL_SPEC_DEPTH_MASK) const bool DEPTH_MASK = false;  // tiled-2.5d
-layout(constant_id = PUNCTUAL_SPEC_DEPTHLESS_TILES) const bool DEPTHLESS_TILES = false;
+// The method's culling flags (culling.h, its table row's cullFlags), as constant bools.
+layout(constant_id = PUNCTUAL_SPEC_CULL_FLAGS) const uint CULL_FLAGS = 0u;
+const bool DEPTH_MASK = (CULL_FLAGS & PUNCTUAL_CULL_DEPTH_MASK) != 0u;            // tiled-2.5d
+const bool DEPTHLESS_TILES = (CULL_FLAGS & PUNCTUAL_CULL_DEPTHLESS_TILES) != 0u;  // zbin-2d
 layout(constant_id = PUNCTUAL_SPEC_COARSE_TILES) const uint COARSE_TILES = 0u;  // 0: no coarse pass
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };

@@ -9,17 +9,26 @@
 //   zbin-2d     the same, the tile's masks two-dimensional (built without depth);
 //   clustered   the set bits of the pixel's cluster masks, ascending.
 // All walk lights in the same ascending order and a light beyond its range adds exactly 0, so
-// tiled and clustered images are bit-identical to brute force. Every variant value (light list,
-// shadow filter, point-shadow layout) has its explicit case; a value without one (a C++ table
-// entry whose shader case is missing) shades magenta wherever it is used (every pixel for a light
-// list, every shadow lookup for a filter or layout) instead of passing for another variant.
+// tiled and clustered images are bit-identical to brute force. The methods reach this shader as
+// their table rows' parameters (src/render/light_list_method.h): the list's source (LIGHT_SOURCE:
+// every light, the object's list, the grid cell's masks, or those AND the z-bin's) and the grid's
+// slices; the culling kernels get their flags. A shadow filter is its kernel and size
+// (shadow_kernels.h). Every variant value (light source, shadow kernel, point-shadow layout,
+// cascade blend) has its explicit case; a value without one (a C++ table entry whose shader case
+// is missing) shades magenta wherever it is used (every pixel for a light source, every shadow
+// lookup for a kernel or layout) instead of passing for another variant.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+// Set by the default case of every variant switch: the pipeline's specialization value has no
+// case here. Constant false for every known value, so it costs nothing. (Declared before the
+// includes: shadow_kernels.h's GLSL part sets it.)
+bool unknownVariant = false;
+
 #include "gpu_types.h"
 #include "shading.h"
 #include "culling.h"
 #include "shadows.h"
-#include "shadow_tent.h"
+#include "shadow_kernels.h"
 #include "cascades.h"
 #include "materials.h"
 
@@ -28,14 +37,15 @@
 // and let hidden fragments write statistics too.
 layout(early_fragment_tests) in;
 
-layout(constant_id = PUNCTUAL_SPEC_LIGHT_LIST) const uint LIGHT_LIST = PUNCTUAL_LIGHT_LIST_BRUTE;
+layout(constant_id = PUNCTUAL_SPEC_LIGHT_SOURCE) const uint LIGHT_SOURCE = PUNCTUAL_LIGHT_SOURCE_ALL;
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
 // Debug variant for statistics and heat maps: also counts, per pixel, the lights that really
 // reach it and the brute-force radiance, into lightStats. Never used for timing.
 layout(constant_id = PUNCTUAL_SPEC_WRITE_LIGHT_STATS) const bool WRITE_LIGHT_STATS = false;
 layout(constant_id = PUNCTUAL_SPEC_SHADOWS) const bool SHADOWS = false;
-layout(constant_id = PUNCTUAL_SPEC_SHADOW_FILTER) const uint SHADOW_FILTER = PUNCTUAL_SHADOW_FILTER_TENT5;
+layout(constant_id = PUNCTUAL_SPEC_SHADOW_KERNEL) const uint SHADOW_KERNEL = PUNCTUAL_SHADOW_KERNEL_TENT;
+layout(constant_id = PUNCTUAL_SPEC_SHADOW_FILTER_SIZE) const uint SHADOW_FILTER_SIZE = 5u;
 layout(constant_id = PUNCTUAL_SPEC_SHADOW_SAMPLES) const uint SHADOW_SAMPLES = 16u;
 layout(constant_id = PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT) const uint POINT_SHADOW_LAYOUT = PUNCTUAL_POINT_SHADOW_CUBE;
 // Validation variant: also writes this pixel's surface and every shadowed light's shadow factor
@@ -82,9 +92,6 @@ layout(location = 4) flat in uint inObject;  // unread here (draw.objectIndex is
 
 layout(location = 0) out vec4 outRadiance;
 
-// Set by the default case of every variant switch: the pipeline's specialization value has no
-// case here. Constant false for every known value, so it costs nothing.
-bool unknownVariant = false;
 const vec3 kUnknownVariantRadiance = vec3(1.0e4, 0.0, 1.0e4);  // saturates to magenta
 
 // The light-grid cell of this pixel (tiled and clustered): cell = tile index x SLICE_COUNT +
@@ -103,13 +110,10 @@ uint pixelGridCell() {
 // lights reaching any of its pixels) are the best any culler of that granularity can do: the
 // statistics compare each method with them (metrics/culling_stats.h, floor efficiency).
 uint pixelListCell() {
-    // (Not a switch on LIGHT_LIST: that is the shading switch's, which must list every method.)
-    bool zBinned = LIGHT_LIST == PUNCTUAL_LIGHT_LIST_ZBIN || LIGHT_LIST == PUNCTUAL_LIGHT_LIST_ZBIN_2D;
-    bool gridded = LIGHT_LIST == PUNCTUAL_LIGHT_LIST_TILED || LIGHT_LIST == PUNCTUAL_LIGHT_LIST_TILED_25D ||
-                   LIGHT_LIST == PUNCTUAL_LIGHT_LIST_CLUSTERED;
-    if (LIGHT_LIST == PUNCTUAL_LIGHT_LIST_PER_OBJECT) return draw.objectIndex;
-    if (gridded) return pixelGridCell();
-    if (zBinned) {
+    // (Not a switch on LIGHT_SOURCE: that is the shading switch's, which must list every source.)
+    if (LIGHT_SOURCE == PUNCTUAL_LIGHT_SOURCE_OBJECT) return draw.objectIndex;
+    if (LIGHT_SOURCE == PUNCTUAL_LIGHT_SOURCE_GRID) return pixelGridCell();
+    if (LIGHT_SOURCE == PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS) {
         uint bin;
         PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(bin, gl_FragCoord.z, zBins.binStartDepth, PUNCTUAL_ZBIN_COUNT);
         return pixelGridCell() * PUNCTUAL_ZBIN_COUNT + bin;
@@ -213,14 +217,14 @@ void main() {
     uint tested = 0u;
     uvec3 gridWords = uvec3(0u);  // the light-grid methods: the pixel's three mask words
     bool walkGridWords = false;
-    switch (LIGHT_LIST) {
-        case PUNCTUAL_LIGHT_LIST_BRUTE:
+    switch (LIGHT_SOURCE) {
+        case PUNCTUAL_LIGHT_SOURCE_ALL:
             for (uint i = 0u; i < lightCount; ++i) {
                 radiance += shadeLight(surface, lights[i]);
             }
             tested = lightCount;
             break;
-        case PUNCTUAL_LIGHT_LIST_PER_OBJECT: {
+        case PUNCTUAL_LIGHT_SOURCE_OBJECT: {
             uint count = object.material.z;
             uint first = draw.objectIndex * PUNCTUAL_MAX_LIGHTS_PER_OBJECT;
             for (uint k = 0u; k < count; ++k) {
@@ -229,9 +233,7 @@ void main() {
             tested = count;
             break;
         }
-        case PUNCTUAL_LIGHT_LIST_TILED:
-        case PUNCTUAL_LIGHT_LIST_TILED_25D:  // the same tile grid, fewer bits set
-        case PUNCTUAL_LIGHT_LIST_CLUSTERED: {
+        case PUNCTUAL_LIGHT_SOURCE_GRID: {  // tiled, clustered, tiled-2.5d (the tile grid, fewer bits set)
             // The set bits of this pixel's cell. (Clustered: walking the tile's union of its
             // clusters instead, testing membership per pixel, keeps SIMD lanes uniform but
             // measured 10% slower on lavapipe; see bench/RESULTS.md.)
@@ -240,8 +242,7 @@ void main() {
             walkGridWords = true;
             break;
         }
-        case PUNCTUAL_LIGHT_LIST_ZBIN:
-        case PUNCTUAL_LIGHT_LIST_ZBIN_2D: {
+        case PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS: {
             // URP Forward+ / Drobot: the tile's mask (zbin-2d: two-dimensional, every depth) AND
             // the mask of the pixel's z-bin (lights/z_bins.h), found by the stored-start search
             // the CPU binned with.

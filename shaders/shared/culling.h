@@ -395,6 +395,18 @@ PUNCTUAL_FN bool lightMayTouchTile(CullLight light, TileVolume segment) {
     return coneMayTouchSegment(light, v);
 }
 
+// ---- the culling kernels' flags -----------------------------------------------------------------
+// A light-list method that changes only how the culling kernels fill its grid is a flag here, in
+// its table row's `cullFlags` (src/render/light_list_method.h), which reaches the kernels as the
+// specialization constant CULL_FLAGS: each kernel turns its flags into constant bools. The general
+// kernel (light_culling.comp) implements every flag; the one-subgroup kernels implement those in
+// their masks below, and LightGridLayout::forMethod keeps a method with any other flag on the
+// general kernel, so a new flag needs its case in light_culling.comp alone.
+#define PUNCTUAL_CULL_DEPTH_MASK 1u        // tiled-2.5d: also against the tile's 2.5D depth mask (below)
+#define PUNCTUAL_CULL_DEPTHLESS_TILES 2u   // zbin-2d: tile masks over the whole column, no depth read (makeTileColumn)
+#define PUNCTUAL_TILE_KERNEL_CULL_FLAGS (PUNCTUAL_CULL_DEPTH_MASK | PUNCTUAL_CULL_DEPTHLESS_TILES)  // tile_culling.comp
+#define PUNCTUAL_CLUSTER_KERNEL_CULL_FLAGS 0u  // cluster_culling.comp
+
 // Harada's 2.5D culling (Harada, McKee and Yang, "Forward+: A step toward film-style shading in
 // real time", GPU Pro 4, 2013; "2.5D culling for Forward+", SIGGRAPH Asia 2012): a tile's depth
 // extent [nearDistance, farDistance] is cut into 32 equal cells, one bit each; the tile's mask has

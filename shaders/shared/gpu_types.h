@@ -65,19 +65,14 @@
 #define PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS ((PUNCTUAL_MAX_SHADOWED_LIGHTS + 1 + 3) / 4)
 #define PUNCTUAL_SHADOW_FACTOR_NOT_REACHED 255u
 
-// Variants chosen by specialization constant. Each kind has a C++ table with one entry per value
-// (names, help text, footprint): src/render/light_list_method.h, src/lights/shadow_filters.h. The
-// values are 0 .. COUNT - 1, the tables' indices; the tables static_assert their sizes against
-// the COUNT constants, and a unit test checks that every value has its explicit case in the
-// shaders (a value without one shades magenta rather than passing for another variant).
+// Variants chosen by specialization constant. Each kind has a C++ table with one entry per variant
+// (names, help text, parameters): src/render/light_list_method.h, src/lights/shadow_filters.h,
+// src/lights/cascade_settings.h. A light-list method reaches the shaders as its parameters (its
+// light source below, its slices, its culling flags: culling.h), a shadow filter as its kernel and
+// size (shadow_kernels.h), so a variant that reuses those is a table row alone. The values of each
+// kind are 0 .. COUNT - 1; a unit test checks that every value a table uses has its explicit case
+// in the shaders (a value without one shades magenta rather than passing for another variant).
 //
-// Shadow filters (specialization constant PUNCTUAL_SPEC_SHADOW_FILTER).
-#define PUNCTUAL_SHADOW_FILTER_HW 0u     // one hardware 2x2 compare sample
-#define PUNCTUAL_SHADOW_FILTER_TENT3 1u  // tent over 3x3 texels
-#define PUNCTUAL_SHADOW_FILTER_TENT5 2u
-#define PUNCTUAL_SHADOW_FILTER_TENT7 3u
-#define PUNCTUAL_SHADOW_FILTER_DISK 4u   // N samples on a disk rotated per pixel by a hash
-#define PUNCTUAL_SHADOW_FILTER_COUNT 5u
 // Point-light shadow layouts (PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT).
 #define PUNCTUAL_POINT_SHADOW_CUBE 0u    // a cube depth array, hardware face selection
 #define PUNCTUAL_POINT_SHADOW_SLICES 1u  // six 2D layers with a widened field of view (URP)
@@ -99,22 +94,20 @@
 // Clusters use at most 32 depth slices, so a tile's occupied slices fit one 32-bit mask.
 #define PUNCTUAL_MAX_CLUSTER_SLICES 32
 
-// Light-list sources of the forward pass (specialization constant PUNCTUAL_SPEC_LIGHT_LIST).
-#define PUNCTUAL_LIGHT_LIST_BRUTE 0u
-#define PUNCTUAL_LIGHT_LIST_PER_OBJECT 1u
-#define PUNCTUAL_LIGHT_LIST_TILED 2u
-#define PUNCTUAL_LIGHT_LIST_CLUSTERED 3u
-#define PUNCTUAL_LIGHT_LIST_TILED_25D 4u
-#define PUNCTUAL_LIGHT_LIST_ZBIN 5u
-#define PUNCTUAL_LIGHT_LIST_ZBIN_2D 6u
-#define PUNCTUAL_LIGHT_LIST_COUNT 7u
+// Where the forward pass finds a pixel's lights (specialization constant PUNCTUAL_SPEC_LIGHT_SOURCE),
+// each light-list method's `source` in its table row.
+#define PUNCTUAL_LIGHT_SOURCE_ALL 0u         // every light (brute force)
+#define PUNCTUAL_LIGHT_SOURCE_OBJECT 1u      // the object's list, built on the CPU (per-object)
+#define PUNCTUAL_LIGHT_SOURCE_GRID 2u        // the set bits of the pixel's light-grid cell (tiled, clustered, ...)
+#define PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS 3u  // those AND its z-bin's range (zbin, zbin-2d)
+#define PUNCTUAL_LIGHT_SOURCE_COUNT 4u
 
 // Specialization constant ids.
-#define PUNCTUAL_SPEC_LIGHT_LIST 1
+#define PUNCTUAL_SPEC_LIGHT_SOURCE 1
 #define PUNCTUAL_SPEC_TILE_SIZE 2
 #define PUNCTUAL_SPEC_SLICE_COUNT 3
 #define PUNCTUAL_SPEC_WRITE_LIGHT_STATS 4
-#define PUNCTUAL_SPEC_SHADOW_FILTER 5
+#define PUNCTUAL_SPEC_SHADOW_KERNEL 5
 #define PUNCTUAL_SPEC_SHADOW_SAMPLES 6
 #define PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT 7
 #define PUNCTUAL_SPEC_SHADOWS 8
@@ -122,8 +115,8 @@
 #define PUNCTUAL_SPEC_SHADOW_RECEIVER_PLANE 10
 #define PUNCTUAL_SPEC_CASCADE_BLEND 11
 #define PUNCTUAL_SPEC_TRANSPARENT 12
-#define PUNCTUAL_SPEC_DEPTH_MASK 13
-#define PUNCTUAL_SPEC_DEPTHLESS_TILES 14
+#define PUNCTUAL_SPEC_CULL_FLAGS 13  // culling kernels: the method's PUNCTUAL_CULL_* flags (culling.h)
+#define PUNCTUAL_SPEC_SHADOW_FILTER_SIZE 14  // forward: the shadow kernel's size (shadow_kernels.h)
 #define PUNCTUAL_SPEC_COARSE_TILES 15  // culling: fine tiles a side of a coarse tile (0: no coarse pass)
 #define PUNCTUAL_SPEC_TILE_THREADS 16  // tile_culling.comp: invocations per tile (the device's subgroup size)
 // tile_culling.comp's workgroups: at most this many invocations (a power of two, at least the 32 or

@@ -13,25 +13,16 @@ float hashToUnit(vec3 p) {
     return float(h >> 8u) * (1.0 / 16777216.0);
 }
 
-// Each filter has its explicit case in every switch on SHADOW_FILTER below, checked against the
-// C++ table (lights/shadow_filters.h) by a unit test. A value without a case takes no samples and
-// sets unknownVariant (forward.frag), which shades magenta: it never passes for another filter.
+// The filter is a kernel and a size (SHADOW_KERNEL, SHADOW_FILTER_SIZE: the C++ table's row,
+// lights/shadow_filters.h); each kernel's samples, taps and reach are in shadow_kernels.h, where
+// an unknown kernel sets unknownVariant (forward.frag), which shades magenta: it never passes for
+// another filter. The samples come one at a time (`count` samples with offsets and weights), so
+// 2D layers and cube faces share one loop. The tents are Unity's (shadow_tent.h): ((N + 1) / 2)^2
+// bilinear compare fetches placed and weighted from where the sample point falls inside its
+// texel, which weigh every texel of the footprint by the continuous N x N tent's integral over it.
 
-// The filter's samples, one at a time: `count` samples with offsets and weights, so 2D layers and
-// cube faces share one loop. The tents are Unity's (shadow_tent.h): ((N + 1) / 2)^2 bilinear
-// compare fetches placed and weighted from where the sample point falls inside its texel, which
-// weigh every texel of the footprint by the continuous N x N tent's integral over it.
 // The footprint filters' size N (1: the hardware's 2 x 2, else the N x N tent), 0 for the disk.
-uint filterFootprint() {
-    switch (SHADOW_FILTER) {
-        case PUNCTUAL_SHADOW_FILTER_HW: return 1u;
-        case PUNCTUAL_SHADOW_FILTER_TENT3: return 3u;
-        case PUNCTUAL_SHADOW_FILTER_TENT5: return 5u;
-        case PUNCTUAL_SHADOW_FILTER_TENT7: return 7u;
-        case PUNCTUAL_SHADOW_FILTER_DISK: return 0u;
-        default: unknownVariant = true; return 0u;
-    }
-}
+uint filterFootprint() { return shadowKernelFootprint(SHADOW_KERNEL, SHADOW_FILTER_SIZE); }
 
 // Receiver-plane compares apply to the footprint filters on the atlas; the disk's rotated samples
 // and the cube array's hardware lookups keep the notes' per-tap compares. The C++ side makes the
@@ -39,40 +30,21 @@ uint filterFootprint() {
 bool receiverPlaneCompares() { return SHADOW_RECEIVER_PLANE && filterFootprint() > 0u; }
 
 uint filterSampleCount() {
-    switch (SHADOW_FILTER) {
-        case PUNCTUAL_SHADOW_FILTER_HW: return 1u;
-        case PUNCTUAL_SHADOW_FILTER_TENT3: return tentFetchCount(3u);
-        case PUNCTUAL_SHADOW_FILTER_TENT5: return tentFetchCount(5u);
-        case PUNCTUAL_SHADOW_FILTER_TENT7: return tentFetchCount(7u);
-        case PUNCTUAL_SHADOW_FILTER_DISK: return SHADOW_SAMPLES;
-        default: unknownVariant = true; return 0u;
-    }
-}
-
-// Tent fetch i around the position uv of a view `resolution` texels a side: offset (xy, UV units)
-// and weight (z).
-vec3 tentSample(uint n, uint i, vec2 uv, float resolution) {
-    vec3 fetch = tentFetch(uv * resolution, n, i);
-    return vec3(fetch.xy / resolution, fetch.z);
+    uint count = shadowKernelTaps(SHADOW_KERNEL, SHADOW_FILTER_SIZE, SHADOW_SAMPLES);
+    if (count == 0u) unknownVariant = true;  // a kernel shadow_kernels.h does not know
+    return count;
 }
 
 // Offset (xy, UV units) and weight (z) of sample i around the position uv (in [0, 1] over the view
 // or cube face, `resolution` texels a side). `angle` rotates the disk per pixel.
 vec3 filterSample(uint i, float angle, vec2 uv, float resolution) {
-    switch (SHADOW_FILTER) {
-        case PUNCTUAL_SHADOW_FILTER_HW: return vec3(0.0, 0.0, 1.0);
-        case PUNCTUAL_SHADOW_FILTER_TENT3: return tentSample(3u, i, uv, resolution);
-        case PUNCTUAL_SHADOW_FILTER_TENT5: return tentSample(5u, i, uv, resolution);
-        case PUNCTUAL_SHADOW_FILTER_TENT7: return tentSample(7u, i, uv, resolution);
-        case PUNCTUAL_SHADOW_FILTER_DISK: {
-            // Vogel disk: radius sqrt((i + 0.5) / N) of the full radius, golden-angle steps, so
-            // samples cover the disk evenly for any N.
-            float r = sqrt((float(i) + 0.5) / float(SHADOW_SAMPLES)) * frame.diskRadius;
-            float a = float(i) * 2.39996323 + angle;
-            return vec3(r * cos(a), r * sin(a), 1.0);
-        }
-        default: unknownVariant = true; return vec3(0.0);
-    }
+    return shadowKernelSample(SHADOW_KERNEL, SHADOW_FILTER_SIZE, i, angle, uv, resolution, SHADOW_SAMPLES,
+                              frame.diskRadius);
+}
+
+// The per-pixel angle of the kernels that rotate (the disk), 0 for the others.
+float filterAngle(vec3 position) {
+    return shadowKernelRotates(SHADOW_KERNEL) ? hashToUnit(position) * 6.28318531 : 0.0;
 }
 
 // [[dont_unroll]] on the two filter loops below is a lavapipe tuning, measured (bench/RESULTS.md,
@@ -134,8 +106,8 @@ float filterAtlasReceiverPlane(GpuShadowView view, vec2 uv, float depth, vec2 sl
     countShadowLookup(perAxis * perAxis);
     float sum = 0.0;
     [[dont_unroll]] for (uint i = 0u; i < perAxis * perAxis; ++i) {
-        vec3 u = tentAxisTexelPair(o.x, n, i % perAxis);
-        vec3 v = tentAxisTexelPair(o.y, n, i / perAxis);
+        vec3 u = shadowKernelTexelPair(SHADOW_KERNEL, o.x, n, i % perAxis);
+        vec3 v = shadowKernelTexelPair(SHADOW_KERNEL, o.y, n, i / perAxis);
         vec2 gatherCorner = clamp(position + vec2(u.x, v.x) + 0.5, vec2(1.0), vec2(resolution - 1.0));
         vec2 low = gatherCorner - 0.5 - position;  // centres of the texels read, from the sample point
         vec2 high = low + 1.0;
@@ -188,7 +160,7 @@ float filterCube(vec3 direction, uint face, float cube, float reference, float a
 float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3 normal) {
     uint first = uint(light.angleOffsetShadow.y);
     vec3 lightPosition = light.positionInvRangeSq.xyz;
-    float angle = SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_DISK ? hashToUnit(position) * 6.28318531 : 0.0;
+    float angle = filterAngle(position);
     float visibility = 1.0;
     if (light.angleOffsetShadow.z > -1.0) {
         // Spot: one view. Linear depth along the spot axis sizes the texel (design notes).
@@ -275,7 +247,7 @@ float sunVisibility(vec3 position, vec3 normal, out uint cascade) {
         default: unknownVariant = true; return 1.0;
     }
     vec3 toSun = frame.sun.directionToLight.xyz;
-    float angle = SHADOW_FILTER == PUNCTUAL_SHADOW_FILTER_DISK ? hashToUnit(position) * 6.28318531 : 0.0;
+    float angle = filterAngle(position);
     float shadow = cascadeShadow(cascade, position, normal, toSun, angle);
     if (blend < 1.0) shadow = mix(cascadeShadow(cascade + 1u, position, normal, toSun, angle), shadow, blend);
     return mix(1.0, shadow, strength);

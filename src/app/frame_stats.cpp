@@ -94,7 +94,7 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
         json["tile_threads"] = grid.tileThreads;  // the culling kernel's invocations per tile
         json["tile_kernel"] = grid.subgroupKernel ? "subgroup" : "shared-memory";  // tile_/cluster_culling.comp or light_culling.comp
     }
-    if (render::methodInfo(settings.method).objectLists) {
+    if (render::methodInfo(settings.method).objectLists()) {
         json["per_object"] = {{"objects_over_cap", renderer.perObjectLists().objectsOverCap},
                               {"max_candidates", renderer.perObjectLists().maxCandidates}};
     }

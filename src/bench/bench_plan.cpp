@@ -154,7 +154,7 @@ void addShadowSeries(std::vector<BenchConfig>& configs, bool quick) {
 // The sun's cascades on the outdoor scene: count x fixed resolution x filter. Its lamps keep
 // lighting the street but cast no shadow, so that the shadow stage and its memory are the
 // cascades' alone. The filters are those whose reach is counted in texels (the disk's radius is a
-// share of the map, the same for every cascade); --quick keeps the ones marked for it.
+// share of the map, the same for every cascade: the filters without a texel footprint); --quick keeps the ones marked for it.
 void addCascadeSeries(std::vector<BenchConfig>& configs, bool quick) {
     const BuiltinScene& outdoor = parseBuiltinScene("outdoor");
     const std::vector<uint32_t> counts = quick ? std::vector<uint32_t>{1, 4} : std::vector<uint32_t>{1, 2, 3, 4};
@@ -162,7 +162,7 @@ void addCascadeSeries(std::vector<BenchConfig>& configs, bool quick) {
     for (uint32_t count : counts) {
         for (uint32_t resolution : resolutions) {
             for (const ShadowFilterInfo& filter : kShadowFilters) {
-                if (filter.footprint.fromDiskSettings || (quick && !filter.quickBench)) continue;
+                if (filter.footprint() == 0 || (quick && !filter.quickBench)) continue;
                 BenchConfig config;
                 config.series = "cascades";
                 config.scene = &outdoor;

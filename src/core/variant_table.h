@@ -1,15 +1,16 @@
 #pragma once
 // Tables of variants. Each kind of variant the renderer compares (light-list method, shadow
-// filter, point-shadow layout) is one constexpr table with one entry per value; everything that
-// lists the values (parsing, names, --help, error messages, the bench sweeps) reads the table.
-// Adding a variant is then one entry here plus its shader case: the tables static_assert their
-// size against the GLSL count constant of gpu_types.h, and a unit test checks that every entry's
-// GLSL constant has an explicit case in the shaders.
+// filter, point-shadow layout, cascade blend) is one constexpr table with one entry per value;
+// everything that lists the values (parsing, names, --help, error messages, the bench sweeps, the
+// tests' loops) reads the table. What the shaders get of an entry is a GpuConstant (a value and
+// the name of its define in shaders/shared): the entry's own value (point layouts, cascade
+// blends), or the parameters it is made of (a method's light source and culling flags, a filter's
+// kernel and size), so an entry that reuses parameters the shaders know needs no shader edit. A
+// unit test checks that every GpuConstant a table uses has its explicit case in the shaders.
 //
 // An entry type has at least these members:
-//   Enum value;               the C++ enum value, whose underlying value is the GPU value
+//   Enum value;               the C++ enum value, the entry's index in its table
 //   const char* name;         the command-line name (also in stats, file names and results)
-//   GpuConstant gpu;          the GPU value and the name of its define in gpu_types.h
 //   const char* description;  one line for --help
 #include <algorithm>
 #include <array>
@@ -24,7 +25,7 @@
 namespace punctual {
 
 // A value the shaders see (a specialization constant), with the name of its define in
-// shaders/shared/gpu_types.h, which is what the shaders' cases compare against.
+// shaders/shared, which is what the shaders' cases compare against.
 struct GpuConstant {
     uint32_t value;
     const char* name;
@@ -34,14 +35,23 @@ struct GpuConstant {
 // and its name come from one token, so they cannot disagree.
 #define PUNCTUAL_GPU_CONSTANT(constant) ::punctual::GpuConstant{constant, #constant}
 
-// True when entry i has GPU value i and an enum value equal to it, so an enum value indexes its
-// table and the shaders' values run 0 .. count - 1.
+// True when entry i has enum value i, so an enum value indexes its table.
+template <typename Entry, size_t N>
+constexpr bool valuesAreIndices(const std::array<Entry, N>& table) {
+    for (size_t i = 0; i < N; ++i) {
+        if (static_cast<uint32_t>(table[i].value) != i) return false;
+    }
+    return true;
+}
+
+// True when entry i has enum value i and GPU value i (the tables whose entries reach the shaders
+// as themselves), so the shaders' values run 0 .. count - 1.
 template <typename Entry, size_t N>
 constexpr bool gpuValuesAreIndices(const std::array<Entry, N>& table) {
     for (size_t i = 0; i < N; ++i) {
-        if (table[i].gpu.value != i || static_cast<uint32_t>(table[i].value) != i) return false;
+        if (table[i].gpu.value != i) return false;
     }
-    return true;
+    return valuesAreIndices(table);
 }
 
 // True when no two entries share a name (parsing takes the first match).

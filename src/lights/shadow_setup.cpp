@@ -142,13 +142,13 @@ glm::mat4 spotViewProjection(const glm::vec3& position, const glm::vec3& directi
 
 float ShadowSettings::penumbraTexels(uint32_t viewResolution) const {
     const ShadowFilterInfo* info = findVariant(kShadowFilters, filter);
-    if (!info) return kShadowFilters[0].footprint.penumbraTexels;
-    return info->footprint.fromDiskSettings ? diskRadius * float(viewResolution) : info->footprint.penumbraTexels;
+    if (!info) info = &kShadowFilters[0];
+    return info->reachTexels(diskRadius * float(viewResolution));
 }
 
 float ShadowSettings::biasPenumbraTexels(uint32_t viewResolution, bool onAtlas) const {
     const ShadowFilterInfo* info = findVariant(kShadowFilters, filter);
-    const bool footprintFilter = info && !info->footprint.fromDiskSettings;
+    const bool footprintFilter = info && info->footprint() > 0;
     return receiverPlane && onAtlas && footprintFilter ? 0.0f : penumbraTexels(viewResolution);
 }
 
@@ -164,8 +164,8 @@ std::string shadowResolutionName(const ShadowSettings& settings) {
 
 uint32_t ShadowSettings::filterTaps() const {
     const ShadowFilterInfo* info = findVariant(kShadowFilters, filter);
-    if (!info) return kShadowFilters[0].footprint.taps;
-    return info->footprint.fromDiskSettings ? diskSamples : info->footprint.taps;
+    if (!info) info = &kShadowFilters[0];
+    return info->taps(diskSamples);
 }
 
 void validateShadowSettings(const ShadowSettings& settings) {

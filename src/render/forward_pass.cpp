@@ -48,12 +48,13 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
     if (blendsNothing()) return;
 
     struct Constants {
-        uint32_t lightList;
+        uint32_t lightSource;
         uint32_t tileSize;
         uint32_t slices;
         VkBool32 writeLightStats;
         VkBool32 shadows;
-        uint32_t shadowFilter;
+        uint32_t shadowKernel;
+        uint32_t shadowFilterSize;
         uint32_t shadowSamples;
         uint32_t pointShadowLayout;
         VkBool32 writeShadowFactors;
@@ -61,19 +62,20 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
         uint32_t cascadeBlend;
         VkBool32 transparent;
     };
-    const Constants constants{variant.lightList, variant.tileSize, variant.slices,
+    const Constants constants{variant.lightSource, variant.tileSize, variant.slices,
                               variant.writeLightStats ? VK_TRUE : VK_FALSE, variant.shadows ? VK_TRUE : VK_FALSE,
-                              variant.shadowFilter, variant.shadowSamples, variant.pointShadowLayout,
+                              variant.shadowKernel, variant.shadowFilterSize, variant.shadowSamples, variant.pointShadowLayout,
                               variant.writeShadowFactors ? VK_TRUE : VK_FALSE,
                               variant.shadowReceiverPlane ? VK_TRUE : VK_FALSE, variant.cascadeBlend,
                               variant.transparent ? VK_TRUE : VK_FALSE};
-    const std::array<VkSpecializationMapEntry, 12> entries = {{
-        {PUNCTUAL_SPEC_LIGHT_LIST, offsetof(Constants, lightList), sizeof(uint32_t)},
+    const std::array<VkSpecializationMapEntry, 13> entries = {{
+        {PUNCTUAL_SPEC_LIGHT_SOURCE, offsetof(Constants, lightSource), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_TILE_SIZE, offsetof(Constants, tileSize), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, offsetof(Constants, slices), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_WRITE_LIGHT_STATS, offsetof(Constants, writeLightStats), sizeof(VkBool32)},
         {PUNCTUAL_SPEC_SHADOWS, offsetof(Constants, shadows), sizeof(VkBool32)},
-        {PUNCTUAL_SPEC_SHADOW_FILTER, offsetof(Constants, shadowFilter), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_SHADOW_KERNEL, offsetof(Constants, shadowKernel), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_SHADOW_FILTER_SIZE, offsetof(Constants, shadowFilterSize), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SHADOW_SAMPLES, offsetof(Constants, shadowSamples), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_POINT_SHADOW_LAYOUT, offsetof(Constants, pointShadowLayout), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_WRITE_SHADOW_FACTORS, offsetof(Constants, writeShadowFactors), sizeof(VkBool32)},

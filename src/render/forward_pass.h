@@ -19,12 +19,13 @@ namespace punctual::render {
 
 // The specialization of the one forward shader.
 struct ForwardVariant {
-    uint32_t lightList = 0;  // PUNCTUAL_LIGHT_LIST_*
+    uint32_t lightSource = 0;  // PUNCTUAL_LIGHT_SOURCE_*: the method's source (LightListMethodInfo)
     uint32_t tileSize = 16;
     uint32_t slices = 1;
     bool writeLightStats = false;  // debug variant: per-pixel light statistics
     bool shadows = false;
-    uint32_t shadowFilter = 0;     // PUNCTUAL_SHADOW_FILTER_*
+    uint32_t shadowKernel = 0;     // PUNCTUAL_SHADOW_KERNEL_*: the filter's kernel (ShadowFilterInfo)
+    uint32_t shadowFilterSize = 1;  // and its size
     uint32_t shadowSamples = 16;   // disk filter
     uint32_t pointShadowLayout = 0;  // PUNCTUAL_POINT_SHADOW_*
     bool writeShadowFactors = false;  // validation variant: per-pixel shadow factors

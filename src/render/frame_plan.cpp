@@ -54,12 +54,12 @@ FramePlan planFrame(const vk::Context& context, const Scene& scene, const Render
     plan.lights = setupFrameLights(scene, plan.view, plan.projection);
     plan.shadows = planFrameShadows(context, scene, plan.lights, settings);
     const LightListMethodInfo& method = methodInfo(settings.method);
-    if (method.objectLists) plan.perObjectLists = buildPerObjectLightLists(scene, plan.lights);
+    if (method.objectLists()) plan.perObjectLists = buildPerObjectLightLists(scene, plan.lights);
     plan.gridLayout = LightGridLayout::forMethod(method, settings.width, settings.height, settings.tileSize,
                                                  settings.clusterSlices, settings.coarseTiles,
                                                  settings.tileThreads ? settings.tileThreads : context.subgroupSize(),
                                                  settings.subgroupTiles && context.computeSubgroupArithmetic());
-    if (method.zBins) {
+    if (method.zBins()) {
         plan.zBins = buildZBins(viewCullLights(plan.lights, plan.view), plan.lights.spotCount,
                                 glm::vec2(plan.projection[3][2], plan.projection[2][2]));
     }

@@ -26,17 +26,20 @@ LightGridLayout LightGridLayout::forMethod(const LightListMethodInfo& method, ui
     layout.tilesX = (width + tileSize - 1) / tileSize;
     layout.tilesY = (height + tileSize - 1) / tileSize;
     layout.slices = method.depthSlices ? clusterSlices : 1u;
-    layout.depthMask = method.depthMask;
-    layout.zBins = method.zBins;
-    layout.depthlessTiles = method.depthlessTiles;
+    layout.cullFlags = method.cullFlags;
+    layout.zBins = method.zBins();
     const uint32_t perCoarseTile = kCoarseTilePixels / tileSize;
-    layout.coarseTiles = coarse && method.usesLightGrid && perCoarseTile >= 2 ? perCoarseTile : 0u;
+    layout.coarseTiles = coarse && method.usesLightGrid() && perCoarseTile >= 2 ? perCoarseTile : 0u;
     // One subgroup a tile: subgroup sizes are powers of two (the Vulkan specification); one above
     // the cap is cut to it (the workgroup is then part of a subgroup), one under 4 raised to it (the
     // kernels write the three mask words with one invocation each).
     const bool powerOfTwo = threads != 0 && (threads & (threads - 1)) == 0;
     layout.tileThreads = powerOfTwo ? std::clamp<uint32_t>(threads, 4, PUNCTUAL_MAX_TILE_THREADS) : PUNCTUAL_MAX_TILE_THREADS;
-    layout.subgroupKernel = subgroupArithmetic;
+    // A one-subgroup kernel culls where it implements every flag of the method (culling.h); the
+    // general kernel implements them all.
+    const uint32_t subgroupKernelFlags =
+        layout.slices > 1 ? PUNCTUAL_CLUSTER_KERNEL_CULL_FLAGS : PUNCTUAL_TILE_KERNEL_CULL_FLAGS;
+    layout.subgroupKernel = subgroupArithmetic && (layout.cullFlags & ~subgroupKernelFlags) == 0;
     return layout;
 }
 
@@ -89,18 +92,17 @@ uint64_t LightCullingPass::memoryBytes() const {
 
 void LightCullingPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
     if (!culled_) return;
-    // VkBool32 for the bool constants, as the specification asks. One map for both kernels: an
-    // entry whose constant a shader lacks does not affect it (the Vulkan specification), and
-    // tile_culling.comp lacks SLICE_COUNT, cluster_culling.comp DEPTH_MASK and DEPTHLESS_TILES.
-    const std::array<uint32_t, 6> values = {layout_.tileSize, layout_.slices, VkBool32(layout_.depthMask),
-                                            VkBool32(layout_.depthlessTiles), layout_.coarseTiles, layout_.tileThreads};
-    const std::array<VkSpecializationMapEntry, 6> entries = {{
+    // One map for every kernel: an entry whose constant a shader lacks does not affect it (the
+    // Vulkan specification), and tile_culling.comp lacks SLICE_COUNT, cluster_culling.comp
+    // CULL_FLAGS (it implements none).
+    const std::array<uint32_t, 5> values = {layout_.tileSize, layout_.slices, layout_.cullFlags, layout_.coarseTiles,
+                                            layout_.tileThreads};
+    const std::array<VkSpecializationMapEntry, 5> entries = {{
         {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, sizeof(uint32_t), sizeof(uint32_t)},
-        {PUNCTUAL_SPEC_DEPTH_MASK, 2 * sizeof(uint32_t), sizeof(VkBool32)},
-        {PUNCTUAL_SPEC_DEPTHLESS_TILES, 3 * sizeof(uint32_t), sizeof(VkBool32)},
-        {PUNCTUAL_SPEC_COARSE_TILES, 4 * sizeof(uint32_t), sizeof(uint32_t)},
-        {PUNCTUAL_SPEC_TILE_THREADS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_CULL_FLAGS, 2 * sizeof(uint32_t), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_COARSE_TILES, 3 * sizeof(uint32_t), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_TILE_THREADS, 4 * sizeof(uint32_t), sizeof(uint32_t)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};
     const std::span<const uint32_t> kernel = !layout_.subgroupKernel ? std::span<const uint32_t>(compute_light_culling_comp_spv)
@@ -111,8 +113,8 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
         // The coarse kernel reads the tile size, the coarse-tile side and its workgroup size.
         const std::array<VkSpecializationMapEntry, 3> coarseEntries = {{
             {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
-            {PUNCTUAL_SPEC_COARSE_TILES, 4 * sizeof(uint32_t), sizeof(uint32_t)},
-            {PUNCTUAL_SPEC_TILE_THREADS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
+            {PUNCTUAL_SPEC_COARSE_TILES, 3 * sizeof(uint32_t), sizeof(uint32_t)},
+            {PUNCTUAL_SPEC_TILE_THREADS, 4 * sizeof(uint32_t), sizeof(uint32_t)},
         }};
         const VkSpecializationInfo coarseSpecialization{uint32_t(coarseEntries.size()), coarseEntries.data(),
                                                         sizeof(values), values.data()};

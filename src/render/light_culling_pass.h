@@ -31,23 +31,24 @@ struct LightGridLayout {
     uint32_t tilesX = 0;
     uint32_t tilesY = 0;
     uint32_t slices = 1;  // 1: tiled
-    bool depthMask = false;  // tiled-2.5d: lights also tested against the tile's depth mask
+    uint32_t cullFlags = 0;  // the method's PUNCTUAL_CULL_* flags (culling.h): tiled-2.5d's depth mask, ...
     bool zBins = false;      // zbin, zbin-2d: the forward pass ANDs the tile's mask with its z-bin's
-    bool depthlessTiles = false;  // zbin-2d: two-dimensional tile masks (no depth read), the bins hold depth
     uint32_t coarseTiles = 0;  // fine tiles a side of a coarse tile; 0: no coarse pass
     // Invocations per tile of the culling kernel: the device's compute subgroup size, at least 4
     // and at most PUNCTUAL_MAX_TILE_THREADS (one subgroup a tile where the device's size fits).
     uint32_t tileThreads = 64;
     // Whether a one-subgroup kernel culls, where the device has compute subgroup arithmetic and
     // RenderSettings::subgroupTiles is on: tile_culling.comp for the methods with one depth extent
-    // per tile (tiled, tiled-2.5d, zbin, zbin-2d), cluster_culling.comp for clustered. Otherwise
-    // light_culling.comp, with shared memory.
+    // per tile (tiled, tiled-2.5d, zbin, zbin-2d), cluster_culling.comp for clustered, where the
+    // kernel implements every culling flag of the method. Otherwise light_culling.comp, with
+    // shared memory.
     bool subgroupKernel = false;
     uint32_t cellCount() const { return tilesX * tilesY * slices; }
+    bool hasCullFlag(uint32_t flag) const { return (cullFlags & flag) != 0; }
     uint32_t coarseTilesX() const { return coarseTiles ? (tilesX + coarseTiles - 1) / coarseTiles : 0; }
     uint32_t coarseTilesY() const { return coarseTiles ? (tilesY + coarseTiles - 1) / coarseTiles : 0; }
     // The grid `method` culls to: `clusterSlices` depth slices where it has them (clustered), one
-    // otherwise; its depth mask and z-bins flags (the culling kernel's specialization constants);
+    // otherwise; its culling flags (the kernels' specialization constant) and z-bins;
     // with `coarse`, kCoarseTilePixels / tileSize fine tiles a side per coarse tile where that is
     // at least two. `threads`: invocations per tile (the device's subgroup size; a size that is not
     // a power of two, never a Vulkan one, gets 64); `subgroupArithmetic`: whether the one-subgroup

@@ -90,12 +90,14 @@ struct Renderer::Resources {
     static ForwardVariant forwardVariant(const RenderSettings& settings, const LightGridLayout& grid, bool stats,
                                          bool shadowFactors) {
         ForwardVariant variant;
-        variant.lightList = uint32_t(settings.method);
+        variant.lightSource = methodInfo(settings.method).source.value;
         variant.tileSize = grid.tileSize;
         variant.slices = grid.slices;
         variant.writeLightStats = stats;
         variant.shadows = settings.shadows.enabled;
-        variant.shadowFilter = uint32_t(settings.shadows.filter);
+        const ShadowFilterInfo& filter = shadowFilterInfo(settings.shadows.filter);
+        variant.shadowKernel = filter.kernel.value;
+        variant.shadowFilterSize = filter.size;
         variant.shadowSamples = settings.shadows.diskSamples;
         variant.pointShadowLayout = uint32_t(settings.shadows.pointLayout);
         variant.writeShadowFactors = shadowFactors;

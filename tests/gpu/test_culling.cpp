@@ -96,7 +96,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
     }
     // tiled-2.5d: each tile's occupied depth cells over its extent (culling.h), as the kernel builds them.
     std::vector<uint32_t> tileDepthMask(layout.tilesX * layout.tilesY, 0u);
-    if (layout.depthMask) {
+    if (layout.hasCullFlag(PUNCTUAL_CULL_DEPTH_MASK)) {
         for (uint32_t y = 0; y < height; ++y) {
             for (uint32_t x = 0; x < width; ++x) {
                 const float d = depth[size_t(y) * width + x];
@@ -144,7 +144,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
     const render::RenderSettings& settings = renderer.settings();
     const bool rectsMarked = layout.tileSize <= 32 && (renderer.cameraDraws().transparentDraws == 0 || settings.opaqueCullingDepth);
     const bool sliceRects = rectsMarked && layout.slices > 1;
-    const bool depthCellRects = rectsMarked && layout.depthMask;
+    const bool depthCellRects = rectsMarked && layout.hasCullFlag(PUNCTUAL_CULL_DEPTH_MASK);
     const size_t rectCount = depthCellRects ? size_t(layout.tilesX) * layout.tilesY * PUNCTUAL_DEPTH_MASK_CELLS : layout.cellCount();
     std::vector<glm::uvec4> cellRect(rectCount, glm::uvec4(~0u, ~0u, 0u, 0u));  // first x, y; last x, y (pixels)
     auto markRect = [&](size_t key, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) {
@@ -212,14 +212,14 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
                 glm::vec2 cellMin = ndcMin, cellMax = ndcMax;
                 if (sliceRects) pixelRectNdc(cellRect[cell], cellMin, cellMax);
                 const gpu::TileVolume volume =
-                    layout.depthlessTiles ? gpu::makeTileColumn(ndcMin, ndcMax, depthToView, ndcToView)
+                    layout.hasCullFlag(PUNCTUAL_CULL_DEPTHLESS_TILES) ? gpu::makeTileColumn(ndcMin, ndcMax, depthToView, ndcToView)
                                  : gpu::makeTileVolume(cellMin, cellMax, cellNear[cell], cellFar[cell], ndcToView);
                 for (uint32_t light = 0; light < lightCount; ++light) {
                     uint32_t word = 0;
                     const uint32_t bit = bitOf(light, word);
                     if (layout.coarseTiles && !(coarse[coarseBase + word] & bit)) continue;
                     if (!gpu::lightMayTouchTile(cullLights[light], volume)) continue;
-                    if (layout.depthMask) {
+                    if (layout.hasCullFlag(PUNCTUAL_CULL_DEPTH_MASK)) {
                         // An occupied depth cell within the light's extent whose segment it meets.
                         uint32_t cells = gpu::lightDepthMask(cullLights[light], tileNear[tile], maskScale) & tileDepthMask[tile];
                         bool meets = false;

@@ -67,7 +67,7 @@ TEST(Transparency, WithTheOpaqueDepthAloneTiledCullingMissesTheGlasssLights) {
     const ImageRgba8 brute = renderImage(*context, scene, settingsFor(LightListMethod::Brute));
     for (const LightListMethod method : render::gridMethods()) {
         // zbin-2d's culling reads no depth (its bins hold depth, per fragment): nothing to miss.
-        if (methodInfo(method).depthlessTiles) continue;
+        if (methodInfo(method).hasCullFlag(PUNCTUAL_CULL_DEPTHLESS_TILES)) continue;
         render::RenderSettings settings = settingsFor(method);
         settings.opaqueCullingDepth = true;
         EXPECT_GT(differingPixels(renderImage(*context, scene, settings), brute), 200u) << methodInfo(method).name;

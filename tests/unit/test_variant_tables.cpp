@@ -3,6 +3,7 @@
 // and every entry has its explicit case in the shaders.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -56,7 +57,7 @@ TEST(VariantTables, MethodNamesRoundTrip) {
         EXPECT_EQ(render::parseMethod(method.name), method.value);
         EXPECT_STREQ(render::methodName(method.value), method.name);
     }
-    EXPECT_STREQ(render::methodName(LightListMethod(PUNCTUAL_LIGHT_LIST_COUNT)), "unknown");
+    EXPECT_STREQ(render::methodName(LightListMethod(render::kLightListMethods.size())), "unknown");
 }
 
 TEST(VariantTables, ShadowFilterNamesRoundTrip) {
@@ -66,7 +67,7 @@ TEST(VariantTables, ShadowFilterNamesRoundTrip) {
         EXPECT_EQ(parseShadowFilter(filter.name), filter.value);
         EXPECT_STREQ(shadowFilterName(filter.value), filter.name);
     }
-    EXPECT_STREQ(shadowFilterName(ShadowFilter(PUNCTUAL_SHADOW_FILTER_COUNT)), "unknown");
+    EXPECT_STREQ(shadowFilterName(ShadowFilter(kShadowFilters.size())), "unknown");
 }
 
 TEST(VariantTables, PointShadowLayoutNamesRoundTrip) {
@@ -132,24 +133,45 @@ TEST(VariantTables, HelpListsEveryEntryAndTheDefault) {
 
 // ---- footprints and bench sweeps --------------------------------------------------------------
 
-TEST(VariantTables, ShadowFilterFootprints) {
-    // Reach: half the N x N footprint (hw: a 2 x 2 bilinear tap, half a texel); taps: ((N + 1) / 2)^2,
-    // the Unity tent's bilinear fetches (shadow_tent.h).
+TEST(VariantTables, ShadowKernelFootprints) {
+    // Known answers for the kernels (shadow_kernels.h): reach, half the N x N footprint (the
+    // bilinear 2 x 2 tap half a texel); taps ((N + 1) / 2)^2, the Unity tent's bilinear fetches
+    // (shadow_tent.h); the disk's from its settings.
+    EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_BILINEAR, 1, 9.0f), 0.5f);
+    EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_BILINEAR, 1, 9), 1u);
+    EXPECT_EQ(gpu::shadowKernelFootprint(PUNCTUAL_SHADOW_KERNEL_BILINEAR, 1), 1u);
+    const std::pair<uint32_t, std::pair<float, uint32_t>> tents[] = {{3, {1.5f, 4u}}, {5, {2.5f, 9u}}, {7, {3.5f, 16u}},
+                                                                     {9, {4.5f, 25u}}};
+    for (const auto& [n, expected] : tents) {
+        EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_TENT, n, 9.0f), expected.first) << n;
+        EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_TENT, n, 9), expected.second) << n;
+        EXPECT_EQ(gpu::shadowKernelFootprint(PUNCTUAL_SHADOW_KERNEL_TENT, n), n);
+    }
+    EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_DISK, 0, 2.5f), 2.5f);
+    EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_DISK, 0, 9), 9u);
+    EXPECT_EQ(gpu::shadowKernelFootprint(PUNCTUAL_SHADOW_KERNEL_DISK, 0), 0u);
+    // An unknown kernel takes no taps (the shader then flags it) and reaches the least any does.
+    EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_COUNT, 5, 9), 0u);
+    EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_COUNT, 5, 9.0f), 0.5f);
+}
+
+TEST(VariantTables, ShadowSettingsTakeEachFiltersReachAndTapsFromItsKernel) {
     ShadowSettings settings;
-    const std::pair<ShadowFilter, std::pair<float, uint32_t>> expected[] = {
-        {ShadowFilter::Hardware, {0.5f, 1u}}, {ShadowFilter::Tent3, {1.5f, 4u}}, {ShadowFilter::Tent5, {2.5f, 9u}},
-        {ShadowFilter::Tent7, {3.5f, 16u}}};
-    for (const auto& [filter, footprint] : expected) {
-        settings.filter = filter;
-        EXPECT_EQ(settings.penumbraTexels(1024), footprint.first) << shadowFilterName(filter);
-        EXPECT_EQ(settings.filterTaps(), footprint.second) << shadowFilterName(filter);
+    settings.diskSamples = 9;
+    for (const ShadowFilterInfo& filter : kShadowFilters) {
+        settings.filter = filter.value;
+        for (uint32_t resolution : {1024u, 2048u}) {
+            const float diskTexels = settings.diskRadius * float(resolution);
+            EXPECT_EQ(settings.penumbraTexels(resolution),
+                      gpu::shadowKernelReachTexels(filter.kernel.value, filter.size, diskTexels))
+                << filter.name;
+        }
+        EXPECT_EQ(settings.filterTaps(), gpu::shadowKernelTaps(filter.kernel.value, filter.size, 9)) << filter.name;
+        EXPECT_GT(settings.filterTaps(), 0u) << filter.name;
     }
     // The disk's come from its settings: radius 2.5/1024 of the map at 1024 texels is 2.5 texels.
     settings.filter = ShadowFilter::Disk;
     EXPECT_EQ(settings.penumbraTexels(1024), 2.5f);
-    EXPECT_EQ(settings.filterTaps(), 16u);
-    settings.diskSamples = 9;
-    EXPECT_EQ(settings.penumbraTexels(2048), 5.0f);
     EXPECT_EQ(settings.filterTaps(), 9u);
 }
 
@@ -194,12 +216,13 @@ TEST(VariantTables, LightGridMethods) {
 TEST(VariantTables, MethodPropertiesDecideWhatTheFrameBuilds) {
     for (const render::LightListMethodInfo& info : render::kLightListMethods) {
         EXPECT_EQ(info.depthSlices, info.value == LightListMethod::Clustered) << info.name;
-        EXPECT_EQ(info.objectLists, info.value == LightListMethod::PerObject) << info.name;
+        EXPECT_EQ(info.objectLists(), info.value == LightListMethod::PerObject) << info.name;
         EXPECT_EQ(info.isReference, info.value == LightListMethod::Brute) << info.name;
-        EXPECT_TRUE(!info.depthSlices || info.usesLightGrid) << info.name << ": slices split a light grid";
+        EXPECT_TRUE(!info.depthSlices || info.usesLightGrid()) << info.name << ": slices split a light grid";
+        EXPECT_TRUE(info.cullFlags == 0 || info.usesLightGrid()) << info.name << ": culling flags shape a light grid";
     }
     EXPECT_EQ(render::referenceMethod(), LightListMethod::Brute);
-    EXPECT_THROW(render::methodInfo(static_cast<LightListMethod>(PUNCTUAL_LIGHT_LIST_COUNT)), InternalError);
+    EXPECT_THROW(render::methodInfo(static_cast<LightListMethod>(render::kLightListMethods.size())), InternalError);
 }
 
 // ---- the shaders have a case for every entry ----------------------------------------------------
@@ -230,60 +253,127 @@ std::vector<std::string> switchBodies(const std::string& source, const std::stri
     return bodies;
 }
 
-// Every switch on `selector` names every entry's GPU constant in a `case` and has a default (which
-// flags an unknown value), and there are at least `minimumSwitches` of them.
+// The GPU constants a table's entries use (`member` of each entry: its own value, or a parameter
+// such as a filter's kernel), once each.
 template <typename Entry, size_t N>
-void expectEveryEntryHasItsCase(const std::array<Entry, N>& table, const std::string& path, const std::string& selector,
-                                size_t minimumSwitches) {
+std::vector<GpuConstant> constantsOf(const std::array<Entry, N>& table, GpuConstant Entry::*member) {
+    std::vector<GpuConstant> constants;
+    for (const Entry& entry : table) {
+        const GpuConstant constant = entry.*member;
+        const bool seen = std::any_of(constants.begin(), constants.end(),
+                                      [&](const GpuConstant& c) { return std::string(c.name) == constant.name; });
+        if (!seen) constants.push_back(constant);
+    }
+    return constants;
+}
+
+// Every switch on `selector` in the shader file names every constant in a `case`, and there are at
+// least `minimumSwitches` of them, each with a default that flags an unknown value.
+void expectEveryConstantHasItsCase(const std::vector<GpuConstant>& constants, const std::string& path,
+                                   const std::string& selector, size_t minimumSwitches) {
     const std::vector<std::string> bodies = switchBodies(readShader(path), selector);
     EXPECT_GE(bodies.size(), minimumSwitches) << path << ": switch (" << selector << ")";
     for (const std::string& body : bodies) {
-        for (const Entry& entry : table) {
-            EXPECT_NE(body.find(std::string("case ") + entry.gpu.name + ":"), std::string::npos)
-                << path << ": no case for " << entry.name << " (" << entry.gpu.name << ") in\n" << body;
+        for (const GpuConstant& constant : constants) {
+            EXPECT_NE(body.find(std::string("case ") + constant.name + ":"), std::string::npos)
+                << path << ": no case for " << constant.name << " in\n" << body;
         }
         EXPECT_TRUE(std::regex_search(body, std::regex("default:\\s*unknownVariant = true;")))
             << path << ": an unknown value must set unknownVariant\n" << body;
     }
 }
 
-TEST(VariantTables, EveryShadowFilterHasItsShaderCases) {
-    expectEveryEntryHasItsCase(kShadowFilters, "shared/shadow_sampling.glsl", "SHADOW_FILTER", 3);
+// shadow_kernels.h's part for both languages (before its GLSL-only block) and its GLSL part.
+std::pair<std::string, std::string> shadowKernelsParts() {
+    const std::string source = readShader("shared/shadow_kernels.h");
+    const size_t glsl = source.find("#ifndef __cplusplus");
+    EXPECT_NE(glsl, std::string::npos);
+    return {source.substr(0, glsl), source.substr(glsl)};
+}
+
+TEST(VariantTables, EveryShadowKernelHasItsShaderCases) {
+    const std::vector<GpuConstant> kernels = constantsOf(kShadowFilters, &ShadowFilterInfo::kernel);
+    const auto [shared, glsl] = shadowKernelsParts();
+    // Footprint, taps and reach for both languages; samples and texel weights in GLSL.
+    size_t sharedSwitches = 0;
+    for (const std::string& body : switchBodies(shared, "kernel")) {
+        ++sharedSwitches;
+        for (const GpuConstant& kernel : kernels) {
+            EXPECT_NE(body.find(std::string("case ") + kernel.name + ":"), std::string::npos) << kernel.name << body;
+        }
+    }
+    EXPECT_EQ(sharedSwitches, 3u);
+    const std::vector<std::string> glslSwitches = switchBodies(glsl, "kernel");
+    EXPECT_EQ(glslSwitches.size(), 2u);
+    for (const std::string& body : glslSwitches) {
+        for (const GpuConstant& kernel : kernels) {
+            EXPECT_NE(body.find(std::string("case ") + kernel.name + ":"), std::string::npos) << kernel.name << body;
+        }
+        EXPECT_TRUE(std::regex_search(body, std::regex("default:\\s*unknownVariant = true;"))) << body;
+    }
 }
 
 TEST(VariantTables, EveryPointShadowLayoutHasItsShaderCase) {
-    expectEveryEntryHasItsCase(kPointShadowLayouts, "shared/shadow_sampling.glsl", "POINT_SHADOW_LAYOUT", 1);
+    expectEveryConstantHasItsCase(constantsOf(kPointShadowLayouts, &PointShadowLayoutInfo::gpu),
+                                  "shared/shadow_sampling.glsl", "POINT_SHADOW_LAYOUT", 1);
 }
 
 TEST(VariantTables, EveryCascadeBlendHasItsShaderCase) {
-    expectEveryEntryHasItsCase(kCascadeBlends, "shared/shadow_sampling.glsl", "CASCADE_BLEND", 1);
+    expectEveryConstantHasItsCase(constantsOf(kCascadeBlends, &CascadeBlendInfo::gpu), "shared/shadow_sampling.glsl",
+                                  "CASCADE_BLEND", 1);
 }
 
-TEST(VariantTables, EveryLightListMethodHasItsShaderCase) {
-    expectEveryEntryHasItsCase(render::kLightListMethods, "raster/forward.frag", "LIGHT_LIST", 1);
+TEST(VariantTables, EveryLightSourceHasItsShaderCase) {
+    expectEveryConstantHasItsCase(constantsOf(render::kLightListMethods, &render::LightListMethodInfo::source),
+                                  "raster/forward.frag", "LIGHT_SOURCE", 1);
 }
 
-// Every value define of a kind in gpu_types.h (`#define PREFIX<NAME> <n>u`, the count aside) is
-// some entry's constant: a value added to the shaders without its table entry fails here.
-template <typename Entry, size_t N>
-void expectEveryDefineHasAnEntry(const std::array<Entry, N>& table, const std::string& prefix) {
-    const std::string source = readShader("shared/gpu_types.h");
+// Every value define of a kind in `path` (`#define PREFIX<NAME> <n>u`, the count aside) is a
+// constant some entry uses: a value added to the shaders that no table row reaches fails here.
+void expectEveryDefineIsUsed(const std::vector<GpuConstant>& constants, const std::string& path,
+                             const std::string& prefix) {
+    const std::string source = readShader(path);
     const std::regex define("#define (" + prefix + "\\w+) \\d+u");
     std::set<std::string> defines;
     for (auto it = std::sregex_iterator(source.begin(), source.end(), define); it != std::sregex_iterator(); ++it) {
         const std::string name = (*it)[1].str();
         if (!name.ends_with("_COUNT")) defines.insert(name);
     }
-    std::set<std::string> entries;
-    for (const Entry& entry : table) entries.insert(entry.gpu.name);
-    EXPECT_EQ(defines, entries) << prefix;
+    std::set<std::string> used;
+    for (const GpuConstant& constant : constants) used.insert(constant.name);
+    EXPECT_EQ(defines, used) << prefix;
 }
 
 TEST(VariantTables, EveryGpuValueHasAnEntry) {
-    expectEveryDefineHasAnEntry(render::kLightListMethods, "PUNCTUAL_LIGHT_LIST_");
-    expectEveryDefineHasAnEntry(kShadowFilters, "PUNCTUAL_SHADOW_FILTER_");
-    expectEveryDefineHasAnEntry(kPointShadowLayouts, "PUNCTUAL_POINT_SHADOW_");
-    expectEveryDefineHasAnEntry(kCascadeBlends, "PUNCTUAL_CASCADE_BLEND_");
+    expectEveryDefineIsUsed(constantsOf(render::kLightListMethods, &render::LightListMethodInfo::source),
+                            "shared/gpu_types.h", "PUNCTUAL_LIGHT_SOURCE_");
+    expectEveryDefineIsUsed(constantsOf(kShadowFilters, &ShadowFilterInfo::kernel), "shared/shadow_kernels.h",
+                            "PUNCTUAL_SHADOW_KERNEL_");
+    expectEveryDefineIsUsed(constantsOf(kPointShadowLayouts, &PointShadowLayoutInfo::gpu), "shared/gpu_types.h",
+                            "PUNCTUAL_POINT_SHADOW_");
+    expectEveryDefineIsUsed(constantsOf(kCascadeBlends, &CascadeBlendInfo::gpu), "shared/gpu_types.h",
+                            "PUNCTUAL_CASCADE_BLEND_");
+}
+
+// The culling flags the methods use are the ones culling.h defines, and every method's flags are
+// ones the general kernel implements: light_culling.comp names each flag it reads.
+TEST(VariantTables, EveryCullingFlagIsDefinedAndImplemented) {
+    const std::string culling = readShader("shared/culling.h");
+    const std::string kernel = readShader("compute/light_culling.comp");
+    const std::regex define("#define (PUNCTUAL_CULL_\\w+) (\\d+)u");
+    uint32_t defined = 0;
+    for (auto it = std::sregex_iterator(culling.begin(), culling.end(), define); it != std::sregex_iterator(); ++it) {
+        const uint32_t bit = uint32_t(std::stoul((*it)[2].str()));
+        EXPECT_EQ(bit & (bit - 1), 0u) << (*it)[1].str() << ": one bit a flag";
+        EXPECT_EQ(defined & bit, 0u) << (*it)[1].str() << ": a bit of its own";
+        defined |= bit;
+        EXPECT_NE(kernel.find((*it)[1].str()), std::string::npos) << "light_culling.comp lacks " << (*it)[1].str();
+    }
+    for (const render::LightListMethodInfo& method : render::kLightListMethods) {
+        EXPECT_EQ(method.cullFlags & ~defined, 0u) << method.name;
+    }
+    EXPECT_EQ(PUNCTUAL_TILE_KERNEL_CULL_FLAGS & ~defined, 0u);
+    EXPECT_EQ(PUNCTUAL_CLUSTER_KERNEL_CULL_FLAGS & ~defined, 0u);
 }
 
 }  // namespace
