@@ -21,4 +21,10 @@ function(punctual_add_fuzz_targets)
     target_link_options(punctual_fuzz_${target} PRIVATE -fsanitize=fuzzer)
     punctual_sanitizer_defaults(punctual_fuzz_${target})
   endforeach()
+  # Prints the option fuzzer's dictionary words that come from the tables (every option and
+  # variant name), which scripts/fuzz.sh adds to tests/fuzz/options.dict's hand-picked values.
+  add_executable(punctual_options_dictionary ${CMAKE_SOURCE_DIR}/tests/fuzz/options_dictionary.cpp)
+  target_compile_options(punctual_options_dictionary PRIVATE ${PUNCTUAL_WARNINGS})
+  target_link_libraries(punctual_options_dictionary PRIVATE punctual_options)
+  punctual_sanitizer_defaults(punctual_options_dictionary)
 endfunction()

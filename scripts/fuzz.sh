@@ -22,12 +22,15 @@ cmake --build "$build" -j"$(nproc)"
 
 mkdir -p "$build/corpus/gltf" "$build/corpus/gltf_json" "$build/corpus/options" "$build/crashes"
 cp "$root/data/small-room.gltf" "$build/corpus/gltf/"
+# The option target's dictionary: the hand-picked values, then every option and variant name the
+# tables hold (printed by punctual_options_dictionary, so a new variant needs no edit here).
+{ cat "$root/tests/fuzz/options.dict"; "$build/punctual_options_dictionary"; } >"$build/options.dict"
 
 run() {  # TARGET: fuzz it for $seconds, output in build-fuzz/TARGET.log
   local target=$1
   # The first corpus folder receives new inputs; the seeds are only read.
   "$build/punctual_fuzz_$target" -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 \
-    $([ -f "$root/tests/fuzz/$target.dict" ] && echo "-dict=$root/tests/fuzz/$target.dict") -artifact_prefix="$build/crashes/$target-" -print_final_stats=1 \
+    $([ -f "$build/$target.dict" ] && echo "-dict=$build/$target.dict") -artifact_prefix="$build/crashes/$target-" -print_final_stats=1 \
     "$build/corpus/$target" "$root/tests/fuzz/corpus/$target" </dev/null >"$build/$target.log" 2>&1
 }
 

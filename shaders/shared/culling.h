@@ -407,6 +407,10 @@ PUNCTUAL_FN bool lightMayTouchTile(CullLight light, TileVolume segment) {
 #define PUNCTUAL_TILE_KERNEL_CULL_FLAGS (PUNCTUAL_CULL_DEPTH_MASK | PUNCTUAL_CULL_DEPTHLESS_TILES)  // tile_culling.comp
 #define PUNCTUAL_CLUSTER_KERNEL_CULL_FLAGS 0u  // cluster_culling.comp
 
+// Whether a method with these flags culls against the depths its pixels have (tiles' depth
+// extents, slices, depth cells): every method but those whose tiles span the whole column.
+PUNCTUAL_FN bool cullFlagsReadDepth(uint flags) { return (flags & PUNCTUAL_CULL_DEPTHLESS_TILES) == 0u; }
+
 // Harada's 2.5D culling (Harada, McKee and Yang, "Forward+: A step toward film-style shading in
 // real time", GPU Pro 4, 2013; "2.5D culling for Forward+", SIGGRAPH Asia 2012): a tile's depth
 // extent [nearDistance, farDistance] is cut into 32 equal cells, one bit each; the tile's mask has

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 
 #include "gpu_test_support.h"
 #include "metrics/culling_stats.h"
@@ -47,10 +48,13 @@ TEST(PixelWork, NoShadowsTakeNoLookups) {
 TEST(PixelWork, EveryLookupIssuesTheFiltersTaps) {
     auto context = testing::makeValidatedContext();
     const Scene scene = makeDefaultScene();
-    for (ShadowFilter filter : {ShadowFilter::Hardware, ShadowFilter::Tent5, ShadowFilter::Disk}) {
+    // One filter of each kernel (shadow_kernels.h): the first in the table.
+    std::set<uint32_t> kernels;
+    for (const ShadowFilterInfo& filter : kShadowFilters) {
+        if (!kernels.insert(filter.kernel.value).second) continue;
         ShadowSettings shadows;
-        shadows.filter = filter;
-        SCOPED_TRACE(shadowFilterName(filter));
+        shadows.filter = filter.value;
+        SCOPED_TRACE(filter.name);
         const LightStatsImage stats = pixelWork(*context, scene, LightListMethod::Brute, shadows);
         uint64_t lookups = 0;
         uint64_t taps = 0;

@@ -18,6 +18,7 @@
 
 #include "gpu_test_support.h"
 #include "lights/light_setup.h"
+#include "lights/shadow_filters.h"
 #include "lights/shadow_setup.h"
 #include "reference/shadow_validation.h"
 #include "render/renderer.h"
@@ -125,6 +126,41 @@ void expectDefaultSceneAccuracy(const ShadowSettings& shadows, uint32_t spots, u
 }
 
 // The former default: 1024 texels at 32 bits for the 32 spots and 8 points that matter most.
+// ---- the kernels' reach and taps (shaders/shared/shadow_kernels.h), on the CPU ----------------
+
+TEST(ShadowKernels, KnownReachTapsAndFootprints) {
+    // Known answers for the kernels (shadow_kernels.h): reach, half the N x N footprint (the
+    // bilinear 2 x 2 tap half a texel); taps ((N + 1) / 2)^2, the Unity tent's bilinear fetches
+    // (shadow_tent.h); the disk's from its settings.
+    EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_BILINEAR, 1, 9.0f), 0.5f);
+    EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_BILINEAR, 1, 9), 1u);
+    EXPECT_EQ(gpu::shadowKernelFootprint(PUNCTUAL_SHADOW_KERNEL_BILINEAR, 1), 1u);
+    const std::pair<uint32_t, std::pair<float, uint32_t>> tents[] = {{3, {1.5f, 4u}}, {5, {2.5f, 9u}}, {7, {3.5f, 16u}},
+                                                                     {9, {4.5f, 25u}}};
+    for (const auto& [n, expected] : tents) {
+        EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_TENT, n, 9.0f), expected.first) << n;
+        EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_TENT, n, 9), expected.second) << n;
+        EXPECT_EQ(gpu::shadowKernelFootprint(PUNCTUAL_SHADOW_KERNEL_TENT, n), n);
+    }
+    EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_DISK, 0, 2.5f), 2.5f);
+    EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_DISK, 0, 9), 9u);
+    EXPECT_EQ(gpu::shadowKernelFootprint(PUNCTUAL_SHADOW_KERNEL_DISK, 0), 0u);
+    // An unknown kernel takes no taps (the shader then flags it) and reaches the least any does.
+    EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_COUNT, 5, 9), 0u);
+    EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_COUNT, 5, 9.0f), 0.5f);
+}
+
+TEST(ShadowKernels, TheDiskTakesItsReachAndTapsFromItsSettings) {
+    // Radius 2.5/1024 of the map at 1024 texels is 2.5 texels, at 2048 5; one tap a sample.
+    ShadowSettings settings;
+    settings.filter = ShadowFilter::Disk;
+    EXPECT_EQ(settings.penumbraTexels(1024), 2.5f);
+    EXPECT_EQ(settings.filterTaps(), 16u);
+    settings.diskSamples = 9;
+    EXPECT_EQ(settings.penumbraTexels(2048), 5.0f);
+    EXPECT_EQ(settings.filterTaps(), 9u);
+}
+
 TEST(ShadowValidation, DefaultSceneAtAFixed1024MisclassifiesAtMostHalfAPercent) {
     ShadowSettings fixed;
     fixed.resolution = 1024;
@@ -188,11 +224,10 @@ TEST(ShadowAcne, FlatReceiverUpTo80DegreesHasNoAcne) {
     const Case cases[] = {{&spotScene, PointShadowLayout::Cube, "spot"},
                           {&pointScene, PointShadowLayout::Cube, "point (cube)"},
                           {&pointScene, PointShadowLayout::Slices, "point (slices)"}};
-    for (const ShadowFilter filter : {ShadowFilter::Hardware, ShadowFilter::Tent3, ShadowFilter::Tent5,
-                                      ShadowFilter::Tent7, ShadowFilter::Disk}) {
+    for (const ShadowFilterInfo& filter : kShadowFilters) {
         for (const Case& c : cases) {
             ShadowSettings shadows;  // default bias
-            shadows.filter = filter;
+            shadows.filter = filter.value;
             shadows.pointLayout = c.layout;
             shadows.resolution = 512;
             const std::string what = std::string(c.name) + ", " + describe(shadows);
@@ -238,10 +273,11 @@ TEST(ShadowAcne, FlatReceiverUpTo80DegreesHasNoAcne) {
     // keeps the notes' compares and is left out.
     for (const Case& c : cases) {
         if (c.layout == PointShadowLayout::Cube) continue;
-        for (const ShadowFilter filter : {ShadowFilter::Hardware, ShadowFilter::Tent5, ShadowFilter::Tent7}) {
+        for (const ShadowFilterInfo& filter : kShadowFilters) {
+            if (filter.footprint() == 0) continue;  // receiver-plane compares weigh a texel footprint
             ShadowSettings unbiased;
             unbiased.bias = glm::vec4(0.0f);
-            unbiased.filter = filter;
+            unbiased.filter = filter.value;
             unbiased.pointLayout = c.layout;
             unbiased.resolution = 512;
             const ShadowRun run =

@@ -66,8 +66,8 @@ TEST(Transparency, WithTheOpaqueDepthAloneTiledCullingMissesTheGlasssLights) {
     const Scene scene = glassPanesScene();
     const ImageRgba8 brute = renderImage(*context, scene, settingsFor(LightListMethod::Brute));
     for (const LightListMethod method : render::gridMethods()) {
-        // zbin-2d's culling reads no depth (its bins hold depth, per fragment): nothing to miss.
-        if (methodInfo(method).hasCullFlag(PUNCTUAL_CULL_DEPTHLESS_TILES)) continue;
+        // A culling that reads no depth (zbin-2d: its bins hold depth, per fragment) has nothing to miss.
+        if (!gpu::cullFlagsReadDepth(methodInfo(method).cullFlags)) continue;
         render::RenderSettings settings = settingsFor(method);
         settings.opaqueCullingDepth = true;
         EXPECT_GT(differingPixels(renderImage(*context, scene, settings), brute), 200u) << methodInfo(method).name;

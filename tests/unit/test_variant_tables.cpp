@@ -133,28 +133,6 @@ TEST(VariantTables, HelpListsEveryEntryAndTheDefault) {
 
 // ---- footprints and bench sweeps --------------------------------------------------------------
 
-TEST(VariantTables, ShadowKernelFootprints) {
-    // Known answers for the kernels (shadow_kernels.h): reach, half the N x N footprint (the
-    // bilinear 2 x 2 tap half a texel); taps ((N + 1) / 2)^2, the Unity tent's bilinear fetches
-    // (shadow_tent.h); the disk's from its settings.
-    EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_BILINEAR, 1, 9.0f), 0.5f);
-    EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_BILINEAR, 1, 9), 1u);
-    EXPECT_EQ(gpu::shadowKernelFootprint(PUNCTUAL_SHADOW_KERNEL_BILINEAR, 1), 1u);
-    const std::pair<uint32_t, std::pair<float, uint32_t>> tents[] = {{3, {1.5f, 4u}}, {5, {2.5f, 9u}}, {7, {3.5f, 16u}},
-                                                                     {9, {4.5f, 25u}}};
-    for (const auto& [n, expected] : tents) {
-        EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_TENT, n, 9.0f), expected.first) << n;
-        EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_TENT, n, 9), expected.second) << n;
-        EXPECT_EQ(gpu::shadowKernelFootprint(PUNCTUAL_SHADOW_KERNEL_TENT, n), n);
-    }
-    EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_DISK, 0, 2.5f), 2.5f);
-    EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_DISK, 0, 9), 9u);
-    EXPECT_EQ(gpu::shadowKernelFootprint(PUNCTUAL_SHADOW_KERNEL_DISK, 0), 0u);
-    // An unknown kernel takes no taps (the shader then flags it) and reaches the least any does.
-    EXPECT_EQ(gpu::shadowKernelTaps(PUNCTUAL_SHADOW_KERNEL_COUNT, 5, 9), 0u);
-    EXPECT_EQ(gpu::shadowKernelReachTexels(PUNCTUAL_SHADOW_KERNEL_COUNT, 5, 9.0f), 0.5f);
-}
-
 TEST(VariantTables, ShadowSettingsTakeEachFiltersReachAndTapsFromItsKernel) {
     ShadowSettings settings;
     settings.diskSamples = 9;
@@ -169,10 +147,6 @@ TEST(VariantTables, ShadowSettingsTakeEachFiltersReachAndTapsFromItsKernel) {
         EXPECT_EQ(settings.filterTaps(), gpu::shadowKernelTaps(filter.kernel.value, filter.size, 9)) << filter.name;
         EXPECT_GT(settings.filterTaps(), 0u) << filter.name;
     }
-    // The disk's come from its settings: radius 2.5/1024 of the map at 1024 texels is 2.5 texels.
-    settings.filter = ShadowFilter::Disk;
-    EXPECT_EQ(settings.penumbraTexels(1024), 2.5f);
-    EXPECT_EQ(settings.filterTaps(), 9u);
 }
 
 TEST(VariantTables, QuickBenchSweepsTheReferenceTheDefaultsAndASubset) {
@@ -202,12 +176,15 @@ TEST(VariantTables, LightGridMethods) {
     EXPECT_FALSE(render::usesLightGrid(LightListMethod::PerObject));
     EXPECT_TRUE(render::usesLightGrid(LightListMethod::Tiled));
     EXPECT_TRUE(render::usesLightGrid(LightListMethod::Clustered));
-    EXPECT_TRUE(render::usesLightGrid(LightListMethod::Tiled25D));
-    EXPECT_TRUE(render::usesLightGrid(LightListMethod::ZBin));
-    EXPECT_TRUE(render::usesLightGrid(LightListMethod::ZBin2D));
-    EXPECT_EQ(render::gridMethods(), (std::vector<LightListMethod>{LightListMethod::Tiled, LightListMethod::Clustered,
-                                                                   LightListMethod::Tiled25D, LightListMethod::ZBin,
-                                                                   LightListMethod::ZBin2D}));
+    // The grid methods are those whose forward pass reads a light grid, in table order.
+    std::vector<LightListMethod> grid;
+    for (const render::LightListMethodInfo& info : render::kLightListMethods) {
+        const bool readsGrid = info.source.value == PUNCTUAL_LIGHT_SOURCE_GRID || info.source.value == PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS;
+        EXPECT_EQ(render::usesLightGrid(info.value), readsGrid) << info.name;
+        if (readsGrid) grid.push_back(info.value);
+    }
+    EXPECT_EQ(render::gridMethods(), grid);
+    EXPECT_GE(grid.size(), 2u);
 }
 
 // What the renderer builds for each method comes from the table: depth slices only for clusters,
