@@ -16,10 +16,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/options.h"
+#include "cli/options.h"
 #include "core/error.h"
 #include "core/image.h"
-#include "app/output_paths.h"
+#include "cli/output_paths.h"
 #include "core/output_files.h"
 #include "core/output_folder.h"
 #include "metrics/culling_stats.h"
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
                 return argv[++i];
             };
             if (arg == "--rounds") rounds = uint32_t(std::stoul(value()));
-            else if (arg == "--size") punctual::app::parseSize(value(), width, height);
+            else if (arg == "--size") punctual::cli::parseSize(value(), width, height);
             else if (arg == "--heatmaps") heatmapDir = value();
             else if (arg == "--json") jsonPath = value();
             else if (arg == "--clustered-tile") clusteredTile = uint32_t(std::stoul(value()));
@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
         // The output paths, before minutes of rendering (the heat map folder is created if missing).
         const punctual::OutputFolderLayout heatmapLayout = {"", {"heatmap-*.png"}, {}};
         if (!heatmapDir.empty()) punctual::checkOutputFolder(heatmapDir, heatmapLayout);
-        if (!jsonPath.empty()) punctual::app::checkOutputPaths({{"--json", jsonPath}});
+        if (!jsonPath.empty()) punctual::cli::checkOutputPaths({{"--json", jsonPath}});
         const punctual::Scene scene = punctual::makeDefaultScene();
         punctual::vk::Context context;
         std::vector<MethodRun> runs;

@@ -1,5 +1,5 @@
 # Writes OUT (a header) with the source tree's git commit and whether it had uncommitted changes,
-# for the bench's provenance (src/app/bench_provenance.cpp). Run at every build by the target
+# for the bench's provenance (src/bench/bench_provenance.cpp). Run at every build by the target
 # punctual_git_commit; the header is rewritten only when its contents change, so an unchanged
 # commit rebuilds nothing. Without git or outside a repository the commit is "unknown".
 execute_process(COMMAND git -C "${SOURCE_DIR}" rev-parse HEAD

@@ -11,9 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/options.h"
-#include "app/output_paths.h"
-#include "app/scene_source.h"
+#include "cli/options.h"
+#include "cli/output_paths.h"
+#include "cli/scene_source.h"
 #include "bench/bench_failures.h"
 #include "bench/bench_plan.h"
 #include "bench/bench_provenance.h"
@@ -30,6 +30,8 @@
 #include "vk/context.h"
 
 namespace punctual::app {
+
+using namespace cli;  // the command line (src/cli)
 namespace {
 
 // Everything bench writes into --out-dir itself; results.json lists a run's files. The chart

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "app/options.h"
-#include "app/scene_source.h"
+#include "cli/options.h"
+#include "cli/scene_source.h"
 #include "core/error.h"
 #include "metrics/image_diff.h"
 #include "reference/embree_scene.h"
@@ -13,6 +13,8 @@
 #include "vk/context.h"
 
 namespace punctual::app {
+
+using namespace cli;  // the command line (src/cli)
 namespace {
 
 std::string usage() {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "app/options.h"
+#include "cli/options.h"
 #include "app/reference_command.h"
 #include "app/bench_command.h"
 #include "app/compare_command.h"

@@ -8,15 +8,17 @@
 
 #include <tbb/task_arena.h>
 
-#include "app/options.h"
-#include "app/output_paths.h"
-#include "app/scene_source.h"
+#include "cli/options.h"
+#include "cli/output_paths.h"
+#include "cli/scene_source.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/output_files.h"
 #include "reference/reference_renderer.h"
 
 namespace punctual::app {
+
+using namespace cli;  // the command line (src/cli)
 namespace {
 
 // Options of `render` that mean nothing for the ray-traced image: rejected rather than silently

@@ -2,7 +2,7 @@
 #include <string>
 #include <vector>
 
-#include "app/options.h"
+#include "cli/options.h"
 #include "reference/reference_renderer.h"
 
 namespace punctual::app {
@@ -15,6 +15,6 @@ std::string referenceUsage();
 
 // The CPU reference's settings for what `options` ask: their size, exposure and transparent
 // shadow mode; shadows on or off. Shared by `reference` and `validate`, which compare with it.
-reference::ReferenceSettings referenceSettingsFrom(const RenderOptions& options, bool shadows);
+reference::ReferenceSettings referenceSettingsFrom(const cli::RenderOptions& options, bool shadows);
 
 }  // namespace punctual::app

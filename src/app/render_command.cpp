@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <sstream>
 
-#include "app/frame_stats.h"
-#include "app/options.h"
-#include "app/output_paths.h"
-#include "app/scene_source.h"
+#include "report/frame_stats.h"
+#include "cli/options.h"
+#include "cli/output_paths.h"
+#include "cli/scene_source.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/log.h"
@@ -18,6 +18,9 @@
 #include "vk/context.h"
 
 namespace punctual::app {
+
+using namespace cli;
+using namespace report;  // the command line (src/cli) and the files the commands write (src/report)
 
 namespace {
 

@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <system_error>
 
-#include "app/options.h"
-#include "app/output_paths.h"
+#include "cli/options.h"
+#include "cli/output_paths.h"
 #include "app/reference_command.h"
-#include "app/scene_source.h"
-#include "app/validation_report.h"
+#include "cli/scene_source.h"
+#include "report/validation_report.h"
 #include "core/error.h"
 #include "core/output_files.h"
 #include "core/output_folder.h"
@@ -19,6 +19,9 @@
 #include "vk/context.h"
 
 namespace punctual::app {
+
+using namespace cli;
+using namespace report;  // the command line (src/cli) and the files the commands write (src/report)
 namespace {
 
 constexpr const char* kUsage = R"(usage: punctual validate [SCENE] [render options] --out-dir DIR [--export-exr]

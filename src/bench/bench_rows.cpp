@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "app/validation_report.h"
+#include "report/validation_report.h"
 #include "core/memory_usage.h"
 #include "lights/cascade_setup.h"
 #include "lights/shadow_sizing.h"
@@ -218,7 +218,7 @@ ShadowValidationRows addShadowValidation(BenchRow& row, render::Renderer& render
         }
     }
     if (!validation.lights.empty()) {
-        out.mismatch = app::mismatchMap(validation.lights.front(), validation.width, validation.height);
+        out.mismatch = report::mismatchMap(validation.lights.front(), validation.width, validation.height);
     }
     return out;
 }

@@ -67,7 +67,7 @@ BenchRun::Measurement BenchRun::prepare(const BenchConfig& config) {
         m.scene = m.ownScene.get();
         m.geometry = &embree_;
     }
-    render::RenderSettings settings = app::renderSettingsFrom(settings_.options);
+    render::RenderSettings settings = cli::renderSettingsFrom(settings_.options);
     if (config.width) {
         settings.width = config.width;
         settings.height = config.height;

@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/options.h"
+#include "cli/options.h"
 #include "bench/bench_plan.h"
 #include "bench/bench_rows.h"
 #include "bench/progress_bar.h"
@@ -26,7 +26,7 @@
 namespace punctual::bench {
 
 struct BenchRunSettings {
-    app::RenderOptions options;  // the frame's settings; each configuration overrides its own
+    cli::RenderOptions options;  // the frame's settings; each configuration overrides its own
     uint32_t rounds = 5;
     uint32_t bestOf = 3;
     uint64_t seed = 1;

@@ -1,6 +1,6 @@
 #pragma once
 // Where an output path really leads, and whether punctual may write there. Shared by the checks
-// that run before any work (src/app/output_paths.h) and by OutputFiles, which writes at the end,
+// that run before any work (src/cli/output_paths.h) and by OutputFiles, which writes at the end,
 // so both agree on what a path means:
 // - a regular file or a new name is replaced atomically: a temporary file beside it, renamed over it;
 // - a symbolic link is written through: its final target gets the new contents (atomically, the

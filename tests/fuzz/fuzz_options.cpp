@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "app/options.h"
+#include "cli/options.h"
 #include "core/error.h"
 #include "fuzz_target.h"
 
@@ -27,9 +27,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // A seed file ends with a newline, which is not an empty last argument.
     if (!text.empty() && text.back() == '\n') args.pop_back();
     try {
-        const punctual::app::RenderOptions options = punctual::app::parseRenderOptions(args);
+        const punctual::cli::RenderOptions options = punctual::cli::parseRenderOptions(args);
         // What the commands do next with parsed options.
-        (void)punctual::app::renderSettingsFrom(options);
+        (void)punctual::cli::renderSettingsFrom(options);
     } catch (const punctual::Error&) {
         // A clean error naming the option: what bad arguments must give.
     }

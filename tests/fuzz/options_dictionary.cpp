@@ -8,11 +8,11 @@
 #include <sstream>
 #include <string>
 
-#include "app/options.h"
-#include "app/render_option_table.h"
+#include "cli/options.h"
+#include "cli/render_option_table.h"
 
 int main() {
-    using namespace punctual::app;
+    using namespace punctual::cli;
     const RenderOptions defaults;
     std::set<std::string> words;
     for (const RenderOptionSpec& spec : renderOptionTable()) {

@@ -1,6 +1,6 @@
 #include "shadow_test_runs.h"
 
-#include "app/validation_report.h"
+#include "report/validation_report.h"
 #include "gpu_test_support.h"
 #include "reference/embree_scene.h"
 
@@ -29,7 +29,7 @@ void saveShadowRun(const std::string& name, const ShadowRun& run) {
     saveTestImage(name, run.image);
     for (const reference::LightShadowValidation& light : run.validation.lights) {
         saveTestImage(name + "-mismatch-" + std::to_string(light.slot),
-                      app::mismatchMap(light, run.validation.width, run.validation.height));
+                      report::mismatchMap(light, run.validation.width, run.validation.height));
     }
 }
 

@@ -1,4 +1,4 @@
-// The bench's per-round sample (src/app/bench_rows.h): no device needed, but the row helpers live
+// The bench's per-round sample (src/bench/bench_rows.h): no device needed, but the row helpers live
 // in the GPU library with the renderer's types.
 #include <gtest/gtest.h>
 

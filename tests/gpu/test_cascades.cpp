@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "app/validation_report.h"
+#include "report/validation_report.h"
 #include "gpu_test_support.h"
 #include "lights/cascade_setup.h"
 #include "scene/outdoor_scene.h"
@@ -28,9 +28,9 @@ TEST(Cascades, FieldAgreesWithEmbreeInEveryCascade) {
     const testing::ShadowRun run =
         testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(320, 180, shadows));
     testing::saveShadowRun("cascades-field", run);
-    testing::saveTestImage("cascades-field-cascades", app::cascadeOverlay(run.image, run.factors.sunCascades));
+    testing::saveTestImage("cascades-field-cascades", report::cascadeOverlay(run.image, run.factors.sunCascades));
     if (run.validation.sun) {
-        testing::saveTestImage("cascades-field-mismatch-sun", app::mismatchMap(run.validation.sun->verdicts, run.validation.sun->inBand,
+        testing::saveTestImage("cascades-field-mismatch-sun", report::mismatchMap(run.validation.sun->verdicts, run.validation.sun->inBand,
                                                                                 run.validation.width, run.validation.height));
     }
     ASSERT_EQ(run.plan.cascades.count, 4u);

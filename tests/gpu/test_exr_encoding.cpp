@@ -9,7 +9,7 @@
 
 #include <tinyexr.h>
 
-#include "app/exr_encoding.h"
+#include "report/exr_encoding.h"
 #include "gpu_test_support.h"
 
 namespace punctual {
@@ -31,7 +31,7 @@ TEST(ExrEncoding, BytesMatchSaveExr) {
             std::vector<float> data(size_t(width * height * components));
             for (size_t i = 0; i < data.size(); ++i) data[i] = float(i % 97) * 0.25f - 3.0f;
             data[1] = std::numeric_limits<float>::quiet_NaN();
-            const std::string encoded = app::encodeExr(data, uint32_t(width), uint32_t(height), components, "x.exr");
+            const std::string encoded = report::encodeExr(data, uint32_t(width), uint32_t(height), components, "x.exr");
             EXPECT_EQ(encoded, savedByTinyexr(folder, data, width, height, components))
                 << width << "x" << height << ", " << components << " channel(s)";
         }

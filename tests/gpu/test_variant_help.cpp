@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "app/options.h"
+#include "cli/options.h"
 #include "core/variant_table.h"
 #include "gpu_test_support.h"
 #include "lights/shadow_filters.h"
@@ -35,7 +35,7 @@ TEST(VariantHelp, RenderHelpListsEveryVariant) {
     testing::TempFolder folder;
     const RunResult run = runPunctual(folder, "render --help");
     ASSERT_EQ(run.exitCode, 0) << run.err;
-    EXPECT_EQ(run.out, app::renderUsage());
+    EXPECT_EQ(run.out, cli::renderUsage());
     for (const render::LightListMethodInfo& method : render::kLightListMethods) {
         EXPECT_TRUE(listsEntry(run.out, method.name, method.description)) << method.name << "\n" << run.out;
     }
@@ -75,7 +75,7 @@ TEST(VariantHelp, BenchHelpNamesTheSweptVariants) {
 }
 
 // The README's synopsis of `punctual render` is the options part of its --help, word for word:
-// one table (src/app/render_option_table.cpp) says both.
+// one table (src/cli/render_option_table.cpp) says both.
 TEST(VariantHelp, ReadmeSynopsisIsTheRenderHelp) {
     std::ifstream in(std::string(PUNCTUAL_DATA_DIR) + "/../README.md");
     std::stringstream text;
@@ -87,7 +87,7 @@ TEST(VariantHelp, ReadmeSynopsisIsTheRenderHelp) {
     const size_t end = readme.find("punctual reference ", start);
     ASSERT_NE(end, std::string::npos);
     const std::string synopsis = readme.substr(start + head.size(), end - start - head.size());
-    const std::string usage = app::renderUsage();
+    const std::string usage = cli::renderUsage();
     const std::string options = usage.substr(usage.find("options:\n") + 9);
     EXPECT_EQ(synopsis, options) << "regenerate README's synopsis from `punctual render --help`";
 }

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "app/options.h"
+#include "cli/options.h"
 #include "core/error.h"
 #include "lights/shadow_filters.h"
 #include "lights/shadow_setup.h"
@@ -155,7 +155,7 @@ TEST(VariantTables, QuickBenchSweepsTheReferenceTheDefaultsAndASubset) {
     size_t quickMethods = 0;
     for (const render::LightListMethodInfo& method : render::kLightListMethods) {
         quickMethods += method.quickBench;
-        if (method.isReference || method.value == app::RenderOptions{}.culling) {
+        if (method.isReference || method.value == cli::RenderOptions{}.culling) {
             EXPECT_TRUE(method.quickBench) << method.name;
         }
     }

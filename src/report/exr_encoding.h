@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace punctual::app {
+namespace punctual::report {
 
 // The bytes of an uncompressed-float EXR of `components` (1 or 3) interleaved channels, as
 // tinyexr's SaveEXR writes them to a file (ZIP compressed unless smaller than 16 x 16). Throws
@@ -13,4 +13,4 @@ namespace punctual::app {
 std::string encodeExr(const std::vector<float>& data, uint32_t width, uint32_t height, int components,
                       const std::string& name);
 
-}  // namespace punctual::app
+}  // namespace punctual::report

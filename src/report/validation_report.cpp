@@ -1,13 +1,13 @@
-#include "app/validation_report.h"
+#include "report/validation_report.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
-#include "app/exr_encoding.h"
+#include "report/exr_encoding.h"
 
-namespace punctual::app {
+namespace punctual::report {
 namespace {
 
 nlohmann::json countsJson(const reference::ShadowCounts& c) {
@@ -225,4 +225,4 @@ void addExrImages(OutputFiles& outputs, const std::string& folder, const ShadowF
     }
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::report

@@ -1,7 +1,7 @@
 #pragma once
 // The values of command-line options: numbers, switches and lists, each parsed whole (no trailing
 // characters) and refused in one line naming the option. Shared by the render option table
-// (app/render_option_table.cpp) and the commands' own options.
+// (cli/render_option_table.cpp) and the commands' own options.
 #include <charconv>
 #include <cstdint>
 #include <string>
@@ -9,7 +9,7 @@
 
 #include "lights/shadow_setup.h"
 
-namespace punctual::app {
+namespace punctual::cli {
 
 // The whole of `text` as a number of type T (std::from_chars: no locale, no leading '+').
 template <typename T>
@@ -35,4 +35,4 @@ std::vector<float> parseNumberList(const std::string& option, const std::string&
 // "S,P" -> the most spot and point lights that cast a shadow (ranges: validateShadowSettings).
 void parseShadowedCounts(const std::string& text, ShadowSettings& shadows);
 
-}  // namespace punctual::app
+}  // namespace punctual::cli

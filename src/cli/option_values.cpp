@@ -1,10 +1,10 @@
-#include "app/option_values.h"
+#include "cli/option_values.h"
 
 #include <cmath>
 
 #include "core/error.h"
 
-namespace punctual::app {
+namespace punctual::cli {
 
 uint32_t parseWhole(const std::string& option, const std::string& text) {
     uint32_t value = 0;
@@ -58,4 +58,4 @@ void parseShadowedCounts(const std::string& text, ShadowSettings& shadows) {
     shadows.maxShadowedPoints = parseWhole("--shadowed", text.substr(comma + 1));
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::cli

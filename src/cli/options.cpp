@@ -1,4 +1,4 @@
-#include "app/options.h"
+#include "cli/options.h"
 
 #include <algorithm>
 #include <cctype>
@@ -7,12 +7,12 @@
 #include <cmath>
 #include <vector>
 
-#include "app/option_values.h"
-#include "app/render_option_table.h"
+#include "cli/option_values.h"
+#include "cli/render_option_table.h"
 #include "core/error.h"
 #include "scene/builtin_scenes.h"
 
-namespace punctual::app {
+namespace punctual::cli {
 namespace {
 
 // Extensions that name a file format, and the format's name. An output named for one format
@@ -159,4 +159,4 @@ std::string renderUsage() {
            renderOptionsHelp();
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::cli

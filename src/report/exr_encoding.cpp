@@ -1,4 +1,4 @@
-#include "app/exr_encoding.h"
+#include "report/exr_encoding.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -9,7 +9,7 @@
 #include "core/concat.h"
 #include "core/error.h"
 
-namespace punctual::app {
+namespace punctual::report {
 
 std::string encodeExr(const std::vector<float>& data, uint32_t width, uint32_t height, int components,
                       const std::string& name) {
@@ -61,4 +61,4 @@ std::string encodeExr(const std::vector<float>& data, uint32_t width, uint32_t h
     return bytes;
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::report

@@ -12,7 +12,7 @@
 #include "render/renderer.h"
 #include "scene/scene.h"
 
-namespace punctual::app {
+namespace punctual::report {
 
 // Every file validate may write into its --out-dir (report.json lists a run's files).
 const OutputFolderLayout& validationFolderLayout();
@@ -38,4 +38,4 @@ std::string validationHtml(const nlohmann::json& report);
 // (the GPU factor, NaN where the light does not reach) to `outputs` under `folder`.
 void addExrImages(OutputFiles& outputs, const std::string& folder, const ShadowFactorImage& factors);
 
-}  // namespace punctual::app
+}  // namespace punctual::report

@@ -5,9 +5,9 @@
 #include <span>
 #include <string>
 
-#include "app/options.h"
+#include "cli/options.h"
 
-namespace punctual::app {
+namespace punctual::cli {
 
 // What the parse noted beyond the options themselves: options that must not be given together.
 struct RenderOptionNotes {
@@ -35,4 +35,4 @@ const RenderOptionSpec* findRenderOption(const std::string& name);
 // kHelpColumn characters, its help beside it, continuation lines and variant lists indented.
 std::string renderOptionsHelp();
 
-}  // namespace punctual::app
+}  // namespace punctual::cli

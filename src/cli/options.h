@@ -12,7 +12,7 @@
 #include "render/light_list_method.h"
 #include "scene/light_generator.h"
 
-namespace punctual::app {
+namespace punctual::cli {
 
 struct RenderOptions {
     std::optional<std::string> scenePath;  // a glTF file; none: a built-in scene
@@ -53,4 +53,4 @@ std::string renderUsage();
 render::RenderSettings renderSettingsFrom(const RenderOptions& options);
 vk::ContextOptions contextOptionsFrom(const RenderOptions& options);
 
-}  // namespace punctual::app
+}  // namespace punctual::cli

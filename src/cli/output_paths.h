@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace punctual::app {
+namespace punctual::cli {
 
 // An output file and the option that named it, for messages ("--stats").
 struct NamedOutput {
@@ -22,4 +22,4 @@ void checkOutputPaths(const std::vector<NamedOutput>& outputs);
 // One output file; see checkOutputPaths.
 void checkOutputPath(const std::optional<std::string>& path);
 
-}  // namespace punctual::app
+}  // namespace punctual::cli

@@ -6,7 +6,7 @@
 
 #include "render/renderer.h"
 
-namespace punctual::app {
+namespace punctual::report {
 
 // {"gpu_ms": {<every pass by name, in frame order: depth, culling, shadows, forward, tonemap>, total}, "lights": {spot, point,
 //  directional, culled_by_frustum, dropped_by_cap, in_scene}, "frames", "size", "device", "scene",
@@ -31,4 +31,4 @@ nlohmann::json geometryStatsJson(const render::Renderer& renderer, const Scene& 
 
 std::string timingTable(const render::PassTimings& ms);
 
-}  // namespace punctual::app
+}  // namespace punctual::report

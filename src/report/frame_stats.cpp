@@ -1,4 +1,4 @@
-#include "app/frame_stats.h"
+#include "report/frame_stats.h"
 
 #include <cstdio>
 
@@ -6,7 +6,7 @@
 #include "lights/shadow_sizing.h"
 #include "lights/view_objects.h"
 
-namespace punctual::app {
+namespace punctual::report {
 
 nlohmann::json geometryStatsJson(const render::Renderer& renderer, const Scene& scene) {
     std::vector<uint32_t> everyObject(scene.objects.size());
@@ -212,4 +212,4 @@ std::string timingTable(const render::PassTimings& ms) {
     return table;
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::report

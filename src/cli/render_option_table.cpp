@@ -1,12 +1,12 @@
-#include "app/render_option_table.h"
+#include "cli/render_option_table.h"
 
 
-#include "app/option_values.h"
+#include "cli/option_values.h"
 #include "core/error.h"
 #include "core/variant_table.h"
 #include "scene/builtin_scenes.h"
 
-namespace punctual::app {
+namespace punctual::cli {
 namespace {
 
 // Help text starts in this column; a longer name and value take two spaces instead.
@@ -190,4 +190,4 @@ std::string renderOptionsHelp() {
     return help;
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::cli

@@ -1,10 +1,10 @@
-#include "app/output_paths.h"
+#include "cli/output_paths.h"
 
 #include "core/concat.h"
 #include "core/error.h"
 #include "core/output_target.h"
 
-namespace punctual::app {
+namespace punctual::cli {
 
 void checkOutputPaths(const std::vector<NamedOutput>& outputs) {
     std::vector<std::pair<const NamedOutput*, OutputTarget>> targets;
@@ -25,4 +25,4 @@ void checkOutputPaths(const std::vector<NamedOutput>& outputs) {
 
 void checkOutputPath(const std::optional<std::string>& path) { checkOutputPaths({{"output", path}}); }
 
-}  // namespace punctual::app
+}  // namespace punctual::cli

@@ -1,11 +1,11 @@
-#include "app/scene_source.h"
+#include "cli/scene_source.h"
 
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "scene/light_generator.h"
 #include "scene/texture_limit.h"
 
-namespace punctual::app {
+namespace punctual::cli {
 
 Scene loadSceneForOptions(const RenderOptions& options) {
     // Textures are fitted to the frame when decoded, so every command (GPU and CPU reference
@@ -23,4 +23,4 @@ Scene loadSceneForOptions(const RenderOptions& options) {
     return scene;
 }
 
-}  // namespace punctual::app
+}  // namespace punctual::cli
