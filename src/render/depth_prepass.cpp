@@ -47,7 +47,7 @@ DepthPrepass::DepthPrepass(const vk::Context& context, uint32_t width, uint32_t 
 }
 
 void DepthPrepass::addBindings(BindingTable& table) const {
-    table.addImage(PUNCTUAL_BINDING_DEPTH, VK_SHADER_STAGE_COMPUTE_BIT, sampler_, depth_.view(), kFinalLayout);
+    table.addImage(PUNCTUAL_BINDING_DEPTH, VK_SHADER_STAGE_COMPUTE_BIT, sampler_, depth_, kFinalLayout);
 }
 
 void DepthPrepass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {

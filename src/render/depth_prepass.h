@@ -31,6 +31,8 @@ public:
     // forward pass's depth test.
     void record(const FrameContext& frame) const override;
     uint64_t memoryBytes() const override { return depth_.allocatedBytes(); }
+    // The depth, from any layout (it is cleared) to kFinalLayout.
+    std::vector<ImageUse> imageUses() const override { return {{&depth_, VK_IMAGE_LAYOUT_UNDEFINED, kFinalLayout}}; }
 
     const vk::Image& depth() const { return depth_; }
 

@@ -22,16 +22,16 @@ ForwardPass::ForwardPass(const vk::Context& context, const vk::Image& radiance, 
     : variant_(variant),
       drawOrder_(std::move(drawOrder)),
       debugOutput_(debugOutput),
+      radiance_(radiance),
+      depth_(depth),
       width_(radiance.desc().width),
       height_(radiance.desc().height) {
     const VkDevice device = context.device();
     vk::RenderPassDesc passDesc;
     passDesc.colorFormat = kRadianceFormat;
-    passDesc.colorFinalLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    if (variant.transparent) {  // over the opaque pass's image, which it left readable
-        passDesc.colorLoad = VK_ATTACHMENT_LOAD_OP_LOAD;
-        passDesc.colorInitialLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    }
+    passDesc.colorFinalLayout = kRadianceLayout;
+    passDesc.colorInitialLayout = radianceExpected();
+    if (variant.transparent) passDesc.colorLoad = VK_ATTACHMENT_LOAD_OP_LOAD;  // over the opaque pass's image
     passDesc.depthFormat = DepthPrepass::kDepthFormat;
     passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_LOAD;
     passDesc.depthStore = VK_ATTACHMENT_STORE_OP_STORE;
@@ -40,6 +40,12 @@ ForwardPass::ForwardPass(const vk::Context& context, const vk::Image& radiance, 
     renderPass_ = context.objects().renderPass(passDesc);
     const std::array<VkImageView, 2> views = {radiance.view(), depth.view()};
     framebuffer_ = vk::createFramebuffer(device, renderPass_, views, width_, height_);
+}
+
+std::vector<ImageUse> ForwardPass::imageUses() const {
+    if (blendsNothing()) return {};
+    return {{&radiance_, radianceExpected(), kRadianceLayout},
+            {&depth_, DepthPrepass::kFinalLayout, DepthPrepass::kFinalLayout}};
 }
 
 void ForwardPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {

@@ -52,17 +52,32 @@ public:
     bool timed() const override { return !drawOrder_.empty() || !variant_.transparent; }
     void createPipelines(const vk::Context& context, const FrameBindings& bindings) override;
     void record(const FrameContext& frame) const override;
+    // The radiance (the opaque pass: from any layout, cleared; the transparent pass: over the
+    // opaque pass's, in kRadianceLayout) and the prepass's depth, tested, not written.
+    std::vector<ImageUse> imageUses() const override;
+    // The fragment shader samples the shadow maps.
+    VkShaderStageFlags boundImageStages() const override { return blendsNothing() ? 0 : VK_SHADER_STAGE_FRAGMENT_BIT; }
 
     static constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+    // The layout the pass leaves the radiance in, for the next forward pass and tone mapping.
+    static constexpr VkImageLayout kRadianceLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 
 private:
     // A transparent pass over a frame with nothing to blend: it records nothing and needs no
     // pipeline (the opaque image stays as it is).
     bool blendsNothing() const { return variant_.transparent && drawOrder_.empty(); }
 
+    // The radiance's layout when the pass starts: anything for the opaque pass, which clears it;
+    // the opaque pass's result for the transparent one, which blends over it.
+    VkImageLayout radianceExpected() const {
+        return variant_.transparent ? kRadianceLayout : VK_IMAGE_LAYOUT_UNDEFINED;
+    }
+
     ForwardVariant variant_;
     std::vector<uint32_t> drawOrder_;
     const vk::Buffer* debugOutput_ = nullptr;
+    const vk::Image& radiance_;
+    const vk::Image& depth_;
     VkRenderPass renderPass_ = VK_NULL_HANDLE;  // with pipeline_, owned by the context's object cache
     vk::Handle<VkFramebuffer> framebuffer_;
     VkPipeline pipeline_ = VK_NULL_HANDLE;

@@ -6,6 +6,7 @@
 #include "render/scene_gpu.h"
 #include "vk/buffer.h"
 #include "vk/context.h"
+#include "vk/image.h"
 
 namespace punctual::render {
 
@@ -14,10 +15,20 @@ void BindingTable::addBuffer(uint32_t binding, VkDescriptorType type, VkShaderSt
     rows_.push_back({{binding, type, 1, stages, nullptr}, {buffer.handle(), 0, VK_WHOLE_SIZE}, {}});
 }
 
-void BindingTable::addImage(uint32_t binding, VkShaderStageFlags stages, VkSampler sampler, VkImageView view,
+void BindingTable::addImage(uint32_t binding, VkShaderStageFlags stages, VkSampler sampler, const vk::Image& image,
                             VkImageLayout layout) {
-    rows_.push_back(
-        {{binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr}, {}, {sampler, view, layout}});
+    rows_.push_back({{binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
+                     {},
+                     {sampler, image.view(), layout},
+                     &image});
+}
+
+std::vector<BoundImage> BindingTable::boundImages() const {
+    std::vector<BoundImage> images;
+    for (const Row& row : rows_) {
+        if (row.source) images.push_back({{row.source, row.image.imageLayout, row.image.imageLayout}, row.layout.stageFlags});
+    }
+    return images;
 }
 
 FrameBindings::FrameBindings(const vk::Context& context, const SceneGpu& scene, const BindingTable& table) {

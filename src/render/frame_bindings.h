@@ -11,12 +11,14 @@
 
 #include <vulkan/vulkan.h>
 
+#include "render/pass.h"
 #include "vk/descriptors.h"
 #include "vk/handle.h"
 
 namespace punctual::vk {
 class Buffer;
 class Context;
+class Image;
 }  // namespace punctual::vk
 
 namespace punctual::render {
@@ -31,9 +33,13 @@ class BindingTable {
 public:
     // A whole buffer (uniform or storage).
     void addBuffer(uint32_t binding, VkDescriptorType type, VkShaderStageFlags stages, const vk::Buffer& buffer);
-    // A combined image sampler, read in `layout`.
-    void addImage(uint32_t binding, VkShaderStageFlags stages, VkSampler sampler, VkImageView view,
+    // A combined image sampler of `image`'s view, read in `layout`.
+    void addImage(uint32_t binding, VkShaderStageFlags stages, VkSampler sampler, const vk::Image& image,
                   VkImageLayout layout);
+
+    // The images of the set, each in the layout its binding reads it in, with the stages that may
+    // sample it: what a pass whose shaders sample them (Pass::boundImageStages) needs.
+    std::vector<BoundImage> boundImages() const;
 
 private:
     friend class FrameBindings;
@@ -41,6 +47,7 @@ private:
         VkDescriptorSetLayoutBinding layout;
         VkDescriptorBufferInfo buffer;  // buffers
         VkDescriptorImageInfo image;    // combined image samplers
+        const vk::Image* source = nullptr;  // their image
     };
     std::vector<Row> rows_;
 };

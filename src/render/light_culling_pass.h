@@ -76,6 +76,9 @@ public:
     // that make the grid visible to the forward pass's fragment shader.
     void record(const FrameContext& frame) const override;
     uint64_t memoryBytes() const override;
+    MemoryKind memoryKind() const override { return MemoryKind::LightGrid; }
+    // The kernels sample the prepass's depth.
+    VkShaderStageFlags boundImageStages() const override { return culled_ ? VK_SHADER_STAGE_COMPUTE_BIT : 0; }
 
     const vk::Buffer& grid() const { return grid_; }              // cellCount * PUNCTUAL_GRID_WORDS words
     const vk::Buffer& depthRange() const { return depthRange_; }  // gpu::GpuDepthRange

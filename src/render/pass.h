@@ -1,14 +1,18 @@
 #pragma once
 // The one interface every pass of a frame implements. The renderer keeps its passes in a list in
-// frame order, builds descriptor set 0 from the bindings they declare, and records and times each
-// under its own name, so adding a pass is: its class, its binding numbers in gpu_types.h, and one
-// line in the renderer's list (docs/EXTENDING.md).
+// frame order (pass_list.h), builds descriptor set 0 from the bindings they declare, and records
+// and times each under its own name, so adding a pass is: its class, its binding numbers in
+// gpu_types.h, and one line in the renderer's list (docs/EXTENDING.md). Each pass declares the
+// images it touches and the layouts it finds and leaves them in, and the list checks that
+// neighbours agree, so a pass is read from its own declaration alone.
 #include <cstdint>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
 namespace punctual::vk {
 class Context;
+class Image;
 }
 
 namespace punctual::render {
@@ -16,6 +20,23 @@ namespace punctual::render {
 class BindingTable;
 class FrameBindings;
 class SceneGpu;
+
+// One image a pass touches in a frame: the layout it needs the image in when it starts
+// (VK_IMAGE_LAYOUT_UNDEFINED: any, as it discards the contents) and the layout it leaves it in.
+struct ImageUse {
+    const vk::Image* image;
+    VkImageLayout expects;
+    VkImageLayout leaves;
+};
+
+// An image of set 0, in the layout its binding reads it in, and the stages that may sample it.
+struct BoundImage {
+    ImageUse use;  // expects and leaves that layout
+    VkShaderStageFlags stages;
+};
+
+// Where the statistics count a pass's device memory (DeviceMemory in renderer.h).
+enum class MemoryKind { Frame, LightGrid, Shadows };
 
 // What a pass records into: the frame's command buffer, its geometry and set 0.
 struct FrameContext {
@@ -51,8 +72,17 @@ public:
     // it.
     virtual void record(const FrameContext& frame) const = 0;
 
-    // Device memory the pass owns (images and buffers), for the statistics.
+    // Device memory the pass owns (images and buffers), for the statistics, and where they count it.
     virtual uint64_t memoryBytes() const { return 0; }
+    virtual MemoryKind memoryKind() const { return MemoryKind::Frame; }
+
+    // The images the pass renders to, transitions or reads outside set 0 this frame, with the
+    // layouts it finds and leaves them in (none for a pass without work that records nothing).
+    virtual std::vector<ImageUse> imageUses() const { return {}; }
+    // The stages of its shaders that sample set 0's images this frame (0: none): those images
+    // that these stages may read must then be in the layouts their bindings name
+    // (BindingTable::addImage).
+    virtual VkShaderStageFlags boundImageStages() const { return 0; }
 };
 
 }  // namespace punctual::render

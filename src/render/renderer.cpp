@@ -19,6 +19,7 @@
 #include "render/frame_plan.h"
 #include "render/forward_pass.h"
 #include "render/frame_bindings.h"
+#include "render/pass_list.h"
 #include "render/scene_gpu.h"
 #include "render/shadow_maps.h"
 #include "render/shadow_pass.h"
@@ -49,14 +50,17 @@ struct Renderer::Resources {
     vk::Buffer shadowDebug;
     vk::Image radiance;
     // The passes in frame order; the typed pointers below point into this list.
-    std::vector<std::unique_ptr<Pass>> passes;
+    PassList passes;
+    // Set 0's images, each in the layout its binding reads it in (the layout check's input).
+    std::vector<BoundImage> boundImages;
     DepthPrepass* depth = nullptr;
     TransparentDepthPass* transparentDepth = nullptr;
     LightCullingPass* culling = nullptr;
     ShadowPass* shadows = nullptr;
+    ForwardPass* forward = nullptr;  // the opaque one
     TonemapPass* tonemap = nullptr;
     // Debug variants of the forward pass, each recorded into its own command buffer after the
-    // passes before "forward"; never timed.
+    // passes before `forward`, in its place; never timed.
     std::unique_ptr<ForwardPass> lightStatsPass;     // with collectLightStats
     std::unique_ptr<ForwardPass> transparentStatsPass;  // with collectLightStats: the transparent fragments
     std::unique_ptr<ForwardPass> shadowFactorsPass;  // with collectShadowFactors
@@ -115,12 +119,6 @@ struct Renderer::Resources {
                    glm::distance(scene.objects[b].worldBounds.center(), eye);
         });
         return objects;
-    }
-
-    template <typename P, typename... Args>
-    P* addPass(Args&&... args) {
-        passes.push_back(std::make_unique<P>(std::forward<Args>(args)...));
-        return static_cast<P*>(passes.back().get());
     }
 
     // `inView`: the objects the camera's passes draw, ascending; `draws` is filled with their counts.
@@ -182,20 +180,19 @@ struct Renderer::Resources {
         draws.triangles = trianglesOf(sceneData, inView);
         draws.forwardTriangles = trianglesOf(sceneData, unblended);
         draws.transparentTriangles = trianglesOf(sceneData, blended);
-        depth = addPass<DepthPrepass>(context, settings.width, settings.height, std::move(prepassLists));
-        transparentDepth = addPass<TransparentDepthPass>(context, depth->depth(), blended,
+        depth = passes.add<DepthPrepass>(context, settings.width, settings.height, std::move(prepassLists));
+        transparentDepth = passes.add<TransparentDepthPass>(context, depth->depth(), blended,
                                                          usesLightGrid(settings.method) && !settings.opaqueCullingDepth,
                                                          settings.width, settings.height);
-        culling = addPass<LightCullingPass>(context, gridLayout, usesLightGrid(settings.method), settings.width,
+        culling = passes.add<LightCullingPass>(context, gridLayout, usesLightGrid(settings.method), settings.width,
                                             settings.height, cullLights, plan.zBins ? &*plan.zBins : nullptr);
-        shadows = addPass<ShadowPass>(context, plan.shadows, settings.shadows);
-        addPass<ForwardPass>(context, radiance, depth->depth(), forwardVariant(settings, gridLayout, false, false),
-                             unblended);
+        shadows = passes.add<ShadowPass>(context, plan.shadows, settings.shadows);
+        forward = passes.add<ForwardPass>(context, radiance, depth->depth(),
+                                          forwardVariant(settings, gridLayout, false, false), unblended);
         ForwardVariant transparent = forwardVariant(settings, gridLayout, false, false);
         transparent.transparent = true;
-        addPass<ForwardPass>(context, radiance, depth->depth(), transparent,
-                             backToFront(sceneData, blended, eye));
-        tonemap = addPass<TonemapPass>(context, radiance, settings.exposure);
+        passes.add<ForwardPass>(context, radiance, depth->depth(), transparent, backToFront(sceneData, blended, eye));
+        tonemap = passes.add<TonemapPass>(context, radiance, settings.exposure);
         if (settings.collectLightStats) {
             lightStatsPass = std::make_unique<ForwardPass>(
                 context, radiance, depth->depth(), forwardVariant(settings, gridLayout, true, false), unblended, &lightStats);
@@ -225,21 +222,15 @@ struct Renderer::Resources {
                         lightStats);
         table.addBuffer(PUNCTUAL_BINDING_SHADOW_DEBUG, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
                         shadowDebug);
-        for (const auto& pass : passes) pass->addBindings(table);
+        for (const auto& pass : passes.passes()) pass->addBindings(table);
         bindings = std::make_unique<FrameBindings>(context, scene, table);
-        for (const auto& pass : passes) pass->createPipelines(context, *bindings);
+        boundImages = table.boundImages();
+        for (const auto& pass : passes.passes()) pass->createPipelines(context, *bindings);
         for (ForwardPass* variant : {lightStatsPass.get(), transparentStatsPass.get(), shadowFactorsPass.get()}) {
             if (variant) variant->createPipelines(context, *bindings);
         }
     }
 };
-
-double PassTimings::of(std::string_view name) const {
-    for (const auto& [passName, ms] : passes) {
-        if (passName == name) return ms;
-    }
-    return 0.0;
-}
 
 namespace {
 
@@ -284,13 +275,6 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     return frame;
 }
 
-double median(std::vector<double> values) {
-    if (values.empty()) return 0.0;
-    std::sort(values.begin(), values.end());
-    const size_t mid = values.size() / 2;
-    return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
-}
-
 }  // namespace
 
 Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSettings& settings)
@@ -310,30 +294,23 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     vk::check(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence), "vkCreateFence");
     r.fence = vk::Handle<VkFence>(context.device(), fence, vkDestroyFence);
 
-    std::vector<const Pass*> frameOrder;
-    for (const auto& pass : r.passes) frameOrder.push_back(pass.get());
+    // The frame, then the debug frames: the passes before the opaque forward pass, then the debug
+    // variant in its place (no tone mapping: the variants' outputs are buffers the caller reads
+    // back). Each is checked to find every image in the layout each pass declares it expects.
+    const std::vector<const Pass*> frameOrder = r.passes.frame();
+    const ImageLayouts resting = restingLayouts(frameOrder, r.boundImages);
     r.commandBuffer = vk::CommandBuffer(context.device(), context.commandPool());
-    recordFrame(r.commandBuffer, frameOrder, /*timed=*/true);
-    // A debug frame: the passes before the forward pass, then the debug variant in its place (no
-    // tone mapping: the variants' outputs are buffers the caller reads back).
-    auto debugFrame = [&](const ForwardPass& variant) {
-        std::vector<const Pass*> passes;
-        for (const Pass* pass : frameOrder) {
-            if (std::string_view(pass->name()) == variant.name()) break;
-            passes.push_back(pass);
-        }
-        passes.push_back(&variant);
-        return passes;
-    };
+    recordFrame(r.commandBuffer, frameOrder, resting, /*timed=*/true);
     if (r.lightStatsPass) {
         r.lightStatsCommands = vk::CommandBuffer(context.device(), context.commandPool());
-        std::vector<const Pass*> passes = debugFrame(*r.lightStatsPass);
-        passes.push_back(r.transparentStatsPass.get());  // adds the transparent fragments' counts
-        recordFrame(r.lightStatsCommands, passes, /*timed=*/false);
+        // The transparent variant adds the transparent fragments' counts.
+        const std::array<const Pass*, 2> variants = {r.lightStatsPass.get(), r.transparentStatsPass.get()};
+        recordFrame(r.lightStatsCommands, r.passes.frameReplacing(*r.forward, variants), resting, /*timed=*/false);
     }
     if (r.shadowFactorsPass) {
         r.shadowFactorsCommands = vk::CommandBuffer(context.device(), context.commandPool());
-        recordFrame(r.shadowFactorsCommands, debugFrame(*r.shadowFactorsPass), /*timed=*/false);
+        const std::array<const Pass*, 1> variants = {r.shadowFactorsPass.get()};
+        recordFrame(r.shadowFactorsCommands, r.passes.frameReplacing(*r.forward, variants), resting, /*timed=*/false);
     }
 }
 
@@ -343,30 +320,16 @@ Renderer::~Renderer() {
     if (resources_) vkDeviceWaitIdle(context_.device());
 }
 
-std::vector<std::string> Renderer::passNames() const {
-    std::vector<std::string> names;
-    for (const auto& pass : resources_->passes) names.emplace_back(pass->name());
-    return names;
-}
+std::vector<std::string> Renderer::passNames() const { return resources_->passes.names(); }
 
-void Renderer::recordFrame(VkCommandBuffer cmd, const std::vector<const Pass*>& passes, bool timed) {
+void Renderer::recordFrame(VkCommandBuffer cmd, const std::vector<const Pass*>& passes, const ImageLayouts& resting,
+                           bool timed) {
     Resources& r = *resources_;
+    checkImageLayouts(passes, r.boundImages, resting);
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     vk::check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
-    const FrameContext frame{cmd, r.scene, *r.bindings};
-    if (timed) r.timer.reset(cmd);
-    const uint32_t total = timed ? r.timer.begin(cmd, "total") : 0;
-    for (const Pass* pass : passes) {
-        if (timed && pass->timed()) {
-            const uint32_t scope = r.timer.begin(cmd, pass->name());
-            pass->record(frame);
-            r.timer.end(cmd, scope);
-        } else {
-            pass->record(frame);
-        }
-    }
+    PassList::record(FrameContext{cmd, r.scene, *r.bindings}, passes, timed ? &r.timer : nullptr);
     if (timed) {
-        r.timer.end(cmd, total);
         // The tone-mapped pixels to the host (the tone-mapping pass made them visible to transfers).
         const VkBufferCopy copy{0, 0, r.readback.size()};
         vkCmdCopyBuffer(cmd, r.tonemap->output().handle(), r.readback.handle(), 1, &copy);
@@ -393,17 +356,7 @@ FrameResult Renderer::render(uint32_t frames, uint32_t warmup) {
         timings.total = get("total");
         result.framesMs.push_back(std::move(timings));
     }
-    // Per pass, the median over the timed frames.
-    auto medianOf = [&](auto&& value) {
-        std::vector<double> values;
-        for (const PassTimings& t : result.framesMs) values.push_back(value(t));
-        return median(values);
-    };
-    for (size_t i = 0; i < result.framesMs.front().passes.size(); ++i) {
-        result.medianMs.passes.emplace_back(result.framesMs.front().passes[i].first,
-                                            medianOf([&](const PassTimings& t) { return t.passes[i].second; }));
-    }
-    result.medianMs.total = medianOf([](const PassTimings& t) { return t.total; });
+    result.medianMs = medianTimings(result.framesMs);
 
     r.readback.invalidate();
     result.image.width = settings_.width;
@@ -479,16 +432,9 @@ DeviceMemory Renderer::deviceMemory() const {
          {&r.frameUniform, &r.lights, &r.objectLights, &r.lightStats, &r.shadowDebug, &r.readback}) {
         memory.frame += buffer->size();
     }
-    for (const auto& pass : r.passes) {
-        const Pass* p = pass.get();
-        if (p == r.shadows) {
-            memory.shadows += p->memoryBytes();
-        } else if (p == r.culling) {
-            memory.lightGrid += p->memoryBytes();
-        } else {
-            memory.frame += p->memoryBytes();
-        }
-    }
+    memory.shadows = r.passes.memoryBytes(MemoryKind::Shadows);
+    memory.lightGrid = r.passes.memoryBytes(MemoryKind::LightGrid);
+    memory.frame += r.passes.memoryBytes(MemoryKind::Frame);
     return memory;
 }
 

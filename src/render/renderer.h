@@ -23,6 +23,8 @@
 #include "render/frame_plan.h"
 #include "render/light_culling_pass.h"
 #include "render/light_list_method.h"
+#include "render/pass_list.h"
+#include "render/pass_timings.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"
 
@@ -34,16 +36,6 @@ class Context;
 }
 
 namespace punctual::render {
-
-// GPU milliseconds per pass, in frame order, under the passes' own names (Pass::name(): "depth",
-// "culling", "shadows", "forward", "tonemap"). A pass without work this frame reports 0.
-struct PassTimings {
-    std::vector<std::pair<std::string, double>> passes;
-    double total = 0.0;  // first to last timestamp of the frame
-
-    // The time of the pass named `name`; 0 for a name not in the frame.
-    double of(std::string_view name) const;
-};
 
 // What the camera's passes draw: the objects whose bounds meet its frustum (all of them with
 // RenderSettings::cullObjectsToView off), one draw each per pass that draws its kind.
@@ -129,9 +121,12 @@ public:
 
 private:
     struct Resources;
-    // Records `passes` in order into `cmd`. `timed`: the frame render() submits, with a timer scope
-    // per pass and the readback of the tone-mapped image; otherwise a debug frame (never timed).
-    void recordFrame(VkCommandBuffer cmd, const std::vector<const Pass*>& passes, bool timed);
+    // Checks the image layouts of `passes` (pass_list.h; `resting`: where the frame leaves each
+    // image) and records them in order into `cmd`. `timed`: the frame render() submits, with a
+    // timer scope per pass and the readback of the tone-mapped image; otherwise a debug frame
+    // (never timed).
+    void recordFrame(VkCommandBuffer cmd, const std::vector<const Pass*>& passes, const ImageLayouts& resting,
+                     bool timed);
     void submitAndWait(VkCommandBuffer cmd);
     std::vector<uint8_t> readBuffer(const vk::Buffer& buffer);
     std::vector<uint32_t> readWords(const vk::Buffer& buffer);  // readBuffer as 32-bit words

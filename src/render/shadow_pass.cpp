@@ -40,8 +40,8 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
     vk::RenderPassDesc passDesc;
     passDesc.depthFormat = format;
     passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    passDesc.depthInitialLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-    passDesc.depthFinalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    passDesc.depthInitialLayout = kDrawLayout;
+    passDesc.depthFinalLayout = kDrawLayout;
     renderPass_ = context.objects().renderPass(passDesc);
     auto addTarget = [&](const vk::Image& image, uint32_t layer, uint32_t width, uint32_t height) -> Target& {
         VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -77,15 +77,14 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
 }
 
 void ShadowPass::addBindings(BindingTable& table) const {
-    const VkImageLayout readOnly = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     table.addBuffer(PUNCTUAL_BINDING_SHADOW_VIEWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
                     views_);
-    table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(), maps_.atlas().view(),
-                   readOnly);
+    table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(), maps_.atlas(),
+                   kReadLayout);
     table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.depthSampler(),
-                   maps_.atlas().view(), readOnly);
-    table.addImage(PUNCTUAL_BINDING_POINT_SHADOWS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(),
-                   maps_.pointCubes().view(), readOnly);
+                   maps_.atlas(), kReadLayout);
+    table.addImage(PUNCTUAL_BINDING_POINT_SHADOWS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(), maps_.pointCubes(),
+                   kReadLayout);
 }
 
 void ShadowPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
@@ -167,12 +166,18 @@ void ShadowPass::drawView(const FrameContext& frame, const ShadowView& view) con
     }
 }
 
+std::vector<ImageUse> ShadowPass::imageUses() const {
+    // Both maps every frame, rendered or placeholders: the forward pass reads them either way.
+    return {{&maps_.atlas(), VK_IMAGE_LAYOUT_UNDEFINED, kReadLayout},
+            {&maps_.pointCubes(), VK_IMAGE_LAYOUT_UNDEFINED, kReadLayout}};
+}
+
 void ShadowPass::record(const FrameContext& frame) const {
     const VkCommandBuffer cmd = frame.cmd;
     const std::array<const vk::Image*, 2> images = {&maps_.atlas(), &maps_.pointCubes()};
     for (const vk::Image* image : images) {
         // Last frame's contents are not needed: every read texel is cleared or rendered below.
-        vk::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+        vk::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_UNDEFINED, kDrawLayout,
                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
                          VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
@@ -199,8 +204,7 @@ void ShadowPass::record(const FrameContext& frame) const {
         vkCmdEndRenderPass(cmd);
     }
     for (const vk::Image* image : images) {
-        vk::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+        vk::imageBarrier(cmd, *image, kDrawLayout, kReadLayout, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
                          VK_ACCESS_SHADER_READ_BIT);
     }

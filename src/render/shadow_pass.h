@@ -29,10 +29,16 @@ public:
     // pass worth timing.
     bool timed() const override { return !plan_.views.empty(); }
     // Renders every view with casters, clears the atlas and every cube face (the cube's hardware
-    // filtering reads across face edges), and leaves both images in SHADER_READ_ONLY_OPTIMAL for
-    // the forward pass.
+    // filtering reads across face edges), and leaves both images in kReadLayout for the forward
+    // pass.
     void record(const FrameContext& frame) const override;
     uint64_t memoryBytes() const override { return maps_.allocatedBytes(); }
+    MemoryKind memoryKind() const override { return MemoryKind::Shadows; }
+    std::vector<ImageUse> imageUses() const override;
+
+    // The maps' layout while the stage draws them, and the one it leaves them in (and set 0 reads).
+    static constexpr VkImageLayout kDrawLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    static constexpr VkImageLayout kReadLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 
     const ShadowMaps& maps() const { return maps_; }
 

@@ -19,7 +19,8 @@ constexpr uint32_t kGroupSize = 8;  // local_size of tonemap.comp
 }  // namespace
 
 TonemapPass::TonemapPass(const vk::Context& context, const vk::Image& radiance, float exposure)
-    : width_(radiance.desc().width), height_(radiance.desc().height), exposure_(exposure) {
+    : radiance_(radiance),
+      width_(radiance.desc().width), height_(radiance.desc().height), exposure_(exposure) {
     const VkDevice device = context.device();
     output_ = vk::Buffer(context, VkDeviceSize(width_) * height_ * 4,
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -35,7 +36,7 @@ TonemapPass::TonemapPass(const vk::Context& context, const vk::Image& radiance, 
         context.objects().pipelineLayout({setLayout_}, {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(ToneMapConstants)});
     descriptors_ = vk::allocateDescriptorSet(device, setLayout_, bindings);
 
-    const VkDescriptorImageInfo imageInfo{sampler_, radiance.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    const VkDescriptorImageInfo imageInfo{sampler_, radiance.view(), kRadianceLayout};
     const VkDescriptorBufferInfo bufferInfo{output_.handle(), 0, VK_WHOLE_SIZE};
     const std::array<VkWriteDescriptorSet, 2> writes = {
         vk::imageWrite(descriptors_.set, 0, &imageInfo),

@@ -15,7 +15,7 @@ namespace punctual::render {
 
 class TonemapPass final : public Pass {
 public:
-    // `radiance` must be in SHADER_READ_ONLY_OPTIMAL when the pass runs. The pass has its own
+    // `radiance` must be in kRadianceLayout when the pass runs (imageUses). The pass has its own
     // descriptor set (the radiance and its output), not set 0.
     TonemapPass(const vk::Context& context, const vk::Image& radiance, float exposure);
 
@@ -24,10 +24,14 @@ public:
     // transfers (the renderer's readback) when it ends.
     void record(const FrameContext& frame) const override;
     uint64_t memoryBytes() const override { return output_.size(); }
+    // Samples the radiance in the layout the forward passes leave it in.
+    std::vector<ImageUse> imageUses() const override { return {{&radiance_, kRadianceLayout, kRadianceLayout}}; }
+    static constexpr VkImageLayout kRadianceLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     // The packed pixels (width * height words), written by record().
     const vk::Buffer& output() const { return output_; }
 
 private:
+    const vk::Image& radiance_;
     vk::Handle<VkSampler> sampler_;
     // The layouts and pipeline: the context's object cache (vk/object_cache.h) owns them.
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;

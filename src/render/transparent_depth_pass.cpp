@@ -17,7 +17,8 @@ namespace punctual::render {
 TransparentDepthPass::TransparentDepthPass(const vk::Context& context, const vk::Image& depth,
                                            std::vector<uint32_t> blended, bool needed, uint32_t width,
                                            uint32_t height)
-    : blended_(std::move(blended)),
+    : depth_(depth),
+      blended_(std::move(blended)),
       needed_(needed && !blended_.empty()),
       width_(width),
       height_(height),
@@ -34,6 +35,11 @@ TransparentDepthPass::TransparentDepthPass(const vk::Context& context, const vk:
     renderPass_ = context.objects().renderPass(passDesc);
     const VkImageView view = depth.view();
     framebuffer_ = vk::createFramebuffer(context.device(), renderPass_, {&view, 1}, width, height);
+}
+
+std::vector<ImageUse> TransparentDepthPass::imageUses() const {
+    if (!needed_) return {};
+    return {{&depth_, DepthPrepass::kFinalLayout, DepthPrepass::kFinalLayout}};
 }
 
 void TransparentDepthPass::addBindings(BindingTable& table) const {

@@ -37,10 +37,13 @@ public:
     bool timed() const override { return needed_; }
     void record(const FrameContext& frame) const override;
     uint64_t memoryBytes() const override { return needed_ ? span_.size() : 0; }
+    // Tests against the prepass's depth without writing it.
+    std::vector<ImageUse> imageUses() const override;
 
     bool needed() const { return needed_; }
 
 private:
+    const vk::Image& depth_;
     std::vector<uint32_t> blended_;
     bool needed_ = false;
     uint32_t width_ = 0;
