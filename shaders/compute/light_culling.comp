@@ -160,9 +160,14 @@ SliceRun addPixelToSliceRun(SliceRun run, float depth, uvec2 local) {
     return addToSliceRun(run, slice, bits, bits, local, local);
 }
 
-void main() {
-    uint thread = gl_LocalInvocationIndex;
-    uint lightCount = frame.spotCount + frame.pointCount;
+// ---- the steps, in order (main below). Each runs on every invocation of the workgroup, striding
+// over its items; main puts the barriers between them. Functions cost nothing here: every driver
+// inlines them, and none takes an array (GLSL copies arrays passed by value: culling.h,
+// PUNCTUAL_CLUSTER_SLICE_OF_DEPTH). Measured on lavapipe against the one long main: no change
+// (bench/RESULTS.md, "Every variant from one table, second part").
+
+// The tile's shared state, cleared.
+void clearTileState(uint thread) {
     for (uint i = thread; i < SLICE_COUNT; i += kThreads) {
         sliceMinDistance[i] = 0x7F7FFFFFu;  // FLT_MAX
         sliceMaxDistance[i] = 0u;
@@ -181,56 +186,47 @@ void main() {
         tileDepthMask = 0u;
         candidateCount = 0u;
     }
-    barrier();
+}
 
-    // 0. The candidates: the lights the coarse pass kept for this tile's coarse tile (in any
-    //    order: the masks this kernel writes do not depend on it).
-    uvec2 tile = gl_WorkGroupID.xy;
-    if (COARSE_TILES > 0u) {
-        uvec2 coarseTile = tile / COARSE_TILES;
-        uint coarseTilesAcross = (frame.lightGrid.y + COARSE_TILES - 1u) / COARSE_TILES;
-        uint coarseBase = (coarseTile.y * coarseTilesAcross + coarseTile.x) * PUNCTUAL_GRID_WORDS;
-        for (uint light = thread; light < lightCount; light += kThreads) {
-            uint word = lightGridWord(light, frame.spotCount);
-            if ((coarseGrid[coarseBase + word] & (1u << lightGridBit(light, frame.spotCount))) != 0u) {
-                candidateLights[atomicAdd(candidateCount, 1u)] = light;
-            }
+// 0. The candidates: the lights the coarse pass kept for this tile's coarse tile (in any order:
+//    the masks this kernel writes do not depend on it).
+void listCandidates(uvec2 tile, uint thread, uint lightCount) {
+    uvec2 coarseTile = tile / COARSE_TILES;
+    uint coarseTilesAcross = (frame.lightGrid.y + COARSE_TILES - 1u) / COARSE_TILES;
+    uint coarseBase = (coarseTile.y * coarseTilesAcross + coarseTile.x) * PUNCTUAL_GRID_WORDS;
+    for (uint light = thread; light < lightCount; light += kThreads) {
+        uint word = lightGridWord(light, frame.spotCount);
+        if ((coarseGrid[coarseBase + word] & (1u << lightGridBit(light, frame.spotCount))) != 0u) {
+            candidateLights[atomicAdd(candidateCount, 1u)] = light;
         }
     }
+}
 
-    // 1. Depth extent of each slice in this tile.
-    uvec2 viewport = uvec2(frame.viewport.xy);
-    uint runSlice = 0xFFFFFFFFu;  // the slice of the current run of this thread's pixels
-    uint threadMin = 0xFFFFFFFFu;  // all of this thread's pixels (clustered: the tile-level test)
-    uint threadMax = 0u;
-    uint runMin = 0xFFFFFFFFu;
-    uint runMax = 0u;
-    // Tiled without transparent spans (the common case) folds the tile's nearest and farthest
-    // depths first and divides once: view distance falls monotonically with depth, also as
-    // rounded (viewDistanceFromDepth), so the extreme depths give exactly the extreme distances.
-    // It reads the depths four at a time, a 2x2 block per gather (quadExtent). Measured on
-    // lavapipe at 1280x720 with no lights: 27 ms before, 10 ms after. Clustered reads blocks
-    // next; the per-pixel loop after it serves frames with transparent spans.
-    uvec2 tileEnd = min((tile + 1u) * TILE_SIZE, viewport);  // one past the tile's last pixel
-    bool foldDepths = SLICE_COUNT == 1u && !DEPTHLESS_TILES && frame.transparentSpans == 0u;
-    if (foldDepths) {
-        vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) geometry depth; x = 0: none
-        for (uint block = thread; block < kBlocks * kBlocks; block += kThreads) {
-            extent = quadExtent(tile * TILE_SIZE + 2u * uvec2(block % kBlocks, block / kBlocks), tileEnd, extent);
-        }
-        if (extent.x > 0.0) {
-            atomicMin(sliceMinDistance[0], floatBitsToUint(viewDistanceFromDepth(extent.x, frame.depthToView.xy)));
-            atomicMax(sliceMaxDistance[0], floatBitsToUint(viewDistanceFromDepth(extent.y, frame.depthToView.xy)));
-        }
+// 1, tiled without transparent spans (the common case): the tile's nearest and farthest depths,
+// folded first and divided once: view distance falls monotonically with depth, also as rounded
+// (viewDistanceFromDepth), so the extreme depths give exactly the extreme distances. It reads the
+// depths four at a time, a 2x2 block per gather (quadExtent). Measured on lavapipe at 1280x720
+// with no lights: 27 ms before, 10 ms after.
+void foldTileExtent(uvec2 tile, uvec2 tileEnd, uint thread) {
+    vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) geometry depth; x = 0: none
+    for (uint block = thread; block < kBlocks * kBlocks; block += kThreads) {
+        extent = quadExtent(tile * TILE_SIZE + 2u * uvec2(block % kBlocks, block / kBlocks), tileEnd, extent);
     }
-    // Clustered without transparent spans reads 2x2 blocks too: a block whose nearest and farthest
-    // depths fall in one slice (slices are monotone in depth, so all four do) adds its extreme
-    // distances to that slice with two searches and two divisions instead of four each; a block
-    // across a slice boundary adds its pixels one by one. (Measured on lavapipe, default scene at
-    // 1280x720: the clustered culling pass 13% faster, A/B under load.)
-    bool clusterBlocks = SLICE_COUNT > 1u && !DEPTHLESS_TILES && frame.transparentSpans == 0u;
+    if (extent.x > 0.0) {
+        atomicMin(sliceMinDistance[0], floatBitsToUint(viewDistanceFromDepth(extent.x, frame.depthToView.xy)));
+        atomicMax(sliceMaxDistance[0], floatBitsToUint(viewDistanceFromDepth(extent.y, frame.depthToView.xy)));
+    }
+}
+
+// 1, clustered without transparent spans: 2x2 blocks too. A block whose nearest and farthest
+// depths fall in one slice (slices are monotone in depth, so all four do) adds its extreme
+// distances to that slice with two searches and two divisions instead of four each; a block
+// across a slice boundary adds its pixels one by one. (Measured on lavapipe, default scene at
+// 1280x720: the clustered culling pass 13% faster, A/B under load.) `threadMin`/`threadMax`: the
+// extent of this invocation's pixels (the tile-level test).
+void addClusterBlocks(uvec2 tile, uvec2 tileEnd, uint thread, inout uint threadMin, inout uint threadMax) {
     SliceRun run = SliceRun(0xFFFFFFFFu, 0xFFFFFFFFu, 0u, 0u, 0u);
-    for (uint block = thread; clusterBlocks && block < kBlocks * kBlocks; block += kThreads) {
+    for (uint block = thread; block < kBlocks * kBlocks; block += kThreads) {
         uvec2 local = 2u * uvec2(block % kBlocks, block / kBlocks);  // the block's top-left pixel in the tile
         uvec2 corner = tile * TILE_SIZE + local;
         vec2 extent = quadExtent(corner, tileEnd, vec2(0.0, 1.0));
@@ -256,8 +252,15 @@ void main() {
         if (right && below) run = addPixelToSliceRun(run, quad.y, local + uvec2(1u, 1u));
     }
     flushSliceRun(run);
-    for (uint tilePixel = thread; !foldDepths && !clusterBlocks && !DEPTHLESS_TILES && tilePixel < TILE_SIZE * TILE_SIZE;
-         tilePixel += kThreads) {
+}
+
+// 1, frames with transparent spans: pixel by pixel. A pixel with transparent surfaces in front
+// adds its whole depth span to every slice the span crosses.
+void addPixels(uvec2 tile, uvec2 viewport, uint thread, inout uint threadMin, inout uint threadMax) {
+    uint runSlice = 0xFFFFFFFFu;  // the slice of the current run of this thread's pixels
+    uint runMin = 0xFFFFFFFFu;
+    uint runMax = 0u;
+    for (uint tilePixel = thread; tilePixel < TILE_SIZE * TILE_SIZE; tilePixel += kThreads) {
         uvec2 pixel = tile * TILE_SIZE + uvec2(tilePixel % TILE_SIZE, tilePixel / TILE_SIZE);
         if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
         float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
@@ -309,100 +312,85 @@ void main() {
         atomicMin(sliceMinDistance[runSlice], runMin);
         atomicMax(sliceMaxDistance[runSlice], runMax);
     }
-    if (SLICE_COUNT > 1u && threadMax != 0u) {
-        atomicMin(tileMinDistance, threadMin);
-        atomicMax(tileMaxDistance, threadMax);
-    }
-    barrier();
+}
 
-    // 1b. DEPTH_MASK: the cells of the tile's extent that its pixels occupy, each pixel (or a
-    //     transparent span, every cell from its near to its far end) read again now that the
-    //     extent is known. The same distances as step 1, so every pixel lies inside the extent.
-    //     Each cell's frustum segment, for step 3's per-cell tests.
-    float maskNear = uintBitsToFloat(sliceMinDistance[0]);
-    float maskScale = depthMaskScale(maskNear, uintBitsToFloat(sliceMaxDistance[0]));
-    vec2 pixelToNdc = 2.0 * frame.viewport.zw;
-    vec2 ndcA = vec2(tile * TILE_SIZE) * pixelToNdc - 1.0;
-    vec2 ndcB = min(vec2((tile + 1u) * TILE_SIZE), frame.viewport.xy) * pixelToNdc - 1.0;
-    if (DEPTH_MASK && SLICE_COUNT == 1u && sliceMaxDistance[0] != 0u) {
-        uint threadMask = 0u;
-        for (uint block = thread; foldDepths && block < kBlocks * kBlocks; block += kThreads) {
-            uvec2 local = 2u * uvec2(block % kBlocks, block / kBlocks);  // the block's top-left pixel in the tile
-            uvec2 corner = tile * TILE_SIZE + local;
-            uint cells = quadDepthCells(corner, tileEnd, maskNear, maskScale);
-            threadMask |= cells;
-            // Each of the block's cells gets the whole block's rectangle.
-            uvec2 last = local + uvec2(corner.x + 1u < tileEnd.x ? 1u : 0u, corner.y + 1u < tileEnd.y ? 1u : 0u);
-            for (; cells != 0u; cells &= cells - 1u) markCellRect(uint(findLSB(cells)), local, last);
-        }
-        for (uint tilePixel = thread; !foldDepths && tilePixel < TILE_SIZE * TILE_SIZE; tilePixel += kThreads) {
-            uvec2 pixel = tile * TILE_SIZE + uvec2(tilePixel % TILE_SIZE, tilePixel / TILE_SIZE);
-            if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
-            float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
-            if (frame.transparentSpans != 0u) {
-                uint index = pixel.y * viewport.x + pixel.x;
-                uint nearestBits = transparentDepth[index];
-                if (nearestBits != 0u) {
-                    float farthest = isBackgroundDepth(depth) ? uintBitsToFloat(transparentDepth[viewport.x * viewport.y + index])
-                                                              : depth;
-                    float top = viewDistanceFromDepth(uintBitsToFloat(nearestBits), frame.depthToView.xy);
-                    float bottom = viewDistanceFromDepth(farthest, frame.depthToView.xy);
-                    threadMask |= depthMaskBits(depthMaskCell(top, maskNear, maskScale),
-                                                depthMaskCell(bottom, maskNear, maskScale));
-                    continue;
-                }
+// 1b, DEPTH_MASK: the cells of the tile's extent [maskNear, maskNear + 32 / maskScale] that its
+// pixels occupy, each pixel (or a transparent span, every cell from its near to its far end) read
+// again now that the extent is known. The same distances as step 1, so every pixel lies inside
+// the extent. Blocks mark each of their cells' rectangles (folded tiles).
+void markOccupiedCells(uvec2 tile, uvec2 tileEnd, uvec2 viewport, uint thread, bool foldDepths, float maskNear,
+                       float maskScale) {
+    uint threadMask = 0u;
+    for (uint block = thread; foldDepths && block < kBlocks * kBlocks; block += kThreads) {
+        uvec2 local = 2u * uvec2(block % kBlocks, block / kBlocks);  // the block's top-left pixel in the tile
+        uvec2 corner = tile * TILE_SIZE + local;
+        uint cells = quadDepthCells(corner, tileEnd, maskNear, maskScale);
+        threadMask |= cells;
+        // Each of the block's cells gets the whole block's rectangle.
+        uvec2 last = local + uvec2(corner.x + 1u < tileEnd.x ? 1u : 0u, corner.y + 1u < tileEnd.y ? 1u : 0u);
+        for (; cells != 0u; cells &= cells - 1u) markCellRect(uint(findLSB(cells)), local, last);
+    }
+    for (uint tilePixel = thread; !foldDepths && tilePixel < TILE_SIZE * TILE_SIZE; tilePixel += kThreads) {
+        uvec2 pixel = tile * TILE_SIZE + uvec2(tilePixel % TILE_SIZE, tilePixel / TILE_SIZE);
+        if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
+        float depth = texelFetch(depthImage, ivec2(pixel), 0).r;
+        if (frame.transparentSpans != 0u) {
+            uint index = pixel.y * viewport.x + pixel.x;
+            uint nearestBits = transparentDepth[index];
+            if (nearestBits != 0u) {
+                float farthest = isBackgroundDepth(depth) ? uintBitsToFloat(transparentDepth[viewport.x * viewport.y + index])
+                                                          : depth;
+                float top = viewDistanceFromDepth(uintBitsToFloat(nearestBits), frame.depthToView.xy);
+                float bottom = viewDistanceFromDepth(farthest, frame.depthToView.xy);
+                threadMask |= depthMaskBits(depthMaskCell(top, maskNear, maskScale),
+                                            depthMaskCell(bottom, maskNear, maskScale));
+                continue;
             }
-            if (isBackgroundDepth(depth)) continue;
-            threadMask |= 1u << depthMaskCell(viewDistanceFromDepth(depth, frame.depthToView.xy), maskNear, maskScale);
         }
-        if (threadMask != 0u) atomicOr(tileDepthMask, threadMask);
-        barrier();
-        for (uint cell = thread; cell < PUNCTUAL_DEPTH_MASK_CELLS; cell += kThreads) {
-            if ((tileDepthMask & (1u << cell)) == 0u) continue;  // an unoccupied cell is never tested
-            // The rectangle of the cell's pixels where marked.
-            bool marked = foldDepths && TILE_SIZE <= 32u && cellColumns[cell] != 0u;
-            vec4 rect = marked ? cellRectNdc(tile, cell, pixelToNdc) : vec4(min(ndcA, ndcB), max(ndcA, ndcB));
-            cellVolumes[cell] = makeDepthCellVolume(rect.xy, rect.zw, cell, maskNear, uintBitsToFloat(sliceMaxDistance[0]),
-                                                    frame.ndcToView);
-        }
+        if (isBackgroundDepth(depth)) continue;
+        threadMask |= 1u << depthMaskCell(viewDistanceFromDepth(depth, frame.depthToView.xy), maskNear, maskScale);
     }
-    if (DEPTH_MASK) barrier();
+    if (threadMask != 0u) atomicOr(tileDepthMask, threadMask);
+}
 
-    // 2. Clustered: list the occupied slices with their frustum segments, and the whole tile's.
-    //    Tiled (one slice): every thread makes the tile's segment itself, which costs less than a
-    //    barrier (zbin-2d: the tile's whole column, the bins holding depth).
-    bool occupied = SLICE_COUNT == 1u && (DEPTHLESS_TILES || sliceMaxDistance[0] != 0u);
-    TileVolume wholeTile;
-    if (SLICE_COUNT == 1u) {
-        wholeTile = DEPTHLESS_TILES ? makeTileColumn(min(ndcA, ndcB), max(ndcA, ndcB), frame.depthToView.xy, frame.ndcToView)
-                          : makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(sliceMinDistance[0]),
-                                           uintBitsToFloat(sliceMaxDistance[0]), frame.ndcToView);
-    } else {
-        for (uint slice = thread; slice < SLICE_COUNT; slice += kThreads) {
-            if (sliceMaxDistance[slice] == 0u) continue;  // no pixel in this slice
-            uint index = atomicAdd(occupiedCount, 1u);
-            occupiedSlices[index] = slice;
-            // The rectangle of the slice's pixels where marked, else the whole tile.
-            vec4 rect = clusterBlocks && TILE_SIZE <= 32u ? cellRectNdc(tile, slice, pixelToNdc) : vec4(min(ndcA, ndcB), max(ndcA, ndcB));
-            occupiedVolumes[index] = makeTileVolume(rect.xy, rect.zw, uintBitsToFloat(sliceMinDistance[slice]),
-                                                    uintBitsToFloat(sliceMaxDistance[slice]), frame.ndcToView);
-        }
-        if (thread == 0u && tileMaxDistance != 0u) {
-            tileVolume = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), uintBitsToFloat(tileMinDistance),
-                                        uintBitsToFloat(tileMaxDistance), frame.ndcToView);
-        }
-        barrier();
-        occupied = occupiedCount > 0u;
-        wholeTile = tileVolume;
+// 1b, DEPTH_MASK: each occupied cell's frustum segment, for step 3's per-cell tests: the rectangle
+// of the cell's pixels where marked, else the whole tile ([ndcMin, ndcMax]).
+void makeCellVolumes(uvec2 tile, uint thread, bool foldDepths, float maskNear, vec2 ndcMin, vec2 ndcMax,
+                     vec2 pixelToNdc) {
+    for (uint cell = thread; cell < PUNCTUAL_DEPTH_MASK_CELLS; cell += kThreads) {
+        if ((tileDepthMask & (1u << cell)) == 0u) continue;  // an unoccupied cell is never tested
+        bool marked = foldDepths && TILE_SIZE <= 32u && cellColumns[cell] != 0u;
+        vec4 rect = marked ? cellRectNdc(tile, cell, pixelToNdc) : vec4(ndcMin, ndcMax);
+        cellVolumes[cell] = makeDepthCellVolume(rect.xy, rect.zw, cell, maskNear, uintBitsToFloat(sliceMaxDistance[0]),
+                                                frame.ndcToView);
     }
+}
 
-    // 3. Test every candidate light against the tile's whole depth extent (for tiled, the only
-    //    test; tiled-2.5d then asks for an occupied depth cell the light meets). For clustered,
-    //    a light is kept where it meets an occupied slice's segment, each tested below; here only
-    //    the lights whose depth extent meets the tile's are listed for them (the rest would fail
-    //    every slice's test at its first step, lightDepthMeetsSegment).
+// 2, clustered: lists the occupied slices with their frustum segments (each cut to the rectangle
+// of its pixels where marked, else the whole tile [ndcMin, ndcMax]), and the whole tile's.
+void listOccupiedSlices(uvec2 tile, uint thread, bool clusterBlocks, vec2 ndcMin, vec2 ndcMax, vec2 pixelToNdc) {
+    for (uint slice = thread; slice < SLICE_COUNT; slice += kThreads) {
+        if (sliceMaxDistance[slice] == 0u) continue;  // no pixel in this slice
+        uint index = atomicAdd(occupiedCount, 1u);
+        occupiedSlices[index] = slice;
+        vec4 rect = clusterBlocks && TILE_SIZE <= 32u ? cellRectNdc(tile, slice, pixelToNdc) : vec4(ndcMin, ndcMax);
+        occupiedVolumes[index] = makeTileVolume(rect.xy, rect.zw, uintBitsToFloat(sliceMinDistance[slice]),
+                                                uintBitsToFloat(sliceMaxDistance[slice]), frame.ndcToView);
+    }
+    if (thread == 0u && tileMaxDistance != 0u) {
+        tileVolume = makeTileVolume(ndcMin, ndcMax, uintBitsToFloat(tileMinDistance), uintBitsToFloat(tileMaxDistance),
+                                    frame.ndcToView);
+    }
+}
+
+// 3. Every candidate light against the tile's whole depth extent, `wholeTile` (for tiled, the only
+//    test; tiled-2.5d then asks for an occupied depth cell the light meets). For clustered, a
+//    light is kept where it meets an occupied slice's segment, each tested in testSlices; here
+//    only the lights whose depth extent meets the tile's are listed for them (the rest would fail
+//    every slice's test at its first step, lightDepthMeetsSegment).
+void testCandidates(uint thread, uint lightCount, TileVolume wholeTile, float maskNear, float maskScale) {
     uint candidates = COARSE_TILES > 0u ? candidateCount : lightCount;
-    for (uint k = thread; occupied && k < candidates; k += kThreads) {
+    for (uint k = thread; k < candidates; k += kThreads) {
         uint light = COARSE_TILES > 0u ? candidateLights[k] : k;
         CullLight shape = frameCullLights[light];
         if (SLICE_COUNT == 1u ? !lightMayTouchTile(shape, wholeTile) : !lightDepthMeetsSegment(lightDistanceExtent(shape), wholeTile)) {
@@ -427,21 +415,23 @@ void main() {
             tileLightShapes[index] = shape;
         }
     }
-    if (SLICE_COUNT > 1u) {
-        barrier();
-        for (uint job = thread; job < occupiedCount * tileLightCount; job += kThreads) {
-            uint index = job / tileLightCount;
-            uint passed = job - index * tileLightCount;
-            if (lightMayTouchTile(tileLightShapes[passed], occupiedVolumes[index])) {
-                setLightBit(occupiedSlices[index], tileLights[passed]);
-            }
+}
+
+// 3, clustered: each (occupied slice, listed light) pair.
+void testSlices(uint thread) {
+    for (uint job = thread; job < occupiedCount * tileLightCount; job += kThreads) {
+        uint index = job / tileLightCount;
+        uint passed = job - index * tileLightCount;
+        if (lightMayTouchTile(tileLightShapes[passed], occupiedVolumes[index])) {
+            setLightBit(occupiedSlices[index], tileLights[passed]);
         }
     }
-    barrier();
+}
 
-    // 4. Write the cells of this tile: cell = tile index * SLICE_COUNT + slice. Only occupied
-    //    cells: a pixel only ever reads the cell of its own slice, which its depth occupies, so
-    //    the other cells are never read and need no clearing. (Tiled: the one cell, always.)
+// 4. The cells of this tile: cell = tile index * SLICE_COUNT + slice. Only occupied cells: a pixel
+//    only ever reads the cell of its own slice, which its depth occupies, so the other cells are
+//    never read and need no clearing. (Tiled: the one cell, always.)
+void writeTileCells(uvec2 tile, uint thread) {
     uint tileIndex = tile.y * frame.lightGrid.y + tile.x;
     if (SLICE_COUNT == 1u) {
         if (thread < PUNCTUAL_GRID_WORDS) lightGrid[tileIndex * PUNCTUAL_GRID_WORDS + thread] = sliceMasks[thread];
@@ -452,4 +442,72 @@ void main() {
             lightGrid[(tileIndex * SLICE_COUNT + slice) * PUNCTUAL_GRID_WORDS + word] = sliceMasks[slice * PUNCTUAL_GRID_WORDS + word];
         }
     }
+}
+
+void main() {
+    uint thread = gl_LocalInvocationIndex;
+    uint lightCount = frame.spotCount + frame.pointCount;
+    uvec2 tile = gl_WorkGroupID.xy;
+    clearTileState(thread);
+    barrier();
+    if (COARSE_TILES > 0u) listCandidates(tile, thread, lightCount);
+
+    // 1. Depth extent of each slice in this tile: the tile folded (tiled), blocks (clustered),
+    //    or pixel by pixel (transparent spans); none for depthless tiles.
+    uvec2 viewport = uvec2(frame.viewport.xy);
+    uvec2 tileEnd = min((tile + 1u) * TILE_SIZE, viewport);  // one past the tile's last pixel
+    bool foldDepths = SLICE_COUNT == 1u && !DEPTHLESS_TILES && frame.transparentSpans == 0u;
+    bool clusterBlocks = SLICE_COUNT > 1u && !DEPTHLESS_TILES && frame.transparentSpans == 0u;
+    uint threadMin = 0xFFFFFFFFu;  // all of this thread's pixels (clustered: the tile-level test)
+    uint threadMax = 0u;
+    if (foldDepths) foldTileExtent(tile, tileEnd, thread);
+    if (clusterBlocks) addClusterBlocks(tile, tileEnd, thread, threadMin, threadMax);
+    if (!foldDepths && !clusterBlocks && !DEPTHLESS_TILES) addPixels(tile, viewport, thread, threadMin, threadMax);
+    if (SLICE_COUNT > 1u && threadMax != 0u) {
+        atomicMin(tileMinDistance, threadMin);
+        atomicMax(tileMaxDistance, threadMax);
+    }
+    barrier();
+
+    // 1b. DEPTH_MASK: the occupied cells of the tile's extent, and their segments.
+    float maskNear = uintBitsToFloat(sliceMinDistance[0]);
+    float maskScale = depthMaskScale(maskNear, uintBitsToFloat(sliceMaxDistance[0]));
+    vec2 pixelToNdc = 2.0 * frame.viewport.zw;
+    vec2 ndcA = vec2(tile * TILE_SIZE) * pixelToNdc - 1.0;
+    vec2 ndcB = min(vec2((tile + 1u) * TILE_SIZE), frame.viewport.xy) * pixelToNdc - 1.0;
+    vec2 ndcMin = min(ndcA, ndcB);
+    vec2 ndcMax = max(ndcA, ndcB);
+    if (DEPTH_MASK && SLICE_COUNT == 1u && sliceMaxDistance[0] != 0u) {
+        markOccupiedCells(tile, tileEnd, viewport, thread, foldDepths, maskNear, maskScale);
+        barrier();
+        makeCellVolumes(tile, thread, foldDepths, maskNear, ndcMin, ndcMax, pixelToNdc);
+    }
+    if (DEPTH_MASK) barrier();
+
+    // 2. Tiled (one slice): every thread makes the tile's segment itself, which costs less than a
+    //    barrier (zbin-2d: the tile's whole column, the bins holding depth). Clustered: the
+    //    occupied slices are listed with their segments, and the whole tile's.
+    bool occupied = SLICE_COUNT == 1u && (DEPTHLESS_TILES || sliceMaxDistance[0] != 0u);
+    TileVolume wholeTile;
+    if (SLICE_COUNT == 1u) {
+        wholeTile = DEPTHLESS_TILES ? makeTileColumn(ndcMin, ndcMax, frame.depthToView.xy, frame.ndcToView)
+                                    : makeTileVolume(ndcMin, ndcMax, uintBitsToFloat(sliceMinDistance[0]),
+                                                     uintBitsToFloat(sliceMaxDistance[0]), frame.ndcToView);
+    } else {
+        listOccupiedSlices(tile, thread, clusterBlocks, ndcMin, ndcMax, pixelToNdc);
+        barrier();
+        occupied = occupiedCount > 0u;
+        wholeTile = tileVolume;
+    }
+
+    // 3. The lights: against the whole tile, then (clustered) against each occupied slice.
+    if (occupied) testCandidates(thread, lightCount, wholeTile, maskNear, maskScale);
+    if (SLICE_COUNT > 1u) {
+        barrier();
+        testSlices(thread);
+    }
+    barrier();
+
+    // 4. The tile's cells out.
+    writeTileCells(tile, thread);
 }

@@ -181,6 +181,114 @@ vec3 shadeSun(Surface surface) {
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
+// ---- the steps of main, in order ------------------------------------------------------------------
+// Functions cost nothing here (drivers inline them, and none takes an array). The radiance stays
+// in main: it is `precise`, so that every method adds its lights in the same order and
+// association and the images stay bit-identical, which a parameter would not promise.
+
+// The fragment's base colour and emission. Both textures are sampled before any fragment of the
+// quad is discarded: implicit derivatives are undefined once the quad's control flow diverges.
+void sampleMaterial(GpuMaterial material, out vec4 baseColor, out vec3 emission) {
+    baseColor = material.baseColorFactor;
+    if (material.baseColorTexture >= 0)
+        baseColor *= sampleMaterialTexture(baseColorTexture, material.baseColorUv[0], material.baseColorUv[1]);
+    emission = material.emission.rgb;
+    if (material.emissiveTexture >= 0)
+        emission *= sampleMaterialTexture(emissiveTexture, material.emissiveUv[0], material.emissiveUv[1]).rgb;
+}
+
+// The prepass drew neither a single-sided material's back faces nor masked-out fragments, so
+// these fail the EQUAL test already unless another surface lies at exactly their depth; the tests
+// make the forward pass agree with the prepass by construction.
+void discardWhatThePrepassDropped(GpuMaterial material, bool frontFacing, float alpha) {
+    if (materialIsSingleSided(material) && !frontFacing) discard;
+    if (materialIsMasked(material) && !alphaMaskKeeps(alpha, material.emission.w)) discard;
+}
+
+// The grid sources' words: the set bits of this pixel's cell (tiled, clustered, tiled-2.5d).
+// (Clustered: walking the tile's union of its clusters instead, testing membership per pixel,
+// keeps SIMD lanes uniform but measured 10% slower on lavapipe; see bench/RESULTS.md.)
+uvec3 gridCellWords() {
+    uint base = pixelGridCell() * PUNCTUAL_GRID_WORDS;
+    return uvec3(lightGrid[base], lightGrid[base + 1u], lightGrid[base + 2u]);
+}
+
+// URP Forward+ / Drobot: the tile's mask (zbin-2d: two-dimensional, every depth) AND the mask of
+// the pixel's z-bin (lights/z_bins.h), found by the stored-start search the CPU binned with.
+uvec3 zBinnedCellWords() {
+    uint bin;
+    PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(bin, gl_FragCoord.z, zBins.binStartDepth, PUNCTUAL_ZBIN_COUNT);
+    return gridCellWords() & zBins.binMask[bin].xyz;
+}
+
+// Validation variant: this pixel's surface (position, normal, the sun's cascade) and the shadow
+// factors its lights recorded.
+void writeShadowFactors(vec3 normal) {
+    uvec2 pixel = uvec2(gl_FragCoord.xy);
+    uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
+    uint base = index * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS;
+    shadowDebug[base + 0u] = floatBitsToUint(inWorldPosition.x);
+    shadowDebug[base + 1u] = floatBitsToUint(inWorldPosition.y);
+    shadowDebug[base + 2u] = floatBitsToUint(inWorldPosition.z);
+    shadowDebug[base + 3u] = 1u;
+    shadowDebug[base + 4u] = floatBitsToUint(normal.x);
+    shadowDebug[base + 5u] = floatBitsToUint(normal.y);
+    shadowDebug[base + 6u] = floatBitsToUint(normal.z);
+    shadowDebug[base + 7u] = sunCascadeWord;
+    uint factorBase = uint(frame.viewport.x * frame.viewport.y) * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS +
+                      index * PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS;
+    for (uint i = 0u; i < PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS; ++i) shadowDebug[factorBase + i] = shadowFactorWords[i];
+}
+
+// Statistics variant: the lights the method tested (`tested`), the shadow lookups and taps, the
+// lights really reaching the pixel and the brute-force radiance, against the method's `radiance`.
+void writeLightStats(Surface surface, vec3 radiance, vec3 emission, uint tested) {
+    uint spotCount = frame.spotCount;
+    uint lightCount = frame.spotCount + frame.pointCount;
+    // The method's own lookups, before the brute-force radiance below takes its own.
+    uint work = packPixelWork(tested, shadowLookups, shadowTaps);
+    uint affecting = 0u;
+    uvec3 affectingWords = uvec3(0u);  // the reaching lights as a grid mask (lightGridWord)
+    vec3 bruteRadiance = shadeSun(surface);
+    for (uint i = 0u; i < lightCount; ++i) {
+        if (punctualAttenuation(lights[i], inWorldPosition) > 0.0) {
+            ++affecting;
+            uint bit = 1u << lightGridBit(i, spotCount);
+            uint word = lightGridWord(i, spotCount);
+            if (word == 0u) affectingWords.x |= bit;
+            else if (word == 1u) affectingWords.y |= bit;
+            else affectingWords.z |= bit;
+        }
+        bruteRadiance += shadeLight(surface, lights[i]);
+    }
+    bruteRadiance += emission;
+    uvec2 pixel = uvec2(gl_FragCoord.xy);
+    uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
+    uint pixels = uint(frame.viewport.x * frame.viewport.y);
+    if (TRANSPARENT) {
+        uint base = lightStatsWord(PUNCTUAL_LIGHT_STATS_TRANSPARENT, pixels, index, 0u);
+        atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_TESTED], tested);
+        atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_REACHING], affecting);
+        atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_FRAGMENTS], 1u);
+        // Light went missing: the statistics' own test (culling_stats.cpp), per fragment.
+        if (luminance(radiance) < luminance(bruteRadiance) * (1.0 - 1e-6)) {
+            atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_MISSING], 1u);
+        }
+    } else {
+        uint base = lightStatsWord(PUNCTUAL_LIGHT_STATS_OPAQUE, pixels, index, 0u);
+        lightStatWords[base + PUNCTUAL_LIGHT_STATS_WORK] = work;
+        lightStatWords[base + PUNCTUAL_LIGHT_STATS_REACHING] = affecting | PUNCTUAL_LIGHT_STATS_COVERED;
+        lightStatWords[base + PUNCTUAL_LIGHT_STATS_LUMINANCE] = floatBitsToUint(luminance(radiance));
+        lightStatWords[base + PUNCTUAL_LIGHT_STATS_BRUTE_LUMINANCE] = floatBitsToUint(luminance(bruteRadiance));
+        // The reaching lights' mask and the pixel's list cell, for the exact-list floor.
+        uint exact = lightStatsWord(PUNCTUAL_LIGHT_STATS_EXACT, pixels, index, 0u);
+        lightStatWords[exact + 0u] = affectingWords.x;
+        lightStatWords[exact + 1u] = affectingWords.y;
+        lightStatWords[exact + 2u] = affectingWords.z;
+        lightStatWords[exact + PUNCTUAL_LIGHT_STATS_LIST_CELL] = pixelListCell();
+    }
+}
+
 void main() {
     if (WRITE_SHADOW_FACTORS) {
         for (uint i = 0u; i < PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS; ++i) shadowFactorWords[i] = 0xFFFFFFFFu;
@@ -189,19 +297,10 @@ void main() {
     GpuMaterial material = materials[object.material.x];
     // object.material.y marks mirrored transforms (negative determinant), whose winding flips.
     bool frontFacing = gl_FrontFacing != (object.material.y != 0u);
-    // The prepass drew neither a single-sided material's back faces nor masked-out fragments, so
-    // these fail the EQUAL test already unless another surface lies at exactly their depth; the
-    // tests make the forward pass agree with the prepass by construction.
-    // Both textures are sampled before any fragment of the quad is discarded: implicit
-    // derivatives are undefined once the quad's control flow diverges.
-    vec4 baseColor = material.baseColorFactor;
-    if (material.baseColorTexture >= 0)
-        baseColor *= sampleMaterialTexture(baseColorTexture, material.baseColorUv[0], material.baseColorUv[1]);
-    vec3 emission = material.emission.rgb;
-    if (material.emissiveTexture >= 0)
-        emission *= sampleMaterialTexture(emissiveTexture, material.emissiveUv[0], material.emissiveUv[1]).rgb;
-    if (materialIsSingleSided(material) && !frontFacing) discard;
-    if (materialIsMasked(material) && !alphaMaskKeeps(baseColor.a, material.emission.w)) discard;
+    vec4 baseColor;
+    vec3 emission;
+    sampleMaterial(material, baseColor, emission);
+    discardWhatThePrepassDropped(material, frontFacing, baseColor.a);
 
     // Double-sided faces: the normal is turned towards the viewer on back faces.
     vec3 normal = normalize(inWorldNormal);
@@ -233,26 +332,14 @@ void main() {
             tested = count;
             break;
         }
-        case PUNCTUAL_LIGHT_SOURCE_GRID: {  // tiled, clustered, tiled-2.5d (the tile grid, fewer bits set)
-            // The set bits of this pixel's cell. (Clustered: walking the tile's union of its
-            // clusters instead, testing membership per pixel, keeps SIMD lanes uniform but
-            // measured 10% slower on lavapipe; see bench/RESULTS.md.)
-            uint base = pixelGridCell() * PUNCTUAL_GRID_WORDS;
-            gridWords = uvec3(lightGrid[base], lightGrid[base + 1u], lightGrid[base + 2u]);
+        case PUNCTUAL_LIGHT_SOURCE_GRID:  // tiled, clustered, tiled-2.5d (the tile grid, fewer bits set)
+            gridWords = gridCellWords();
             walkGridWords = true;
             break;
-        }
-        case PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS: {
-            // URP Forward+ / Drobot: the tile's mask (zbin-2d: two-dimensional, every depth) AND
-            // the mask of the pixel's z-bin (lights/z_bins.h), found by the stored-start search
-            // the CPU binned with.
-            uint base = pixelGridCell() * PUNCTUAL_GRID_WORDS;
-            uint bin;
-            PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(bin, gl_FragCoord.z, zBins.binStartDepth, PUNCTUAL_ZBIN_COUNT);
-            gridWords = uvec3(lightGrid[base], lightGrid[base + 1u], lightGrid[base + 2u]) & zBins.binMask[bin].xyz;
+        case PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS:
+            gridWords = zBinnedCellWords();
             walkGridWords = true;
             break;
-        }
         default:
             unknownVariant = true;
             break;
@@ -282,65 +369,6 @@ void main() {
     outRadiance = vec4(unknownVariant ? kUnknownVariantRadiance : radiance,
                        TRANSPARENT && !unknownVariant ? baseColor.a : 1.0);
 
-    if (WRITE_SHADOW_FACTORS) {
-        uvec2 pixel = uvec2(gl_FragCoord.xy);
-        uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
-        uint base = index * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS;
-        shadowDebug[base + 0u] = floatBitsToUint(inWorldPosition.x);
-        shadowDebug[base + 1u] = floatBitsToUint(inWorldPosition.y);
-        shadowDebug[base + 2u] = floatBitsToUint(inWorldPosition.z);
-        shadowDebug[base + 3u] = 1u;
-        shadowDebug[base + 4u] = floatBitsToUint(normal.x);
-        shadowDebug[base + 5u] = floatBitsToUint(normal.y);
-        shadowDebug[base + 6u] = floatBitsToUint(normal.z);
-        shadowDebug[base + 7u] = sunCascadeWord;
-        uint factorBase = uint(frame.viewport.x * frame.viewport.y) * PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS +
-                          index * PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS;
-        for (uint i = 0u; i < PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS; ++i) shadowDebug[factorBase + i] = shadowFactorWords[i];
-    }
-
-    if (WRITE_LIGHT_STATS) {
-        // The method's own lookups, before the brute-force radiance below takes its own.
-        uint work = packPixelWork(tested, shadowLookups, shadowTaps);
-        uint affecting = 0u;
-        uvec3 affectingWords = uvec3(0u);  // the reaching lights as a grid mask (lightGridWord)
-        vec3 bruteRadiance = shadeSun(surface);
-        for (uint i = 0u; i < lightCount; ++i) {
-            if (punctualAttenuation(lights[i], inWorldPosition) > 0.0) {
-                ++affecting;
-                uint bit = 1u << lightGridBit(i, spotCount);
-                uint word = lightGridWord(i, spotCount);
-                if (word == 0u) affectingWords.x |= bit;
-                else if (word == 1u) affectingWords.y |= bit;
-                else affectingWords.z |= bit;
-            }
-            bruteRadiance += shadeLight(surface, lights[i]);
-        }
-        bruteRadiance += emission;
-        uvec2 pixel = uvec2(gl_FragCoord.xy);
-        uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
-        uint pixels = uint(frame.viewport.x * frame.viewport.y);
-        if (TRANSPARENT) {
-            uint base = lightStatsWord(PUNCTUAL_LIGHT_STATS_TRANSPARENT, pixels, index, 0u);
-            atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_TESTED], tested);
-            atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_REACHING], affecting);
-            atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_FRAGMENTS], 1u);
-            // Light went missing: the statistics' own test (culling_stats.cpp), per fragment.
-            if (luminance(radiance) < luminance(bruteRadiance) * (1.0 - 1e-6)) {
-                atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_MISSING], 1u);
-            }
-        } else {
-            uint base = lightStatsWord(PUNCTUAL_LIGHT_STATS_OPAQUE, pixels, index, 0u);
-            lightStatWords[base + PUNCTUAL_LIGHT_STATS_WORK] = work;
-            lightStatWords[base + PUNCTUAL_LIGHT_STATS_REACHING] = affecting | PUNCTUAL_LIGHT_STATS_COVERED;
-            lightStatWords[base + PUNCTUAL_LIGHT_STATS_LUMINANCE] = floatBitsToUint(luminance(radiance));
-            lightStatWords[base + PUNCTUAL_LIGHT_STATS_BRUTE_LUMINANCE] = floatBitsToUint(luminance(bruteRadiance));
-            // The reaching lights' mask and the pixel's list cell, for the exact-list floor.
-            uint exact = lightStatsWord(PUNCTUAL_LIGHT_STATS_EXACT, pixels, index, 0u);
-            lightStatWords[exact + 0u] = affectingWords.x;
-            lightStatWords[exact + 1u] = affectingWords.y;
-            lightStatWords[exact + 2u] = affectingWords.z;
-            lightStatWords[exact + PUNCTUAL_LIGHT_STATS_LIST_CELL] = pixelListCell();
-        }
-    }
+    if (WRITE_SHADOW_FACTORS) writeShadowFactors(normal);
+    if (WRITE_LIGHT_STATS) writeLightStats(surface, radiance, emission, tested);
 }
