@@ -59,6 +59,94 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly b
 #include "depth_blocks.glsl"
 #include "subgroup_tiles.glsl"
 
+// ---- the steps (main below). Functions cost nothing here: drivers inline them, and none takes an
+// array (GLSL copies arrays passed by value: culling.h, PUNCTUAL_CLUSTER_SLICE_OF_DEPTH); the
+// 2.5D step's per-block array lives inside its function.
+
+const uint kBlocks = (TILE_SIZE + 1u) / 2u;  // 2x2 blocks a side (an odd size's last is half outside)
+// A lane's rounds of blocks in tiles of at most 32 pixels (16 blocks a side, 4 lanes at least).
+const uint kMaxBlockRounds = 16u * 16u / 4u;
+
+// 1. This lane's share of the tile's nearest (largest) and farthest (smallest) depth, x = 0 for
+//    none: its 2x2 blocks (quadExtent), or with transparent spans (`spans`) its pixels' spans.
+vec2 laneDepthExtent(uvec2 tile, uvec2 tileEnd, uvec2 viewport, uint lane, uint threads, bool spans) {
+    vec2 extent = vec2(0.0, 1.0);
+    if (!spans) {
+        for (uint block = lane; block < kBlocks * kBlocks; block += threads) {
+            extent = quadExtent(tile * TILE_SIZE + 2u * uvec2(block % kBlocks, block / kBlocks), tileEnd, extent);
+        }
+    } else {
+        for (uint index = lane; index < TILE_SIZE * TILE_SIZE; index += threads) {
+            uvec2 pixel = tile * TILE_SIZE + uvec2(index % TILE_SIZE, index / TILE_SIZE);
+            if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
+            vec2 span = pixelSpan(pixel);
+            extent = vec2(max(extent.x, span.x), min(extent.y, span.y));
+        }
+    }
+    return extent;
+}
+
+// 3b. Tiled-2.5d: of this lane's lights that passed the tile (`masks`), those whose depth cells
+//     meet an occupied cell of the tile's extent `distances` (Harada's depth mask) whose segment
+//     their shapes meet (culling.h, makeDepthCellVolume). Called in uniform control flow.
+uvec3 lightsMeetingOccupiedCells(uvec3 masks, uvec2 tile, uvec2 tileEnd, uvec2 viewport, uint lane, uint threads,
+                                 bool spans, vec2 distances, vec2 ndcMin, vec2 ndcMax, vec2 pixelToNdc) {
+    float maskNear = distances.x;
+    float maskScale = depthMaskScale(distances.x, distances.y);
+    // The cells this lane's pixels occupy, and each of its blocks' cells (tiles of at most 32
+    // pixels without spans, for the cells' rectangles below). The blocks' array is indexed by
+    // the round, the same in every lane: each lane's columns and rows kept per cell, an index
+    // differing between lanes, made lavapipe (which runs the lanes as one vector) scatter to
+    // memory, 1-1.5 ms more of the pass (A/B, 3 rounds).
+    uint laneCells = 0u;
+    uint blockCells[kMaxBlockRounds];
+    bool rects = !spans && TILE_SIZE <= 32u;
+    if (!spans) {
+        uint blockRound = 0u;
+        for (uint block = lane; block < kBlocks * kBlocks; block += threads, ++blockRound) {
+            uint cells = quadDepthCells(tile * TILE_SIZE + 2u * uvec2(block % kBlocks, block / kBlocks), tileEnd, maskNear, maskScale);
+            laneCells |= cells;
+            if (rects) blockCells[blockRound] = cells;
+        }
+    } else {
+        // A pixel under transparent surfaces occupies every cell from its span's near end to
+        // its far end.
+        for (uint index = lane; index < TILE_SIZE * TILE_SIZE; index += threads) {
+            uvec2 pixel = tile * TILE_SIZE + uvec2(index % TILE_SIZE, index / TILE_SIZE);
+            if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
+            vec2 span = pixelSpan(pixel);
+            if (span.x == 0.0) continue;  // background
+            laneCells |= depthMaskBits(depthMaskCell(viewDistanceFromDepth(span.x, frame.depthToView.xy), maskNear, maskScale),
+                                       depthMaskCell(viewDistanceFromDepth(span.y, frame.depthToView.xy), maskNear, maskScale));
+        }
+    }
+    uint tileCells = workgroupMasks(uvec3(laneCells, 0u, 0u)).x;
+    uvec3 unkept = masks;  // this lane's lights that passed the tile and meet no cell yet
+    masks = uvec3(0u);
+    for (uint cells = tileCells; cells != 0u; cells &= cells - 1u) {  // (uniform)
+        uint cell = uint(findLSB(cells));
+        // The rectangle of the cell's blocks: each of a block's cells gets the whole block's.
+        uvec2 columnsRows = uvec2(0u);
+        uint blockRound = 0u;
+        for (uint block = lane; rects && block < kBlocks * kBlocks; block += threads, ++blockRound) {
+            if ((blockCells[blockRound] & (1u << cell)) == 0u) continue;
+            uvec2 local = 2u * uvec2(block % kBlocks, block / kBlocks);  // the block's top-left pixel in the tile
+            uvec2 corner = tile * TILE_SIZE + local;
+            uvec2 last = local + uvec2(corner.x + 1u < tileEnd.x ? 1u : 0u, corner.y + 1u < tileEnd.y ? 1u : 0u);
+            columnsRows |= uvec2(depthMaskBits(local.x, last.x), depthMaskBits(local.y, last.y));
+        }
+        uvec3 combined = workgroupMasks(uvec3(columnsRows, any(notEqual(unkept, uvec3(0u))) ? 1u : 0u));
+        if (combined.z == 0u) break;  // every lane's lights are decided (uniform)
+        vec4 rect = rects ? columnsRowsRectNdc(tile * TILE_SIZE, combined.x, combined.y, pixelToNdc)
+                          : vec4(ndcMin, ndcMax);
+        TileVolume cellSegment = makeDepthCellVolume(rect.xy, rect.zw, cell, maskNear, distances.y, frame.ndcToView);
+        uvec3 kept = lightsMeetingDepthCell(unkept, cellSegment, cell, maskNear, maskScale);
+        masks |= kept;
+        unkept &= ~kept;
+    }
+    return masks;
+}
+
 void main() {
     uint lane = gl_LocalInvocationIndex;
     uint threads = gl_WorkGroupSize.x;
@@ -68,100 +156,33 @@ void main() {
     vec2 pixelToNdc = 2.0 * frame.viewport.zw;
     vec2 ndcA = vec2(tile * TILE_SIZE) * pixelToNdc - 1.0;
     vec2 ndcB = min(vec2((tile + 1u) * TILE_SIZE), frame.viewport.xy) * pixelToNdc - 1.0;
+    vec2 ndcMin = min(ndcA, ndcB);
+    vec2 ndcMax = max(ndcA, ndcB);
 
     // 1-2. The tile's segment: its depth extent, or (DEPTHLESS_TILES) its whole column.
     TileVolume segment;
     bool occupied = true;
-    const uint kBlocks = (TILE_SIZE + 1u) / 2u;  // 2x2 blocks a side (an odd size's last is half outside)
-    // A lane's rounds of blocks in tiles of at most 32 pixels (16 blocks a side, 4 lanes at least).
-    const uint kMaxBlockRounds = 16u * 16u / 4u;
     bool spans = frame.transparentSpans != 0u;  // transparent spans: read pixel by pixel
     vec2 distances = vec2(0.0);  // the tile's nearest and farthest view distance
     if (DEPTHLESS_TILES) {
-        segment = makeTileColumn(min(ndcA, ndcB), max(ndcA, ndcB), frame.depthToView.xy, frame.ndcToView);
+        segment = makeTileColumn(ndcMin, ndcMax, frame.depthToView.xy, frame.ndcToView);
     } else {
-        vec2 extent = vec2(0.0, 1.0);  // nearest (largest) and farthest (smallest) depth; x = 0: none
-        if (!spans) {
-            for (uint block = lane; block < kBlocks * kBlocks; block += threads) {
-                extent = quadExtent(tile * TILE_SIZE + 2u * uvec2(block % kBlocks, block / kBlocks), tileEnd, extent);
-            }
-        } else {
-            for (uint index = lane; index < TILE_SIZE * TILE_SIZE; index += threads) {
-                uvec2 pixel = tile * TILE_SIZE + uvec2(index % TILE_SIZE, index / TILE_SIZE);
-                if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
-                vec2 span = pixelSpan(pixel);
-                extent = vec2(max(extent.x, span.x), min(extent.y, span.y));
-            }
-        }
-        extent = workgroupExtent(extent);
+        vec2 extent = workgroupExtent(laneDepthExtent(tile, tileEnd, viewport, lane, threads, spans));
         occupied = extent.x > 0.0;
         // View distance falls monotonically with depth, also as rounded (viewDistanceFromDepth), so
         // the extreme depths give exactly the extreme distances.
         distances = vec2(viewDistanceFromDepth(extent.x, frame.depthToView.xy), viewDistanceFromDepth(extent.y, frame.depthToView.xy));
-        segment = makeTileVolume(min(ndcA, ndcB), max(ndcA, ndcB), distances.x, distances.y, frame.ndcToView);
+        segment = makeTileVolume(ndcMin, ndcMax, distances.x, distances.y, frame.ndcToView);
     }
 
     // 3. The lights against the segment: this lane's share of the candidates.
     uvec3 masks = occupied ? lightsMeetingSegment(laneCandidates(tile, COARSE_TILES, lane, threads), segment) : uvec3(0u);
 
-    // 3b. Tiled-2.5d: Harada's depth mask, then each passing light's shapes against the segments
-    //     of the occupied cells its depth extent spans (culling.h, makeDepthCellVolume).
-    // (A tile none of whose lights passed reads no depth again.)
+    // 3b. Tiled-2.5d. (A tile none of whose lights passed reads no depth again.)
     bool anyPassed = DEPTH_MASK && occupied && workgroupMasks(uvec3(any(notEqual(masks, uvec3(0u))) ? 1u : 0u, 0u, 0u)).x != 0u;
     if (anyPassed) {  // (uniform)
-        float maskNear = distances.x;
-        float maskScale = depthMaskScale(distances.x, distances.y);
-        // The cells this lane's pixels occupy, and each of its blocks' cells (tiles of at most 32
-        // pixels without spans, for the cells' rectangles below). The blocks' array is indexed by
-        // the round, the same in every lane: each lane's columns and rows kept per cell, an index
-        // differing between lanes, made lavapipe (which runs the lanes as one vector) scatter to
-        // memory, 1-1.5 ms more of the pass (A/B, 3 rounds).
-        uint laneCells = 0u;
-        uint blockCells[kMaxBlockRounds];
-        bool rects = !spans && TILE_SIZE <= 32u;
-        if (!spans) {
-            uint blockRound = 0u;
-            for (uint block = lane; block < kBlocks * kBlocks; block += threads, ++blockRound) {
-                uint cells = quadDepthCells(tile * TILE_SIZE + 2u * uvec2(block % kBlocks, block / kBlocks), tileEnd, maskNear, maskScale);
-                laneCells |= cells;
-                if (rects) blockCells[blockRound] = cells;
-            }
-        } else {
-            // A pixel under transparent surfaces occupies every cell from its span's near end to
-            // its far end.
-            for (uint index = lane; index < TILE_SIZE * TILE_SIZE; index += threads) {
-                uvec2 pixel = tile * TILE_SIZE + uvec2(index % TILE_SIZE, index / TILE_SIZE);
-                if (pixel.x >= viewport.x || pixel.y >= viewport.y) continue;
-                vec2 span = pixelSpan(pixel);
-                if (span.x == 0.0) continue;  // background
-                laneCells |= depthMaskBits(depthMaskCell(viewDistanceFromDepth(span.x, frame.depthToView.xy), maskNear, maskScale),
-                                           depthMaskCell(viewDistanceFromDepth(span.y, frame.depthToView.xy), maskNear, maskScale));
-            }
-        }
-        uint tileCells = workgroupMasks(uvec3(laneCells, 0u, 0u)).x;
-        uvec3 unkept = masks;  // this lane's lights that passed the tile and meet no cell yet
-        masks = uvec3(0u);
-        for (uint cells = tileCells; cells != 0u; cells &= cells - 1u) {  // (uniform)
-            uint cell = uint(findLSB(cells));
-            // The rectangle of the cell's blocks: each of a block's cells gets the whole block's.
-            uvec2 columnsRows = uvec2(0u);
-            uint blockRound = 0u;
-            for (uint block = lane; rects && block < kBlocks * kBlocks; block += threads, ++blockRound) {
-                if ((blockCells[blockRound] & (1u << cell)) == 0u) continue;
-                uvec2 local = 2u * uvec2(block % kBlocks, block / kBlocks);  // the block's top-left pixel in the tile
-                uvec2 corner = tile * TILE_SIZE + local;
-                uvec2 last = local + uvec2(corner.x + 1u < tileEnd.x ? 1u : 0u, corner.y + 1u < tileEnd.y ? 1u : 0u);
-                columnsRows |= uvec2(depthMaskBits(local.x, last.x), depthMaskBits(local.y, last.y));
-            }
-            uvec3 combined = workgroupMasks(uvec3(columnsRows, any(notEqual(unkept, uvec3(0u))) ? 1u : 0u));
-            if (combined.z == 0u) break;  // every lane's lights are decided (uniform)
-            vec4 rect = rects ? columnsRowsRectNdc(tile * TILE_SIZE, combined.x, combined.y, pixelToNdc)
-                              : vec4(min(ndcA, ndcB), max(ndcA, ndcB));
-            TileVolume cellSegment = makeDepthCellVolume(rect.xy, rect.zw, cell, maskNear, distances.y, frame.ndcToView);
-            uvec3 kept = lightsMeetingDepthCell(unkept, cellSegment, cell, maskNear, maskScale);
-            masks |= kept;
-            unkept &= ~kept;
-        }
+        masks = lightsMeetingOccupiedCells(masks, tile, tileEnd, viewport, lane, threads, spans, distances, ndcMin, ndcMax,
+                                           pixelToNdc);
     }
     masks = workgroupMasks(masks);
 
