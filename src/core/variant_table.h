@@ -31,7 +31,7 @@ struct GpuConstant {
     const char* name;
 };
 
-// PUNCTUAL_GPU_CONSTANT(PUNCTUAL_SHADOW_FILTER_HW) = {0u, "PUNCTUAL_SHADOW_FILTER_HW"}: the value
+// PUNCTUAL_GPU_CONSTANT(PUNCTUAL_SHADOW_KERNEL_TENT) = {1u, "PUNCTUAL_SHADOW_KERNEL_TENT"}: the value
 // and its name come from one token, so they cannot disagree.
 #define PUNCTUAL_GPU_CONSTANT(constant) ::punctual::GpuConstant{constant, #constant}
 

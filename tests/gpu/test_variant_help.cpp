@@ -89,7 +89,7 @@ TEST(VariantHelp, ReadmeSynopsisIsTheRenderHelp) {
     const std::string synopsis = readme.substr(start + head.size(), end - start - head.size());
     const std::string usage = cli::renderUsage();
     const std::string options = usage.substr(usage.find("options:\n") + 9);
-    EXPECT_EQ(synopsis, options) << "regenerate README's synopsis from `punctual render --help`";
+    EXPECT_EQ(synopsis, options) << "README's synopsis is not `punctual render --help`: run scripts/readme-synopsis.sh";
 }
 
 }  // namespace

@@ -13,7 +13,8 @@
 //  - the one-subgroup culling kernels (tile_culling.comp, cluster_culling.comp and their
 //    subgroup_tiles.glsl): a flag's case there is a speed-up, and a method whose flag they lack
 //    culls with the general kernel (Culling.AFlagTheSubgroupKernelsLackKeepsAMethodOnTheGeneralKernel);
-//  - docs, bench records and the chart scripts' tests in bench/ (the charts take names from results).
+//  - docs, bench records and the chart scripts' tests in bench/ (the charts take names from results);
+//    the README's synopsis, which scripts/readme-synopsis.sh rewrites from `punctual render --help`.
 #include <gtest/gtest.h>
 
 #include <filesystem>
