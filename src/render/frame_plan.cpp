@@ -1,5 +1,6 @@
 #include "render/frame_plan.h"
 
+#include <algorithm>
 #include <string>
 
 #include "core/log.h"
@@ -69,6 +70,10 @@ FramePlan planFrame(const vk::Context& context, const Scene& scene, const Render
         plan.objectsInView.resize(scene.objects.size());
         for (uint32_t i = 0; i < plan.objectsInView.size(); ++i) plan.objectsInView[i] = i;
     }
+    const bool blendedInView = std::any_of(plan.objectsInView.begin(), plan.objectsInView.end(), [&](uint32_t object) {
+        return scene.materials.at(scene.meshes.at(scene.objects[object].mesh).material).alphaMode == AlphaMode::Blend;
+    });
+    plan.transparentSpans = method.usesLightGrid() && !settings.opaqueCullingDepth && blendedInView;
     return plan;
 }
 

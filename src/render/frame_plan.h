@@ -34,6 +34,10 @@ struct FramePlan {
     std::optional<ZBins> zBins;          // the z-bin methods' bins; nullopt for the others
     LightGridLayout gridLayout;
     std::vector<uint32_t> objectsInView;  // every object with RenderSettings::cullObjectsToView off
+    // Whether the culling kernels read the transparent fragments' depth spans (the transparent
+    // depth pass, GpuFrame::transparentSpans): a grid method, alphaMode BLEND objects in view, and
+    // not RenderSettings::opaqueCullingDepth.
+    bool transparentSpans = false;
 };
 
 // Plans the frame of `scene` under `settings` on `context`'s device (its subgroups and memory

@@ -181,9 +181,8 @@ struct Renderer::Resources {
         draws.forwardTriangles = trianglesOf(sceneData, unblended);
         draws.transparentTriangles = trianglesOf(sceneData, blended);
         depth = passes.add<DepthPrepass>(context, settings.width, settings.height, std::move(prepassLists));
-        transparentDepth = passes.add<TransparentDepthPass>(context, depth->depth(), blended,
-                                                         usesLightGrid(settings.method) && !settings.opaqueCullingDepth,
-                                                         settings.width, settings.height);
+        transparentDepth = passes.add<TransparentDepthPass>(context, depth->depth(), blended, plan.transparentSpans,
+                                                            settings.width, settings.height);
         culling = passes.add<LightCullingPass>(context, gridLayout, usesLightGrid(settings.method), settings.width,
                                             settings.height, cullLights, plan.zBins ? &*plan.zBins : nullptr);
         shadows = passes.add<ShadowPass>(context, plan.shadows, settings.shadows);
@@ -234,9 +233,13 @@ struct Renderer::Resources {
 
 namespace {
 
-gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, const glm::mat4& view,
-                        const glm::mat4& projection, const FrameLights& lights, const LightGridLayout& grid,
-                        const ShadowPlan& shadowPlan) {
+// The frame's constants, all from the plan: packed once, never patched.
+gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, const FramePlan& plan) {
+    const glm::mat4& view = plan.view;
+    const glm::mat4& projection = plan.projection;
+    const FrameLights& lights = plan.lights;
+    const LightGridLayout& grid = plan.gridLayout;
+    const ShadowPlan& shadowPlan = plan.shadows;
     gpu::GpuFrame frame{};
     frame.view = view;
     frame.projection = projection;
@@ -248,7 +251,7 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     frame.spotCount = lights.spotCount;
     frame.pointCount = lights.pointCount;
     frame.directionalCount = lights.directionalCount;
-    frame.transparentSpans = 0u;  // set once the passes are built (they know whether any is drawn)
+    frame.transparentSpans = plan.transparentSpans ? 1u : 0u;
     frame.exposure = glm::vec4(settings.exposure, 0.0f, 0.0f, 0.0f);
     frame.sun = lights.sun;
     frame.lightGrid = glm::uvec4(grid.tileSize, grid.tilesX, grid.tilesY, grid.slices);
@@ -284,9 +287,7 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     plan_ = planFrame(context, scene, settings);
     resources_ = std::make_unique<Resources>(context, scene, settings, plan_, cameraDraws_);
     Resources& r = *resources_;
-    gpu::GpuFrame frame = packFrame(scene, settings, plan_.view, plan_.projection, plan_.lights, plan_.gridLayout,
-                                    plan_.shadows);
-    frame.transparentSpans = r.transparentDepth->needed() ? 1u : 0u;
+    const gpu::GpuFrame frame = packFrame(scene, settings, plan_);
     r.frameUniform.write(&frame, sizeof(frame));
 
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
