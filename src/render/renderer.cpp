@@ -54,7 +54,6 @@ struct Renderer::Resources {
     // Set 0's images, each in the layout its binding reads it in (the layout check's input).
     std::vector<BoundImage> boundImages;
     DepthPrepass* depth = nullptr;
-    TransparentDepthPass* transparentDepth = nullptr;
     LightCullingPass* culling = nullptr;
     ShadowPass* shadows = nullptr;
     ForwardPass* forward = nullptr;  // the opaque one
@@ -181,8 +180,8 @@ struct Renderer::Resources {
         draws.forwardTriangles = trianglesOf(sceneData, unblended);
         draws.transparentTriangles = trianglesOf(sceneData, blended);
         depth = passes.add<DepthPrepass>(context, settings.width, settings.height, std::move(prepassLists));
-        transparentDepth = passes.add<TransparentDepthPass>(context, depth->depth(), blended, plan.transparentSpans,
-                                                            settings.width, settings.height);
+        passes.add<TransparentDepthPass>(context, depth->depth(), blended, plan.transparentSpans, settings.width,
+                                         settings.height);
         culling = passes.add<LightCullingPass>(context, gridLayout, usesLightGrid(settings.method), settings.width,
                                             settings.height, cullLights, plan.zBins ? &*plan.zBins : nullptr);
         shadows = passes.add<ShadowPass>(context, plan.shadows, settings.shadows);

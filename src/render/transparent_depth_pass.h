@@ -27,7 +27,7 @@ namespace punctual::render {
 class TransparentDepthPass final : public Pass {
 public:
     // `depth`: the prepass's, in DepthPrepass::kFinalLayout. `blended`: the objects to draw.
-    // `needed`: whether any kernel reads the span this frame (a light grid and blended objects).
+    // `needed`: whether any kernel reads the span this frame (FramePlan::transparentSpans).
     TransparentDepthPass(const vk::Context& context, const vk::Image& depth, std::vector<uint32_t> blended,
                          bool needed, uint32_t width, uint32_t height);
 
@@ -39,8 +39,6 @@ public:
     uint64_t memoryBytes() const override { return needed_ ? span_.size() : 0; }
     // Tests against the prepass's depth without writing it.
     std::vector<ImageUse> imageUses() const override;
-
-    bool needed() const { return needed_; }
 
 private:
     const vk::Image& depth_;
