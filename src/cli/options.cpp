@@ -86,6 +86,9 @@ void checkOptionCombinations(const RenderOptions& options, bool splitsAndLambda)
     checkOutputExtension("--heatmap", options.heatmapPath, ".png", "PNG");
     checkOutputExtension("--shadow-density", options.shadowDensityPath, ".png", "PNG");
     checkOutputExtension("--stats", options.statsPath, ".json", "JSON");
+    if (options.lightRange && !options.lights) {
+        throw Error("--light-range", "sets the range of generated lights: give --lights S,P too");
+    }
     if (options.scenePath && options.sceneName) {
         throw Error("--scene", "a built-in scene and a scene file ('" + *options.scenePath +
                                    "') cannot both be given: choose one");

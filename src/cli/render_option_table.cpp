@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/variant_table.h"
 #include "scene/builtin_scenes.h"
+#include "scene/light_generator.h"
 
 namespace punctual::cli {
 namespace {
@@ -22,6 +23,16 @@ void applyShadowResolution(RenderOptions& o, const std::string& v, Notes&) {
     if (v != "auto" && o.shadows.resolution == ShadowSettings::kAutoResolution) {
         throw Error("--shadow-res", "must be auto or a power of two from 16 to 8192, got 0");
     }
+}
+
+// --light-range: auto, or metres above 0 and at most 10^6.
+LightRange parseLightRangeValue(const std::string& v) {
+    if (v == "auto") return {LightRange::Kind::ConstantDensity, 0.0f};
+    const float metres = parseFloat("--light-range", v);
+    if (!(metres > 0.0f) || metres > 1e6f) {
+        throw Error("--light-range", "must be auto or a range in metres above 0 and at most 10^6, got '" + v + "'");
+    }
+    return {LightRange::Kind::Metres, metres};
 }
 
 void applyShadowFormat(RenderOptions& o, const std::string& v, Notes&) {
@@ -65,6 +76,11 @@ const RenderOptionSpec kRenderOptions[] = {
      "replace the scene's lights with S spot (<= 64) and P point (<= 32)\nlights generated inside its bounds, each "
      "reaching something the\ncamera sees (same seed, same lights; seed 1)",
      [](RenderOptions& o, const std::string& v, Notes&) { o.lights = parseLightCounts(v); }},
+    {"--light-range", "R|auto",
+     "with --lights, the generated lights' range: R metres, or auto: their\ndrawn ranges scaled by "
+     "cbrt(96 / (S + P)), so that about as many\nlights reach a point as 96 do (constant density); "
+     "default: drawn,\n0.25-0.45 x the scene's diagonal",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.lightRange = parseLightRangeValue(v); }},
     {"--size", "WxH", "output size in pixels (default 1280x720)",
      [](RenderOptions& o, const std::string& v, Notes&) { parseSize(v, o.width, o.height); }},
     {"--out", "FILE.png", "write the tone-mapped image",

@@ -17,7 +17,8 @@ Scene loadSceneForOptions(const RenderOptions& options) {
                                                                                          : kDefaultBuiltinScene,
                                                        options.sceneTriangles);
     if (options.lights) {
-        replaceLights(scene, options.lights->spot, options.lights->point, options.lights->seed);
+        replaceLights(scene, options.lights->spot, options.lights->point, options.lights->seed,
+                      options.lightRange.value_or(LightRange{}));
     }
     validateLights(scene.lights, scene.source);
     return scene;

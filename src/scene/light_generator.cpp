@@ -1,6 +1,7 @@
 #include "scene/light_generator.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -64,7 +65,21 @@ glm::vec3 randomLightColor(PortableRandom& random) {
     return glm::mix(glm::vec3(1.0f), hue, saturation);
 }
 
-void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed) {
+float constantDensityRangeScale(uint32_t lights) {
+    if (lights == 0) return 1.0f;
+    return std::cbrt(float(kDensityReferenceLights) / float(lights));
+}
+
+float generatedLightRange(float drawn, const LightRange& rule, uint32_t lights) {
+    switch (rule.kind) {
+        case LightRange::Kind::Drawn: return drawn;
+        case LightRange::Kind::Metres: return rule.metres;
+        case LightRange::Kind::ConstantDensity: return drawn * constantDensityRangeScale(lights);
+    }
+    return drawn;
+}
+
+void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed, const LightRange& range) {
     if (spotCount > kMaxSpot || pointCount > kMaxPoint) throwOverCaps(spotCount, pointCount);
     if (scene.bounds.empty())
         throw Error("--lights", "the scene has no geometry whose bounds could hold generated lights");
@@ -92,6 +107,7 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
     const Bounds widened{glm::vec3(bounds.min.x - margin, bounds.min.y, bounds.min.z - margin),
                          glm::vec3(bounds.max.x + margin, std::max(bounds.max.y, yHigh) + margin, bounds.max.z + margin)};
 
+    const uint32_t lightCount = spotCount + pointCount;
     PortableRandom random(seed);
     auto randomPosition = [&](const Bounds& region) {
         const float x = random.uniform(region.min.x, region.max.x);
@@ -109,7 +125,7 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
         light.color = randomLightColor(random);
         light.outerConeAngle = random.uniform(25.0f, 50.0f) * kDegree;
         light.innerConeAngle = light.outerConeAngle * random.uniform(0.5f, 0.9f);
-        light.range = diagonal * random.uniform(0.25f, 0.45f);
+        light.range = generatedLightRange(diagonal * random.uniform(0.25f, 0.45f), range, lightCount);
         // Spots are brighter per steradian than points (they light a smaller area): on the axis
         // at half the range the illuminance is I * 0.879 / (r/2)^2 = 3.5 * I / r^2, i.e.
         // 0.26-0.53 lux for I = (0.075-0.15) r^2.
@@ -124,7 +140,7 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
         light.position = randomPosition(region);
         light.direction = glm::vec3(0.0f, -1.0f, 0.0f);  // unused by points
         light.color = randomLightColor(random);
-        light.range = diagonal * random.uniform(0.25f, 0.45f);
+        light.range = generatedLightRange(diagonal * random.uniform(0.25f, 0.45f), range, lightCount);
         // 0.09-0.18 lux at half the range (see above), since points overlap more.
         light.intensity = light.range * light.range * random.uniform(0.025f, 0.05f);
         light.castsShadow = true;

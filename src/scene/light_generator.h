@@ -38,6 +38,35 @@ private:
 // largest channel is exactly 1 (then intensity alone sets the peak brightness).
 glm::vec3 randomLightColor(PortableRandom& random);
 
+// How generated lights get their ranges (`--light-range R|auto`).
+struct LightRange {
+    enum class Kind : uint8_t {
+        Drawn,            // as drawn: 0.25-0.45 x the bounds diagonal (the default)
+        Metres,           // every light `metres`
+        ConstantDensity,  // as drawn, scaled so the lights reaching a point stay about as many as
+                          // kDensityReferenceLights put there (auto)
+    };
+    Kind kind = Kind::Drawn;
+    float metres = 0.0f;
+};
+
+// The light count whose drawn ranges set the density `auto` keeps: the design notes' 64 + 32.
+inline constexpr uint32_t kDensityReferenceLights = 64 + 32;
+
+// The range scale that keeps the density of lights reaching a point: a point lies in a light's
+// reach with a probability proportional to the volume it reaches, r^3 for a sphere and for a
+// cone of a given angle alike, so `lights` lights reach it about as often as the reference count
+// when lights x r^3 stays the same: r scales by cbrt(kDensityReferenceLights / lights). 1 for the
+// reference count (exactly: cbrt(1)), 1 for none. "About": a reach clipped by the scene's bounds
+// or the camera's view counts less than its volume, so below the reference count, where ranges
+// grow past the scene, fewer lights reach a point than the reference put there (measured on the
+// hall: 17.8 a pixel with 96 drawn lights, 12.0 with 48 auto, 4.1 with 12; bench/RESULTS.md).
+// The rule is for growing counts, whose shrinking ranges the bounds clip less.
+float constantDensityRangeScale(uint32_t lights);
+
+// The range of a generated light drawn at `drawn` metres under `rule`, among `lights` lights.
+float generatedLightRange(float drawn, const LightRange& rule, uint32_t lights);
+
 // Replaces ALL of the scene's lights, directional ones included (a generated set is meant to be
 // the scene's whole lighting, so results depend only on S, P and the seed), with `spotCount`
 // spots followed by `pointCount` points:
@@ -53,12 +82,14 @@ glm::vec3 randomLightColor(PortableRandom& random);
 //    its lights inside.
 //  - spots shine down, tilted randomly up to ~35 degrees from vertical; outer cone 25-50 degrees,
 //    inner cone 0.5-0.9 x outer.
-//  - ranges 0.25-0.45 x the bounds diagonal, so lights overlap whatever the scene's size.
+//  - ranges 0.25-0.45 x the bounds diagonal, so lights overlap whatever the scene's size; or as
+//    `range` says (generatedLightRange), before the reach test, so every light still reaches
+//    something the camera sees with the range it keeps.
 //  - intensities proportional to range^2: the illuminance at a given fraction of the range is then
 //    independent of the scene's scale (scaling a scene by s scales ranges by s, intensities by s^2).
 // Throws Error("--lights", ...) when the counts exceed the per-frame caps (64 spot, 32 point) or
 // the scene has no geometry to take bounds from. Call Scene::computeBounds() first.
-void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed);
+void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed, const LightRange& range = {});
 
 // Sets every spot and point light's range to `fraction` x the scene's bounds diagonal and scales
 // its intensity by the square of the change, as replaceLights ties them: each light keeps its

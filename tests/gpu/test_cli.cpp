@@ -185,6 +185,10 @@ TEST(Cli, BadOptionsFailCleanly) {
     // Conflicting options, and outputs named for a format punctual does not write there.
     expectCleanFailure(folder, "render --cascade-lambda 0.5 --cascade-splits 0.1,0.2,0.4", "conflicts with --cascade-splits");
     expectCleanFailure(folder, "render --heatmap h.webp", "writes PNG there");
+    expectCleanFailure(folder, "render --light-range auto", "give --lights S,P too");
+    for (const char* range : {"0", "-2", "nan", "inf", "1e7", "5m", ""}) {
+        expectCleanFailure(folder, std::string("render --lights 4,4 --light-range '") + range + "'", "--light-range");
+    }
     // (expectCleanFailure adds its own --out and --stats, which would win over these.)
     for (const auto& [args, mention] : {std::pair<std::string, std::string>{"render --out x.jpg", "'x.jpg' is named for JPEG (.jpg) but punctual writes PNG there"},
                                         {"render --stats s.txt", "is named for text (.txt) but punctual writes JSON there"}}) {

@@ -327,5 +327,60 @@ TEST(LightGen, ParseOverCapMessage) {
     }
 }
 
+// ---- --light-range ----------------------------------------------------------------------------
+
+TEST(LightGen, ConstantDensityScaleKnownAnswers) {
+    // r scales by cbrt(96 / N): the reference count keeps its ranges exactly, 1/8 of it doubles
+    // them, 8 times it halves them (a point lies in N lights' reach about N r^3 / V times).
+    EXPECT_EQ(constantDensityRangeScale(kDensityReferenceLights), 1.0f);
+    EXPECT_EQ(constantDensityRangeScale(12), 2.0f);
+    EXPECT_FLOAT_EQ(constantDensityRangeScale(768), 0.5f);
+    EXPECT_FLOAT_EQ(constantDensityRangeScale(8192), std::cbrt(96.0f / 8192.0f));
+    EXPECT_EQ(constantDensityRangeScale(0), 1.0f);
+    EXPECT_EQ(generatedLightRange(3.0f, {}, 12), 3.0f);
+    EXPECT_EQ(generatedLightRange(3.0f, {LightRange::Kind::Metres, 7.5f}, 12), 7.5f);
+    EXPECT_EQ(generatedLightRange(3.0f, {LightRange::Kind::ConstantDensity, 0.0f}, 12), 6.0f);
+}
+
+TEST(LightGen, AutoRangeAtTheReferenceCountIsTheDrawnRange) {
+    // 64 + 32 lights with auto are the default lights bit for bit: the default density does not move.
+    Scene drawn = hall();
+    Scene automatic = hall();
+    replaceLights(drawn, 64, 32, 3);
+    replaceLights(automatic, 64, 32, 3, {LightRange::Kind::ConstantDensity, 0.0f});
+    ASSERT_EQ(drawn.lights.size(), 96u);
+    for (size_t i = 0; i < drawn.lights.size(); ++i) EXPECT_TRUE(identical(drawn.lights[i], automatic.lights[i])) << i;
+}
+
+TEST(LightGen, AutoRangeScalesFewerLightsUpAndKeepsTheirIlluminanceShare) {
+    // A scene without geometry in view redraws nothing, so the same seed draws the same lights
+    // and only the ranges (and with them the intensities, as range^2) change.
+    Scene drawn = hall();
+    Scene automatic = hall();
+    replaceLights(drawn, 8, 4, 3);
+    replaceLights(automatic, 8, 4, 3, {LightRange::Kind::ConstantDensity, 0.0f});
+    ASSERT_EQ(automatic.lights.size(), 12u);
+    for (size_t i = 0; i < drawn.lights.size(); ++i) {
+        const Light& d = drawn.lights[i];
+        const Light& a = automatic.lights[i];
+        EXPECT_EQ(a.range, d.range * 2.0f) << i;  // cbrt(96 / 12) = 2 exactly
+        EXPECT_NEAR(a.intensity / d.intensity, 4.0f, 1e-5f) << i;
+        EXPECT_TRUE(sameBits(a.position, d.position)) << i;
+    }
+}
+
+TEST(LightGen, FixedRangeGivesEveryLightThatRange) {
+    Scene scene = hall();
+    replaceLights(scene, 6, 6, 9, {LightRange::Kind::Metres, 4.0f});
+    ASSERT_EQ(scene.lights.size(), 12u);
+    for (const Light& light : scene.lights) {
+        EXPECT_EQ(light.range, 4.0f);
+        // Intensity still range^2 times the drawn factor (spots 0.075-0.15, points 0.025-0.05).
+        const float factor = light.intensity / 16.0f;
+        EXPECT_GE(factor, light.type == LightType::Spot ? 0.075f * 0.9999f : 0.025f * 0.9999f);
+        EXPECT_LE(factor, light.type == LightType::Spot ? 0.15f * 1.0001f : 0.05f * 1.0001f);
+    }
+}
+
 }  // namespace
 }  // namespace punctual
