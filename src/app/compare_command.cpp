@@ -9,12 +9,14 @@
 #include "metrics/image_diff.h"
 #include "reference/embree_scene.h"
 #include "reference/shadow_validation.h"
+#include "report/frame_stats.h"
 #include "render/renderer.h"
 #include "vk/context.h"
 
 namespace punctual::app {
 
-using namespace cli;  // the command line (src/cli)
+using namespace cli;     // the command line (src/cli)
+using namespace report;  // the lines the commands print about a frame (src/report)
 namespace {
 
 std::string usage() {
@@ -71,7 +73,12 @@ int runCompareCommand(const std::vector<std::string>& args) {
         settings.method = method;
         settings.collectShadowFactors = options.shadows.enabled;
         render::Renderer renderer(context, scene, settings);
-        if (!headerPrinted) printHeader(renderer.passNames());
+        if (!headerPrinted) {
+            // The same lights are shadowed for every method: said once, above the table.
+            const std::string unshadowed = unshadowedLightsLine(renderer);
+            if (!unshadowed.empty()) std::printf("%s\n\n", unshadowed.c_str());
+            printHeader(renderer.passNames());
+        }
         const render::FrameResult result = renderer.render(options.frames, 1);
         if (method == render::referenceMethod()) brute = result.image;
         const ImageDifference error = compareImages(result.image, brute);

@@ -71,6 +71,8 @@ void printFrameSummary(const Scene& scene, const vk::Context& context, const ren
                     shadows.shadowedSpots, shadows.shadowedPoints, pointShadowLayoutName(settings.shadows.pointLayout),
                     shadows.viewsRendered, shadows.viewsSkipped, double(renderer.shadowMemoryBytes()) / 1048576.0,
                     shadowFormatName(settings.shadows.format), shadowFilterName(settings.shadows.filter));
+        const std::string unshadowed = unshadowedLightsLine(renderer);
+        if (!unshadowed.empty()) std::printf("%s\n", unshadowed.c_str());
         std::printf("shadow resolution: %s; views at %s texels\n",
                     settings.shadows.autoResolution() ? "auto" : "fixed", describeShadowTiers(shadows).c_str());
         if (shadows.cascades.count > 0) {

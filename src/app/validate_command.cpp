@@ -8,6 +8,7 @@
 #include "cli/output_paths.h"
 #include "app/reference_command.h"
 #include "cli/scene_source.h"
+#include "report/frame_stats.h"
 #include "report/validation_report.h"
 #include "core/error.h"
 #include "core/output_files.h"
@@ -129,6 +130,8 @@ void printValidationSummary(const Scene& scene, const RenderOptions& options, co
                 shadowFilterName(shadows.filter), shadowResolutionName(shadows).c_str(),
                 describeShadowTiers(renderer.shadowPlan()).c_str(), shadowFormatName(shadows.format),
                 pointShadowLayoutName(shadows.pointLayout));
+    const std::string unshadowed = unshadowedLightsLine(renderer);
+    if (!unshadowed.empty()) std::printf("%s\n", unshadowed.c_str());
     line("spots", validation.spots);
     line("points", validation.points);
     if (validation.sun) {

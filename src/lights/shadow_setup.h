@@ -113,6 +113,14 @@ struct ShadowPlan {
     uint32_t shadowedSpots = 0;     // spot lights with a view
     uint32_t shadowedPoints = 0;    // point lights with six
     uint32_t droppedByCap = 0;      // shadow-casting lights over the caps (they stay unshadowed)
+
+    // Of a frame's `punctualLights` spot and point lights, those without a shadow map: the ones
+    // over the caps (droppedByCap) and the ones that cast none (their scene light says so, or
+    // shadows are off). Validation compares only the shadowed ones, so its figures say nothing
+    // of these.
+    uint32_t unshadowedLights(uint32_t punctualLights) const {
+        return punctualLights - shadowedSpots - shadowedPoints;
+    }
     uint32_t viewsRendered = 0;     // views with storage and at least one caster
     uint32_t viewsSkipped = 0;      // the others (no caster, or no visible receiver in auto mode)
     AtlasLayout atlas;              // spot views and point slices

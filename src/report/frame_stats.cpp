@@ -183,6 +183,7 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
         {"shadowed_spots", plan.shadowedSpots},
         {"shadowed_points", plan.shadowedPoints},
         {"dropped_by_cap", plan.droppedByCap},
+        {"unshadowed_lights", plan.unshadowedLights(renderer.lights().spotCount + renderer.lights().pointCount)},
         {"views_rendered", plan.viewsRendered},
         {"views_skipped", plan.viewsSkipped},
         // The same counts under the names of the shadow design: a spot's view is its one face.
@@ -210,6 +211,18 @@ std::string timingTable(const render::PassTimings& ms) {
     for (const auto& [pass, passMs] : ms.passes) row(pass.c_str(), passMs);
     row("total", ms.total);
     return table;
+}
+
+std::string unshadowedLightsLine(const render::Renderer& renderer) {
+    const ShadowSettings& settings = renderer.settings().shadows;
+    const ShadowPlan& plan = renderer.shadowPlan();
+    const uint32_t lights = renderer.lights().spotCount + renderer.lights().pointCount;
+    const uint32_t unshadowed = plan.unshadowedLights(lights);
+    if (!settings.enabled || unshadowed == 0) return "";
+    return "lights without a shadow: " + std::to_string(unshadowed) + " of " + std::to_string(lights) + " (" +
+           std::to_string(plan.droppedByCap) + " over --shadowed " + std::to_string(settings.maxShadowedSpots) + "," +
+           std::to_string(settings.maxShadowedPoints) + ", " + std::to_string(unshadowed - plan.droppedByCap) +
+           " cast none); the shadow figures count the shadowed only";
 }
 
 }  // namespace punctual::report

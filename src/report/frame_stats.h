@@ -31,4 +31,9 @@ nlohmann::json geometryStatsJson(const render::Renderer& renderer, const Scene& 
 
 std::string timingTable(const render::PassTimings& ms);
 
+// "lights without a shadow: 84 of 96 (84 over --shadowed 8,4, 0 cast none); the shadow figures
+// count the shadowed only", or "" when every spot and point light of the frame has a shadow or
+// shadows are off. Printed by render, compare and validate.
+std::string unshadowedLightsLine(const render::Renderer& renderer);
+
 }  // namespace punctual::report

@@ -74,6 +74,13 @@ nlohmann::json validationJson(const reference::ShadowValidation& validation, con
         lights.push_back(entry);
     }
     report["lights"] = lights;
+    const FrameLights& frameLights = renderer.lights();
+    const ShadowPlan& plan = renderer.shadowPlan();
+    // Lights the comparison leaves out because they have no shadow map (over --shadowed, or casting none).
+    report["unshadowed_lights"] = {
+        {"count", plan.unshadowedLights(frameLights.spotCount + frameLights.pointCount)},
+        {"over_cap", plan.droppedByCap},
+        {"of", frameLights.spotCount + frameLights.pointCount}};
     if (validation.sun) {
         // The sun: overall, per cascade (by the cascade the GPU read), and the split band (pixels
         // within one texel of where the cascade read changes).
@@ -159,7 +166,9 @@ std::string validationHtml(const nlohmann::json& report) {
          << " table{border-collapse:collapse} td,th{border:1px solid #444;padding:2px 8px;text-align:right}"
          << " .maps img{max-width:31%}</style></head><body>\n"
          << "<h1>Shadows: GPU against Embree</h1>\n<p>Scene: " << report["scene"].get<std::string>() << ". Settings: "
-         << report["settings"].dump() << ".<br>Rule: " << report["rule"].get<std::string>() << ".</p>\n"
+         << report["settings"].dump() << ".<br>Rule: " << report["rule"].get<std::string>() << ".<br>Lights without a "
+         << "shadow (not compared): " << report["unshadowed_lights"]["count"] << " of " << report["unshadowed_lights"]["of"]
+         << ", " << report["unshadowed_lights"]["over_cap"] << " of them over --shadowed.</p>\n"
          << "<p><img src=\"gpu.png\" alt=\"GPU\"><img src=\"reference.png\" alt=\"Embree reference\"><br>"
          << "Left: GPU. Right: Embree reference (ray-traced shadows).</p>\n"
          << "<table><tr><th>light</th><th>type</th><th>compared</th><th>false shadow</th><th>false lit</th>"

@@ -105,6 +105,40 @@ TEST(ValidateCli, AnEdgeBandOfScreenPixelsDoesNotWidenWithTheTexels) {
               t["outside_edge_band"]["false_lit"].get<int>() + t["outside_edge_band"]["false_shadow"].get<int>());
 }
 
+// Lights left without a shadow (over --shadowed) are counted: validate's report and its summary,
+// render's stats and summary, and compare's header all say how many the shadow figures leave out.
+TEST(ValidateCli, LightsWithoutAShadowAreCountedWhereverShadowsAreReported) {
+    testing::TempFolder folder;
+    const std::string dir = folder.file("validation");
+    const RunResult run = runPunctual(folder, "validate --validate --size 96x54 --shadowed 8,4 --out-dir '" + dir + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json report = nlohmann::json::parse(readText(dir + "/report.json"));
+    EXPECT_EQ(report["lights"].size(), 12u);  // the shadowed ones are compared
+    EXPECT_EQ(report["unshadowed_lights"]["count"], 84);
+    EXPECT_EQ(report["unshadowed_lights"]["over_cap"], 84);
+    EXPECT_EQ(report["unshadowed_lights"]["of"], 96);
+    EXPECT_NE(readText(dir + "/report.html").find("Lights without a shadow (not compared): 84 of 96"), std::string::npos);
+    const std::string line = "lights without a shadow: 84 of 96 (84 over --shadowed 8,4, 0 cast none)";
+    EXPECT_NE(run.out.find(line), std::string::npos) << run.out;
+
+    const std::string statsPath = folder.file("stats.json");
+    const RunResult render = runPunctual(folder, "render --validate --size 96x54 --shadowed 8,4 --stats '" + statsPath + "'");
+    ASSERT_EQ(render.exitCode, 0) << render.err;
+    EXPECT_EQ(nlohmann::json::parse(readText(statsPath))["shadows"]["unshadowed_lights"], 84);
+    EXPECT_NE(render.out.find(line), std::string::npos) << render.out;
+
+    const RunResult compare = runPunctual(folder, "compare --validate --size 64x36 --shadowed 8,4 --lights 16,8");
+    ASSERT_EQ(compare.exitCode, 0) << compare.err;
+    EXPECT_NE(compare.out.find("lights without a shadow: 12 of 24 (12 over --shadowed 8,4, 0 cast none)"), std::string::npos)
+        << compare.out;
+
+    // With every light shadowed, none is reported and the line is not printed.
+    const RunResult all = runPunctual(folder, "render --validate --size 96x54 --stats '" + statsPath + "'");
+    ASSERT_EQ(all.exitCode, 0) << all.err;
+    EXPECT_EQ(nlohmann::json::parse(readText(statsPath))["shadows"]["unshadowed_lights"], 0);
+    EXPECT_EQ(all.out.find("lights without a shadow"), std::string::npos);
+}
+
 TEST(ValidateCli, ABadEdgeBandFailsWithOneLine) {
     testing::TempFolder folder;
     for (const char* value : {"-1", "65", "x", "1px"}) {
