@@ -14,6 +14,7 @@
 #include "scene/outdoor_scene.h"
 #include "scene/rooms_scene.h"
 #include "scene/scene.h"
+#include "scene/warehouse_scene.h"
 
 namespace punctual {
 
@@ -28,13 +29,15 @@ struct BuiltinScene {
     bool sized() const { return defaultTriangles != 0; }
 };
 
-inline constexpr std::array<BuiltinScene, 3> kBuiltinScenes = {{
+inline constexpr std::array<BuiltinScene, 4> kBuiltinScenes = {{
     {[](uint64_t) { return makeDefaultScene(); }, "hall", "a 40 m x 30 m hall of walls, pillars and crates, 96 lamps"},
     {[](uint64_t) { return makeOutdoorScene(); }, "outdoor",
      "a street in low sun, casters 0.9 to 300 m away, 32 lamps"},
     {makeRoomsScene, "rooms",
      "furnished rooms, 10^4 to 10^7 triangles (--scene-triangles), 96 lamps, a sun",
      rooms_scene::kDefaultTriangles},
+    {[](uint64_t) { return makeWarehouseScene(); }, "warehouse",
+     "8 x 8 rooms of racks behind doorways, seen from above, 4,096 lamps"},
 }};
 static_assert(namesAreUnique(kBuiltinScenes));
 

@@ -10,6 +10,7 @@
 
 #include "gpu_test_support.h"
 #include "scene/outdoor_scene.h"
+#include "scene/warehouse_scene.h"
 
 namespace punctual {
 namespace {
@@ -53,6 +54,29 @@ TEST(SceneCli, OutdoorRendersLitAndValidationClean) {
     EXPECT_EQ(stats["lights"]["directional"].get<int>(), 1);
     EXPECT_EQ(stats["lights"]["spot"].get<int>(), 16);
     EXPECT_EQ(stats["lights"]["point"].get<int>(), 16);
+}
+
+// The warehouse holds 4,096 lamps; a frame keeps the most important within the capacity and says
+// how many it dropped. With shadows on, every kept light is shadowed, and rendering is clean.
+TEST(SceneCli, WarehouseKeepsTheMostImportantLampsAndSaysHowManyItDropped) {
+    testing::TempFolder folder;
+    const std::string png = folder.file("warehouse.png");
+    const std::string json = folder.file("stats.json");
+    const RunResult run = runPunctual(
+        folder, "render --scene warehouse --validate --size 160x90 --out " + quoted(png) + " --stats " + quoted(json));
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json stats = nlohmann::json::parse(readText(json));
+    EXPECT_EQ(stats["scene"].get<std::string>(), warehouse_scene::kSource);
+    const nlohmann::json& lights = stats["lights"];
+    EXPECT_EQ(lights["in_scene"].get<int>(), 4096);
+    EXPECT_EQ(lights["spot"].get<int>(), PUNCTUAL_MAX_SPOT_LIGHTS);  // the capacity, full
+    EXPECT_EQ(lights["point"].get<int>(), PUNCTUAL_MAX_POINT_LIGHTS);
+    const int dropped = lights["dropped_by_cap"].get<int>();
+    EXPECT_EQ(dropped + lights["culled_by_frustum"].get<int>() + PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS, 4096);
+    EXPECT_NE(run.out.find(std::to_string(dropped) + " over the caps"), std::string::npos) << run.out;
+    const ImageRgba8 image = readPng(png);
+    testing::saveTestImage("scene_cli_warehouse", image);
+    EXPECT_GT(testing::fractionBrighterThan(image, 20), 0.02);  // the kept lamps light some rooms
 }
 
 TEST(SceneCli, OutdoorTakesGeneratedLights) {
@@ -100,7 +124,7 @@ TEST(SceneCli, AnUnknownSceneFailsWithOneLineListingTheNames) {
     testing::TempFolder folder;
     const std::string png = quoted(folder.file("x.png"));
     const std::string dir = quoted(folder.file("dir"));
-    const std::string names = "expected hall, outdoor or rooms, got 'nosuch'";
+    const std::string names = "expected hall, outdoor, rooms or warehouse, got 'nosuch'";
     expectUserErrorAndNoOutput(folder, "render --scene nosuch --out " + png, names);
     expectUserErrorAndNoOutput(folder, "reference --scene nosuch --out " + png, names);
     expectUserErrorAndNoOutput(folder, "compare --scene nosuch", names);
