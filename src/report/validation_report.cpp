@@ -74,13 +74,11 @@ nlohmann::json validationJson(const reference::ShadowValidation& validation, con
         lights.push_back(entry);
     }
     report["lights"] = lights;
-    const FrameLights& frameLights = renderer.lights();
-    const ShadowPlan& plan = renderer.shadowPlan();
     // Lights the comparison leaves out because they have no shadow map (over --shadowed, or casting none).
-    report["unshadowed_lights"] = {
-        {"count", plan.unshadowedLights(frameLights.spotCount + frameLights.pointCount)},
-        {"over_cap", plan.droppedByCap},
-        {"of", frameLights.spotCount + frameLights.pointCount}};
+    const uint32_t punctualLights = renderer.lights().spotCount + renderer.lights().pointCount;
+    report["unshadowed_lights"] = {{"count", renderer.shadowPlan().unshadowedLights(punctualLights)},
+                                   {"over_cap", renderer.shadowPlan().droppedByCap},
+                                   {"of", punctualLights}};
     if (validation.sun) {
         // The sun: overall, per cascade (by the cascade the GPU read), and the split band (pixels
         // within one texel of where the cascade read changes).
