@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "scene/default_scene.h"
+#include "shading.h"
 
 namespace punctual {
 
@@ -43,6 +44,10 @@ float farthestViewDepth(const Bounds& bounds, const glm::mat4& view) {
         farthest = std::max(farthest, -(view * glm::vec4(p, 1.0f)).z);
     }
     return farthest;
+}
+
+float intensityForIlluminance(float lux, float distance, float range) {
+    return lux / gpu::distanceAttenuation(distance * distance, 1.0f / (range * range));
 }
 
 }  // namespace punctual

@@ -33,6 +33,10 @@ Material plainMaterial(const char* name, glm::vec3 color, float metallic, float 
 // `facing`, then moved to the centre of its extents. Call Scene::computeBounds() afterwards.
 void addBoxes(Scene& scene, const std::vector<BoxSpec>& boxes);
 
+// The intensity (cd) that gives `lux` at `distance` from a light of `range`, by the renderer's
+// own distance attenuation (shaders/shared/shading.h): how the built-in scenes set their lamps.
+float intensityForIlluminance(float lux, float distance, float range);
+
 // The largest view depth (distance along the view axis) of the corners of `bounds`: a far
 // plane just beyond it keeps all of the scene in view.
 float farthestViewDepth(const Bounds& bounds, const glm::mat4& view);

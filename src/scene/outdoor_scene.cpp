@@ -149,12 +149,6 @@ void addCamera(Scene& scene) {
 
 constexpr float kDegree = 0.0174532925f;
 
-// The intensity (cd) that gives `lux` at `distance` from a light of `range`, by the renderer's
-// own distance attenuation (shaders/shared/shading.h).
-float intensityFor(float lux, float distance, float range) {
-    return lux / gpu::distanceAttenuation(distance * distance, 1.0f / (range * range));
-}
-
 // The sun: 36 degrees above the horizon (asin(0.8 / |(1, 0.8, 0.45)|)), behind the camera and to
 // its right, so shadows fall away from the eye and to the left, long and across the street, and
 // no shadow edge follows a box's axis. 2.5 lux (not the real 100,000: nothing here is exposed for
@@ -188,7 +182,7 @@ void addStreetLamps(Scene& scene, PortableRandom& random) {
         light.innerConeAngle = 30.0f * kDegree;
         const float axisDistance = kLampHeadY / -light.direction.y;
         light.range = 2.0f * axisDistance;
-        light.intensity = intensityFor(random.uniform(2.0f, 4.0f), axisDistance, light.range);
+        light.intensity = intensityForIlluminance(random.uniform(2.0f, 4.0f), axisDistance, light.range);
         light.castsShadow = true;
         scene.lights.push_back(light);
     }
@@ -206,7 +200,7 @@ void addBollardLights(Scene& scene, PortableRandom& random) {
         light.color = randomLightColor(random);
         light.range = 6.0f;
         const float distance = glm::length(glm::vec2(1.5f, height));
-        light.intensity = intensityFor(random.uniform(1.5f, 3.0f), distance, light.range);
+        light.intensity = intensityForIlluminance(random.uniform(1.5f, 3.0f), distance, light.range);
         light.castsShadow = true;
         scene.lights.push_back(light);
     }

@@ -296,11 +296,6 @@ bool insideView(const Camera& camera, const glm::vec3& p, float margin) {
            std::abs(focal * v.y) <= margin * depth;
 }
 
-// The intensity (cd) giving `lux` at `distance` from a light of `range` (shading.h's attenuation).
-float intensityFor(float lux, float distance, float range) {
-    return lux / gpu::distanceAttenuation(distance * distance, 1.0f / (range * range));
-}
-
 // 64 spots and 32 points spread evenly over the rooms whose middle the camera sees, each at an
 // inner corner of the room's furniture cells (clear of every piece: the pieces stand at cell
 // centres and reach at most 0.83 m from them, the corners lie 1.41 m away). Spots hang 2.7 m up
@@ -343,10 +338,10 @@ void addLamps(Scene& scene, const Layout& layout) {
             light.outerConeAngle = random.uniform(35.0f, 55.0f) * kDegree;
             light.innerConeAngle = 0.6f * light.outerConeAngle;
             light.range = 7.0f;
-            light.intensity = intensityFor(random.uniform(1.5f, 3.0f) * dimming, 2.7f, light.range);
+            light.intensity = intensityForIlluminance(random.uniform(1.5f, 3.0f) * dimming, 2.7f, light.range);
         } else {
             light.range = 5.0f;
-            light.intensity = intensityFor(random.uniform(1.0f, 2.0f) * dimming, 2.0f, light.range);
+            light.intensity = intensityForIlluminance(random.uniform(1.0f, 2.0f) * dimming, 2.0f, light.range);
         }
         scene.lights.push_back(light);
     }

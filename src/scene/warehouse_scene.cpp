@@ -7,7 +7,6 @@
 
 #include "scene/box_layout.h"
 #include "scene/light_generator.h"
-#include "shading.h"
 
 namespace punctual {
 namespace {
@@ -82,12 +81,6 @@ void addCamera(Scene& scene) {
     scene.cameraFromFile = true;
 }
 
-// The intensity (cd) that gives `lux` at `distance` from a light of `range`, by the renderer's
-// own distance attenuation (shaders/shared/shading.h).
-float intensityFor(float lux, float distance, float range) {
-    return lux / gpu::distanceAttenuation(distance * distance, 1.0f / (range * range));
-}
-
 // Per room, a 4 x 8 grid of spots 3.2 m up shining straight down (outer cone 40-55 degrees, range
 // 5 m, 0.08-0.16 lux on the floor below each), and under them a 4 x 8 grid of points 2.6 m up
 // (range 3.5 m, 0.05-0.1 lux below each). A floor point lies in about 11 spots' cones (each
@@ -97,35 +90,36 @@ float intensityFor(float lux, float distance, float range) {
 void addLamps(Scene& scene) {
     constexpr float kDegree = 0.0174532925f;
     PortableRandom random(0x7761726568ull);  // "wareh": any fixed value works
+    // A lamp of room (i, j) hanging at `position`, shining down, its colour drawn first.
+    const auto lamp = [&](LightType type, const char* kind, uint32_t i, uint32_t j, uint32_t k, glm::vec3 position) {
+        Light light;
+        light.name = "room " + std::to_string(i) + "," + std::to_string(j) + " " + kind + " " + std::to_string(k);
+        light.type = type;
+        light.position = position;
+        light.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+        light.color = randomLightColor(random);
+        light.castsShadow = true;
+        return light;
+    };
     std::vector<Light> spots;
     std::vector<Light> points;
     for (uint32_t i = 0; i < kRoomsPerSide; ++i) {
         for (uint32_t j = 0; j < kRoomsPerSide; ++j) {
             const glm::vec2 corner(float(i) * kRoomSize, float(j) * kRoomSize);
             for (uint32_t k = 0; k < kSpotsPerRoom; ++k) {
-                Light light;
-                light.name = "room " + std::to_string(i) + "," + std::to_string(j) + " spot " + std::to_string(k);
-                light.type = LightType::Spot;
-                light.position = glm::vec3(corner.x + 1.25f + 2.5f * float(k % 4), 3.2f, corner.y + 0.625f + 1.25f * float(k / 4));
-                light.direction = glm::vec3(0.0f, -1.0f, 0.0f);
-                light.color = randomLightColor(random);
+                Light light = lamp(LightType::Spot, "spot", i, j, k,
+                                   glm::vec3(corner.x + 1.25f + 2.5f * float(k % 4), 3.2f, corner.y + 0.625f + 1.25f * float(k / 4)));
                 light.outerConeAngle = random.uniform(40.0f, 55.0f) * kDegree;
                 light.innerConeAngle = light.outerConeAngle * 0.6f;
                 light.range = 5.0f;
-                light.intensity = intensityFor(random.uniform(0.08f, 0.16f), 3.2f, light.range);
-                light.castsShadow = true;
+                light.intensity = intensityForIlluminance(random.uniform(0.08f, 0.16f), 3.2f, light.range);
                 spots.push_back(light);
             }
             for (uint32_t k = 0; k < kPointsPerRoom; ++k) {
-                Light light;
-                light.name = "room " + std::to_string(i) + "," + std::to_string(j) + " point " + std::to_string(k);
-                light.type = LightType::Point;
-                light.position = glm::vec3(corner.x + 1.25f + 2.5f * float(k % 4), 2.6f, corner.y + 1.15f + 1.1f * float(k / 4));
-                light.direction = glm::vec3(0.0f, -1.0f, 0.0f);
-                light.color = randomLightColor(random);
+                Light light = lamp(LightType::Point, "point", i, j, k,
+                                   glm::vec3(corner.x + 1.25f + 2.5f * float(k % 4), 2.6f, corner.y + 1.15f + 1.1f * float(k / 4)));
                 light.range = 3.5f;
-                light.intensity = intensityFor(random.uniform(0.05f, 0.1f), 2.6f, light.range);
-                light.castsShadow = true;
+                light.intensity = intensityForIlluminance(random.uniform(0.05f, 0.1f), 2.6f, light.range);
                 points.push_back(light);
             }
         }
