@@ -79,16 +79,18 @@ float generatedLightRange(float drawn, const LightRange& rule, uint32_t lights) 
     return drawn;
 }
 
-void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed, const LightRange& range) {
-    if (spotCount > kMaxSpot || pointCount > kMaxPoint) throwOverCaps(spotCount, pointCount);
-    if (scene.bounds.empty())
-        throw Error("--lights", "the scene has no geometry whose bounds could hold generated lights");
+namespace {
 
-    const Bounds& bounds = scene.bounds;
+// Where a generated light's first draw goes, and where its redraws go when the first cannot reach
+// anything the camera sees (replaceLights).
+struct PlacementRegions {
+    Bounds first;
+    Bounds widened;
+};
+
+PlacementRegions placementRegions(const Bounds& bounds, float diagonal) {
     const glm::vec3 size = bounds.size();
     const float horizontal = std::max(size.x, size.z);
-    const float diagonal = std::max(glm::length(size), 1e-3f);
-
     // Height band: above the lowest 10% (the floor and what stands on it) and below the top 10%
     // (a ceiling). A flat scene (a terrain, a single quad) has no useful height: hang the lights at
     // a height proportional to its horizontal size instead, as if above a floor.
@@ -98,14 +100,27 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
         yLow = bounds.min.y + 0.05f * horizontal;
         yHigh = bounds.min.y + 0.2f * horizontal;
     }
-    // Where a light's first draw goes, and where its redraws go when the first cannot reach
-    // anything the camera sees: the bounds widened by a margin on every side but the bottom
-    // (below the lowest surface a light reaches nothing a camera above it sees), so that a
-    // closed model, which fills its own bounds, has lights around it.
+    // The redraws' region: the bounds widened by a margin on every side but the bottom (below the
+    // lowest surface a light reaches nothing a camera above it sees), so that a closed model, which
+    // fills its own bounds, has lights around it.
     const float margin = kRedrawMargin * diagonal;
-    const Bounds first{glm::vec3(bounds.min.x, yLow, bounds.min.z), glm::vec3(bounds.max.x, yHigh, bounds.max.z)};
-    const Bounds widened{glm::vec3(bounds.min.x - margin, bounds.min.y, bounds.min.z - margin),
-                         glm::vec3(bounds.max.x + margin, std::max(bounds.max.y, yHigh) + margin, bounds.max.z + margin)};
+    return {Bounds{glm::vec3(bounds.min.x, yLow, bounds.min.z), glm::vec3(bounds.max.x, yHigh, bounds.max.z)},
+            Bounds{glm::vec3(bounds.min.x - margin, bounds.min.y, bounds.min.z - margin),
+                   glm::vec3(bounds.max.x + margin, std::max(bounds.max.y, yHigh) + margin, bounds.max.z + margin)}};
+}
+
+}  // namespace
+
+void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed, const LightRange& range) {
+    if (spotCount > kMaxSpot || pointCount > kMaxPoint) throwOverCaps(spotCount, pointCount);
+    if (scene.bounds.empty())
+        throw Error("--lights", "the scene has no geometry whose bounds could hold generated lights");
+
+    const Bounds& bounds = scene.bounds;
+    const float diagonal = std::max(glm::length(bounds.size()), 1e-3f);
+    const PlacementRegions regions = placementRegions(bounds, diagonal);
+    const Bounds& first = regions.first;
+    const Bounds& widened = regions.widened;
 
     const uint32_t lightCount = spotCount + pointCount;
     PortableRandom random(seed);
