@@ -17,6 +17,7 @@
 //    the README's synopsis, which scripts/readme-synopsis.sh rewrites from `punctual render --help`.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -86,16 +87,16 @@ struct Variant {
 };
 
 std::vector<std::string> filesNaming(const std::map<std::string, std::string>& files, const std::vector<std::string>& tokens) {
+    // Whole identifiers only: ShadowFilter::Tent is not ShadowFilter::Tent5. Compiled once a call.
+    std::vector<std::regex> wholeTokens;
+    for (const std::string& token : tokens) {
+        wholeTokens.emplace_back("(^|[^\\w])" + std::regex_replace(token, std::regex("[.]"), "\\.") + "($|[^\\w])");
+    }
     std::vector<std::string> naming;
     for (const auto& [path, text] : files) {
-        for (const std::string& token : tokens) {
-            // Whole identifiers only: ShadowFilter::Tent is not ShadowFilter::Tent5.
-            const std::regex whole("(^|[^\\w])" + std::regex_replace(token, std::regex("[.]"), "\\.") + "($|[^\\w])");
-            if (std::regex_search(text, whole)) {
-                naming.push_back(path);
-                break;
-            }
-        }
+        const bool names = std::any_of(wholeTokens.begin(), wholeTokens.end(),
+                                       [&](const std::regex& whole) { return std::regex_search(text, whole); });
+        if (names) naming.push_back(path);
     }
     return naming;
 }
