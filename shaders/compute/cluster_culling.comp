@@ -39,6 +39,7 @@ layout(local_size_x_id = PUNCTUAL_SPEC_TILE_THREADS) in;
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 16u;
 layout(constant_id = PUNCTUAL_SPEC_COARSE_TILES) const uint COARSE_TILES = 0u;  // 0: no coarse pass
+layout(constant_id = PUNCTUAL_SPEC_GRID_WORDS) const uint GRID_WORDS = 3u;  // words a light-grid cell
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 // The lights' view-space culling shapes (makeCullLight in culling.h, made on the CPU).
@@ -46,7 +47,10 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_CULL_LIGHTS) readonly buffer 
 layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) writeonly buffer GridBlock { uint lightGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_COARSE_GRID) readonly buffer CoarseGridBlock { uint coarseGrid[]; };
-layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock {
+    GpuDepthRange depthRange;
+    uint sliceLights[];  // per slice, GRID_WORDS mask words (depth_range.comp)
+};
 // The transparent surfaces' depth span per pixel (transparent_depth.frag), when the frame has any
 // (frame.transparentSpans): nearest transparent depth, then (second half) the farthest.
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
@@ -134,7 +138,6 @@ void main() {
     extent = workgroupExtent(extent);
     if (extent.x == 0.0) return;  // no geometry: no cell of this tile is read (uniform)
     vec2 toView = frame.depthToView.xy;
-    uvec3 candidates = laneCandidates(tile, COARSE_TILES, lane, threads);
 
     // 2. The occupied slices, nearest first: the nearest depth's, then each time the slice of the
     //    nearest depth past the last one (one search each; slices with no pixel are never read).
@@ -178,14 +181,15 @@ void main() {
         }
         TileVolume segment = makeTileVolume(rect.xy, rect.zw, viewDistanceFromDepth(sliceExtent.x, toView),
                                             viewDistanceFromDepth(sliceExtent.y, toView), frame.ndcToView);
-        // Only the lights whose depth extent meets the slice's (depth_range.comp) can pass.
-        uint sliceBase = slice * PUNCTUAL_GRID_WORDS;
-        uvec3 sliceLights = uvec3(depthRange.sliceLights[sliceBase], depthRange.sliceLights[sliceBase + 1u],
-                                  depthRange.sliceLights[sliceBase + 2u]);
-        uvec3 masks = workgroupMasks(lightsMeetingSegment(candidates & sliceLights, segment));
-        if (lane < PUNCTUAL_GRID_WORDS) {
-            lightGrid[(tileIndex * SLICE_COUNT + slice) * PUNCTUAL_GRID_WORDS + lane] =
-                lane == 0u ? masks.x : (lane == 1u ? masks.y : masks.z);
+        // Only the lights whose depth extent meets the slice's (depth_range.comp) can pass; the
+        // masks go three words at a time (subgroup_tiles.glsl).
+        uint cellBase = (tileIndex * SLICE_COUNT + slice) * GRID_WORDS;
+        for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) {  // (uniform)
+            uint word = slice * GRID_WORDS + 3u * triple;
+            uvec3 lights = laneCandidates(tile, COARSE_TILES, lane, threads, triple) &
+                           uvec3(sliceLights[word], 3u * triple + 1u < GRID_WORDS ? sliceLights[word + 1u] : 0u,
+                                 3u * triple + 2u < GRID_WORDS ? sliceLights[word + 2u] : 0u);
+            writeCellTriple(cellBase, triple, workgroupMasks(lightsMeetingSegment(lights, triple, segment)), lane);
         }
         float beyond = workgroupMax(part.beyond);
         if (beyond == 0.0) break;  // (uniform)

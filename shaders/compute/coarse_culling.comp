@@ -14,22 +14,24 @@
 
 // Sized to the device's subgroup, as the fine kernels (LightGridLayout::tileThreads): lavapipe runs
 // a workgroup's subgroups as coroutines switched at every barrier, so one subgroup a workgroup makes
-// its two barriers cheap there, and on a GPU a big tile's at most 96 light tests fill a subgroup.
+// its two barriers cheap there, and on a GPU a big tile's light tests (96 at the design notes' caps)
+// fill a subgroup.
 layout(local_size_x_id = PUNCTUAL_SPEC_TILE_THREADS) in;
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_COARSE_TILES) const uint COARSE_TILES = 4u;  // fine tiles a side
+layout(constant_id = PUNCTUAL_SPEC_GRID_WORDS) const uint GRID_WORDS = 3u;  // words a light-grid cell
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_CULL_LIGHTS) readonly buffer CullLightBlock { CullLight frameCullLights[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_COARSE_GRID) writeonly buffer CoarseGridBlock { uint coarseGrid[]; };
 
-shared uint coarseMask[PUNCTUAL_GRID_WORDS];
+shared uint coarseMask[GRID_WORDS];  // 4 bytes per 32 lights: 1 KiB at 8192
 shared TileVolume column;
 
 void main() {
     uint thread = gl_LocalInvocationIndex;
     uvec2 coarseTile = gl_WorkGroupID.xy;
-    if (thread < PUNCTUAL_GRID_WORDS) coarseMask[thread] = 0u;
+    for (uint word = thread; word < GRID_WORDS; word += gl_WorkGroupSize.x) coarseMask[word] = 0u;
     if (thread == 0u) {
         // The column's screen rectangle, cut at the viewport as the fine tiles are.
         uint side = TILE_SIZE * COARSE_TILES;
@@ -42,11 +44,10 @@ void main() {
     uint lightCount = frame.spotCount + frame.pointCount;
     for (uint light = thread; light < lightCount; light += gl_WorkGroupSize.x) {
         if (!lightMayTouchTile(frameCullLights[light], column)) continue;
-        atomicOr(coarseMask[lightGridWord(light, frame.spotCount)], 1u << lightGridBit(light, frame.spotCount));
+        atomicOr(coarseMask[lightGridWord(light)], 1u << lightGridBit(light));
     }
     barrier();
     uint coarseTilesAcross = (uint(frame.viewport.x) + TILE_SIZE * COARSE_TILES - 1u) / (TILE_SIZE * COARSE_TILES);
-    if (thread < PUNCTUAL_GRID_WORDS) {
-        coarseGrid[(coarseTile.y * coarseTilesAcross + coarseTile.x) * PUNCTUAL_GRID_WORDS + thread] = coarseMask[thread];
-    }
+    uint base = (coarseTile.y * coarseTilesAcross + coarseTile.x) * GRID_WORDS;
+    for (uint word = thread; word < GRID_WORDS; word += gl_WorkGroupSize.x) coarseGrid[base + word] = coarseMask[word];
 }

@@ -29,11 +29,15 @@
 
 layout(local_size_x = PUNCTUAL_DEPTH_RANGE_THREADS) in;  // a row of squares a workgroup row
 layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
+layout(constant_id = PUNCTUAL_SPEC_GRID_WORDS) const uint GRID_WORDS = 3u;  // words a light-grid cell
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_CULL_LIGHTS) readonly buffer CullLightBlock { CullLight frameCullLights[]; };
-layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) coherent buffer DepthRangeBlock { GpuDepthRange depthRange; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) coherent buffer DepthRangeBlock {
+    GpuDepthRange depthRange;
+    uint sliceLights[];  // per slice (all PUNCTUAL_MAX_CLUSTER_SLICES), GRID_WORDS mask words
+};
 // The transparent surfaces' depth span per pixel, when the frame has any (frame.transparentSpans):
 // the range covers them too, so that their depths fall inside the slices.
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
@@ -56,43 +60,42 @@ float sliceStart(uint slice, float nearDistance, float farDistance) {
     return start;
 }
 
-// The lights' view-distance extents, for the last subgroup's slices. Only that subgroup touches
-// them, so a subgroup barrier orders its writes and reads (no workgroup barrier: the other
-// subgroups of its workgroup have left).
-shared vec2 lightExtents[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
+// The lights' view-distance extents, for the last subgroup's slices, a chunk of 32 words' lights
+// at a time (8 KiB; all of them up to 1,024 lights). Only that subgroup touches them, so subgroup
+// barriers order its writes and reads (no workgroup barrier: the other subgroups of its workgroup
+// have left).
+const uint kChunkWords = GRID_WORDS < 32u ? GRID_WORDS : 32u;
+shared vec2 lightExtents[32u * kChunkWords];
+// Each slice's distances, from the slice's start's to the next slice's start's (x > y: a slice
+// with no light, past SLICE_COUNT or in an empty frame).
+shared vec2 sliceDistances[PUNCTUAL_MAX_CLUSTER_SLICES];
 // Each subgroup's place in the count of finished subgroups (1 = first, gl_NumSubgroups x the
 // workgroups = last).
 shared uint subgroupCounts[PUNCTUAL_DEPTH_RANGE_THREADS];
 
 // The slices of the depth range now complete, by the dispatch's last subgroup: each of its
-// invocations finds the extents of its share of the lights, then cuts its share of the slices.
+// invocations cuts its share of the slices, then, a chunk of lights at a time, finds the extents of
+// its share of the chunk's lights and sets its slices' bits for them.
 // Slice s: sliceStartDepth[s] = depth of D_s = Dnear (Dfar / Dnear)^(s / S) (culling.h), and its
 // lights: those whose view-distance extent meets the slice's distances.
 void cutSlices(uint minDepthBits, uint maxDepthBits) {
-    uint spotCount = frame.spotCount;
     uint lightCount = frame.spotCount + frame.pointCount;
-    for (uint light = gl_SubgroupInvocationID; light < lightCount; light += gl_SubgroupSize) {
-        lightExtents[light] = lightDistanceExtent(frameCullLights[light]);
-    }
-    subgroupMemoryBarrierShared();
-    subgroupBarrier();
     if (gl_SubgroupInvocationID == 0u) depthRange.sliceCount = SLICE_COUNT;
     bool empty = minDepthBits > maxDepthBits;
     float nearDistance = viewDistanceFromDepth(uintBitsToFloat(maxDepthBits), frame.depthToView.xy);
     float farDistance = viewDistanceFromDepth(uintBitsToFloat(minDepthBits), frame.depthToView.xy);
     for (uint slice = gl_SubgroupInvocationID; slice < PUNCTUAL_MAX_CLUSTER_SLICES; slice += gl_SubgroupSize) {
-        for (uint word = 0u; word < PUNCTUAL_GRID_WORDS; ++word) depthRange.sliceLights[slice * PUNCTUAL_GRID_WORDS + word] = 0u;
         // Depth is reversed (culling.h): slice starts fall from 1 (the near plane) towards 0. An
         // empty frame (no geometry) leaves min > max: every slice starts at depth 1 and has no
         // light (no pixel reads one). Slices past SLICE_COUNT start at -1, below every depth, so
         // the search never picks them.
         if (empty || slice >= SLICE_COUNT) {
             depthRange.sliceStartDepth[slice] = slice == 0u || empty ? 1.0 : -1.0;
+            sliceDistances[slice] = vec2(1.0, 0.0);
             continue;
         }
         float start = sliceStart(slice, nearDistance, farDistance);
         depthRange.sliceStartDepth[slice] = start;
-
         // The slice's distances: from its start's to the next slice's start's (view distance
         // falls monotonically with depth, also as rounded, so every segment culling makes in the
         // slice lies within), the first slice from 0 and the last to infinity. Widened by 1e-5 of
@@ -102,17 +105,31 @@ void cutSlices(uint minDepthBits, uint maxDepthBits) {
         float sliceFar = slice + 1u < SLICE_COUNT
                              ? viewDistanceFromDepth(sliceStart(slice + 1u, nearDistance, farDistance), frame.depthToView.xy) * (1.0 + 1e-5)
                              : 3.4e38;
-        uvec3 lights = uvec3(0u);
-        for (uint light = 0u; light < lightCount; ++light) {
-            vec2 extent = lightExtents[light];
-            if (extent.y < sliceNear || extent.x > sliceFar) continue;
-            uint bit = 1u << lightGridBit(light, spotCount);
-            uint word = lightGridWord(light, spotCount);
-            lights |= uvec3(word == 0u ? bit : 0u, word == 1u ? bit : 0u, word == 2u ? bit : 0u);
+        sliceDistances[slice] = vec2(sliceNear, sliceFar);
+    }
+    for (uint chunk = 0u; chunk < GRID_WORDS; chunk += kChunkWords) {
+        uint chunkWords = min(kChunkWords, GRID_WORDS - chunk);
+        uint firstLight = lightGridFirstLight(chunk);
+        subgroupMemoryBarrierShared();
+        subgroupBarrier();  // the last chunk's extents read, sliceDistances written
+        for (uint k = gl_SubgroupInvocationID; k < 32u * chunkWords; k += gl_SubgroupSize) {
+            if (firstLight + k < lightCount) lightExtents[k] = lightDistanceExtent(frameCullLights[firstLight + k]);
         }
-        depthRange.sliceLights[slice * PUNCTUAL_GRID_WORDS] = lights.x;
-        depthRange.sliceLights[slice * PUNCTUAL_GRID_WORDS + 1u] = lights.y;
-        depthRange.sliceLights[slice * PUNCTUAL_GRID_WORDS + 2u] = lights.z;
+        subgroupMemoryBarrierShared();
+        subgroupBarrier();
+        for (uint slice = gl_SubgroupInvocationID; slice < PUNCTUAL_MAX_CLUSTER_SLICES; slice += gl_SubgroupSize) {
+            vec2 distances = sliceDistances[slice];
+            for (uint word = 0u; word < chunkWords; ++word) {
+                uint candidates = distances.x <= distances.y ? allLightsWord(chunk + word, lightCount) : 0u;
+                uint bits = 0u;
+                for (; candidates != 0u; candidates &= candidates - 1u) {
+                    uint bit = uint(findLSB(candidates));
+                    vec2 extent = lightExtents[32u * word + bit];
+                    if (extent.y >= distances.x && extent.x <= distances.y) bits |= 1u << bit;
+                }
+                sliceLights[slice * GRID_WORDS + chunk + word] = bits;
+            }
+        }
     }
 }
 

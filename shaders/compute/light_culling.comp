@@ -11,7 +11,10 @@
 //     segment (for the lights whose depth extent meets the tile's). Empty slices test nothing, and
 //     a light reaching only the foreground of a tile never lands in a slice that holds only
 //     background.
-//  4. the masks (64-bit spot, 32-bit point) of every occupied slice are written out.
+//  4. the masks (one bit per light, culling.h) of every occupied slice are written out.
+// Steps 3-4 take the lights a chunk at a time (up to 8 mask words, 256 lights), so that shared
+// memory holds one chunk's lights whatever the capacity; at the design notes' 96 the one chunk is
+// all of them.
 // Tiled with DEPTH_MASK (--culling tiled-2.5d) adds Harada's 2.5D test to step 3: the tile's
 // 32-cell depth mask (culling.h) is built from its pixels once their min..max extent is known,
 // and a light that passed the tile test is kept only if its depth cells meet an occupied one
@@ -45,6 +48,11 @@ layout(constant_id = PUNCTUAL_SPEC_CULL_FLAGS) const uint CULL_FLAGS = 0u;
 const bool DEPTH_MASK = (CULL_FLAGS & PUNCTUAL_CULL_DEPTH_MASK) != 0u;            // tiled-2.5d
 const bool DEPTHLESS_TILES = (CULL_FLAGS & PUNCTUAL_CULL_DEPTHLESS_TILES) != 0u;  // zbin-2d
 layout(constant_id = PUNCTUAL_SPEC_COARSE_TILES) const uint COARSE_TILES = 0u;  // 0: no coarse pass
+layout(constant_id = PUNCTUAL_SPEC_GRID_WORDS) const uint GRID_WORDS = 3u;  // words a light-grid cell
+// A chunk's words and lights. 8 words: the chunk's culling shapes take 12 KiB of shared memory, the
+// whole kernel about 22 KiB with 32 slices (GPUs give 32-64 KiB; Vulkan promises 16).
+const uint kChunkWords = GRID_WORDS < 8u ? GRID_WORDS : 8u;
+const uint kChunkLights = 32u * kChunkWords;
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 // The lights' view-space culling shapes, made once per frame on the CPU (makeCullLight in
@@ -53,7 +61,7 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_CULL_LIGHTS) readonly buffer 
 layout(set = 0, binding = PUNCTUAL_BINDING_DEPTH) uniform sampler2D depthImage;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) writeonly buffer GridBlock { uint lightGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_COARSE_GRID) readonly buffer CoarseGridBlock { uint coarseGrid[]; };
-layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };  // (its slices' lights unread here)
 // The transparent surfaces' depth span per pixel (transparent_depth.frag), when the frame has
 // any (frame.transparentSpans): a pixel then shades every depth from its opaque surface (or, over
 // the background, its farthest transparent one) to its nearest transparent one.
@@ -74,16 +82,16 @@ shared uint sliceMaxDistance[SLICE_COUNT];
 const uint kRectCells = DEPTH_MASK ? PUNCTUAL_DEPTH_MASK_CELLS : SLICE_COUNT;
 shared uint cellColumns[kRectCells];
 shared uint cellRows[kRectCells];
-shared uint sliceMasks[SLICE_COUNT * PUNCTUAL_GRID_WORDS];
-shared uint candidateCount;  // COARSE_TILES: the lights of this tile's coarse tile
-shared uint candidateLights[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
+shared uint sliceMasks[SLICE_COUNT * kChunkWords];  // the chunk's words of each slice's masks
+shared uint candidateCount;  // COARSE_TILES: the chunk's lights of this tile's coarse tile
+shared uint candidateLights[kChunkLights];
 shared float sliceStart[SLICE_COUNT];  // copy of depthRange.sliceStartDepth for the pixel loop
 shared uint occupiedCount;
 shared uint tileLightCount;  // lights passing the whole-tile step (clustered: its depth; tested per slice)
-shared uint tileLights[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
+shared uint tileLights[kChunkLights];
 // Clustered: the shapes of the lights whose depth extent meets the tile's, read again per slice.
 // (Tiled reads each light once, straight from the buffer.)
-shared CullLight tileLightShapes[PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS];
+shared CullLight tileLightShapes[kChunkLights];
 shared TileVolume tileVolume;
 shared uint tileMinDistance;  // float bits: the extent of all the tile's pixels
 shared uint tileMaxDistance;
@@ -92,12 +100,15 @@ shared TileVolume occupiedVolumes[SLICE_COUNT];
 shared uint tileDepthMask;  // DEPTH_MASK: the occupied cells of the tile's depth extent
 shared TileVolume cellVolumes[DEPTH_MASK ? PUNCTUAL_DEPTH_MASK_CELLS : 1u];  // DEPTH_MASK: each cell's segment
 
-// Marks packed light `light` in the masks of `slice` (spots in words 0-1, points in word 2; see
-// lightGridWord in culling.h).
+// The chunk of lights steps 3-4 take: its first mask word, and its words (kChunkWords, fewer in
+// the last chunk).
+uint chunkFirstWord = 0u;
+uint chunkWords = kChunkWords;
+
+// Marks packed light `light` (of the chunk) in the masks of `slice` (culling.h, lightGridWord).
 void setLightBit(uint slice, uint light) {
-    uint word = lightGridWord(light, frame.spotCount);
-    uint bit = lightGridBit(light, frame.spotCount);
-    atomicOr(sliceMasks[slice * PUNCTUAL_GRID_WORDS + word], 1u << bit);
+    uint word = lightGridWord(light) - chunkFirstWord;
+    atomicOr(sliceMasks[slice * kChunkWords + word], 1u << lightGridBit(light));
 }
 
 // Pixels read four at a time: a 2x2 block per gather (quadExtent, depth_blocks.glsl).
@@ -166,6 +177,15 @@ SliceRun addPixelToSliceRun(SliceRun run, float depth, uvec2 local) {
 // PUNCTUAL_CLUSTER_SLICE_OF_DEPTH). Measured on lavapipe against the one long main: no change
 // (bench/RESULTS.md, "Every variant from one table, second part").
 
+// The chunk's shared state, cleared.
+void clearChunkState(uint thread) {
+    for (uint i = thread; i < SLICE_COUNT * kChunkWords; i += kThreads) sliceMasks[i] = 0u;
+    if (thread == 0u) {
+        tileLightCount = 0u;
+        candidateCount = 0u;
+    }
+}
+
 // The tile's shared state, cleared.
 void clearTileState(uint thread) {
     for (uint i = thread; i < SLICE_COUNT; i += kThreads) {
@@ -176,27 +196,25 @@ void clearTileState(uint thread) {
         cellColumns[i] = 0u;
         cellRows[i] = 0u;
     }
-    for (uint i = thread; i < SLICE_COUNT * PUNCTUAL_GRID_WORDS; i += kThreads) sliceMasks[i] = 0u;
     for (uint i = thread; i < SLICE_COUNT; i += kThreads) sliceStart[i] = depthRange.sliceStartDepth[i];
     if (thread == 0u) {
         occupiedCount = 0u;
-        tileLightCount = 0u;
         tileMinDistance = 0x7F7FFFFFu;
         tileMaxDistance = 0u;
         tileDepthMask = 0u;
-        candidateCount = 0u;
     }
+    clearChunkState(thread);
 }
 
-// 0. The candidates: the lights the coarse pass kept for this tile's coarse tile (in any order:
-//    the masks this kernel writes do not depend on it).
+// 0. The candidates: the chunk's lights the coarse pass kept for this tile's coarse tile (in any
+//    order: the masks this kernel writes do not depend on it).
 void listCandidates(uvec2 tile, uint thread, uint lightCount) {
     uvec2 coarseTile = tile / COARSE_TILES;
     uint coarseTilesAcross = (frame.lightGrid.y + COARSE_TILES - 1u) / COARSE_TILES;
-    uint coarseBase = (coarseTile.y * coarseTilesAcross + coarseTile.x) * PUNCTUAL_GRID_WORDS;
-    for (uint light = thread; light < lightCount; light += kThreads) {
-        uint word = lightGridWord(light, frame.spotCount);
-        if ((coarseGrid[coarseBase + word] & (1u << lightGridBit(light, frame.spotCount))) != 0u) {
+    uint coarseBase = (coarseTile.y * coarseTilesAcross + coarseTile.x) * GRID_WORDS;
+    uint chunkEnd = min(lightCount, lightGridFirstLight(chunkFirstWord + chunkWords));
+    for (uint light = lightGridFirstLight(chunkFirstWord) + thread; light < chunkEnd; light += kThreads) {
+        if ((coarseGrid[coarseBase + lightGridWord(light)] & (1u << lightGridBit(light))) != 0u) {
             candidateLights[atomicAdd(candidateCount, 1u)] = light;
         }
     }
@@ -389,9 +407,10 @@ void listOccupiedSlices(uvec2 tile, uint thread, bool clusterBlocks, vec2 ndcMin
 //    only the lights whose depth extent meets the tile's are listed for them (the rest would fail
 //    every slice's test at its first step, lightDepthMeetsSegment).
 void testCandidates(uint thread, uint lightCount, TileVolume wholeTile, float maskNear, float maskScale) {
-    uint candidates = COARSE_TILES > 0u ? candidateCount : lightCount;
+    uint firstLight = lightGridFirstLight(chunkFirstWord);
+    uint candidates = COARSE_TILES > 0u ? candidateCount : min(lightCount - firstLight, 32u * chunkWords);
     for (uint k = thread; k < candidates; k += kThreads) {
-        uint light = COARSE_TILES > 0u ? candidateLights[k] : k;
+        uint light = COARSE_TILES > 0u ? candidateLights[k] : firstLight + k;
         CullLight shape = frameCullLights[light];
         if (SLICE_COUNT == 1u ? !lightMayTouchTile(shape, wholeTile) : !lightDepthMeetsSegment(lightDistanceExtent(shape), wholeTile)) {
             continue;
@@ -428,18 +447,20 @@ void testSlices(uint thread) {
     }
 }
 
-// 4. The cells of this tile: cell = tile index * SLICE_COUNT + slice. Only occupied cells: a pixel
-//    only ever reads the cell of its own slice, which its depth occupies, so the other cells are
-//    never read and need no clearing. (Tiled: the one cell, always.)
+// 4. The chunk's words of this tile's cells: cell = tile index * SLICE_COUNT + slice. Only
+//    occupied cells: a pixel only ever reads the cell of its own slice, which its depth occupies,
+//    so the other cells are never read and need no clearing. (Tiled: the one cell, always.)
 void writeTileCells(uvec2 tile, uint thread) {
     uint tileIndex = tile.y * frame.lightGrid.y + tile.x;
     if (SLICE_COUNT == 1u) {
-        if (thread < PUNCTUAL_GRID_WORDS) lightGrid[tileIndex * PUNCTUAL_GRID_WORDS + thread] = sliceMasks[thread];
+        for (uint word = thread; word < chunkWords; word += kThreads) {
+            lightGrid[tileIndex * GRID_WORDS + chunkFirstWord + word] = sliceMasks[word];
+        }
     } else {
-        for (uint i = thread; i < occupiedCount * PUNCTUAL_GRID_WORDS; i += kThreads) {
-            uint slice = occupiedSlices[i / PUNCTUAL_GRID_WORDS];
-            uint word = i % PUNCTUAL_GRID_WORDS;
-            lightGrid[(tileIndex * SLICE_COUNT + slice) * PUNCTUAL_GRID_WORDS + word] = sliceMasks[slice * PUNCTUAL_GRID_WORDS + word];
+        for (uint i = thread; i < occupiedCount * chunkWords; i += kThreads) {
+            uint slice = occupiedSlices[i / chunkWords];
+            uint word = i % chunkWords;
+            lightGrid[(tileIndex * SLICE_COUNT + slice) * GRID_WORDS + chunkFirstWord + word] = sliceMasks[slice * kChunkWords + word];
         }
     }
 }
@@ -448,9 +469,10 @@ void main() {
     uint thread = gl_LocalInvocationIndex;
     uint lightCount = frame.spotCount + frame.pointCount;
     uvec2 tile = gl_WorkGroupID.xy;
+    chunkWords = min(kChunkWords, GRID_WORDS);
     clearTileState(thread);
     barrier();
-    if (COARSE_TILES > 0u) listCandidates(tile, thread, lightCount);
+    if (COARSE_TILES > 0u) listCandidates(tile, thread, lightCount);  // the first chunk's
 
     // 1. Depth extent of each slice in this tile: the tile folded (tiled), blocks (clustered),
     //    or pixel by pixel (transparent spans); none for depthless tiles.
@@ -500,14 +522,26 @@ void main() {
         wholeTile = tileVolume;
     }
 
-    // 3. The lights: against the whole tile, then (clustered) against each occupied slice.
-    if (occupied) testCandidates(thread, lightCount, wholeTile, maskNear, maskScale);
-    if (SLICE_COUNT > 1u) {
+    for (chunkFirstWord = 0u; chunkFirstWord < GRID_WORDS; chunkFirstWord += kChunkWords) {
+        chunkWords = min(kChunkWords, GRID_WORDS - chunkFirstWord);
+        if (chunkFirstWord > 0u) {  // (the first chunk's state was cleared, its candidates listed, with the depths)
+            barrier();  // the last chunk's masks written out
+            clearChunkState(thread);
+            barrier();
+            if (COARSE_TILES > 0u) {
+                listCandidates(tile, thread, lightCount);
+                barrier();
+            }
+        }
+        // 3. The chunk's lights: against the whole tile, then (clustered) against each occupied slice.
+        if (occupied) testCandidates(thread, lightCount, wholeTile, maskNear, maskScale);
+        if (SLICE_COUNT > 1u) {
+            barrier();
+            testSlices(thread);
+        }
         barrier();
-        testSlices(thread);
-    }
-    barrier();
 
-    // 4. The tile's cells out.
-    writeTileCells(tile, thread);
+        // 4. The tile's cells out (the chunk's words).
+        writeTileCells(tile, thread);
+    }
 }

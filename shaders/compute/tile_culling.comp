@@ -8,14 +8,15 @@
 //     with subgroupMax / subgroupMin;
 //  2. build the tile's frustum segment (culling.h), each lane the same one;
 //  3. test the lights, each lane its share of the candidates (laneCandidates: the frame's lights,
-//     or with the coarse pass its coarse tile's), collecting the passing ones in three mask words
-//     (culling.h, lightGridWord);
+//     or with the coarse pass its coarse tile's), collecting the passing ones in mask words
+//     (culling.h, lightGridWord), three at a time (steps 3-4 loop over the cell's triples);
 //  3b. DEPTH_MASK: read the blocks again for the 32 depth cells of the tile's extent that its
 //     pixels occupy (each cell with the columns and rows of its blocks, in the lane's registers),
 //     then visit the occupied cells nearest first: each gets its frustum segment (cut to its
 //     blocks' rectangle, combined over the workgroup) and each lane keeps those of its lights
 //     whose depth cells include it and whose shapes meet its segment (until none is left to keep);
 //  4. combine the masks with subgroupOr; lanes 0-2 write them.
+// (Step 3b's cells come from the depths once per tile, before the triples.)
 // The masks are those of light_culling.comp's one-slice case bit for bit: the same lights are
 // tested against the same segments, whose distances come from the same extreme depths, with the
 // same cells and rectangles.
@@ -43,6 +44,7 @@ layout(constant_id = PUNCTUAL_SPEC_CULL_FLAGS) const uint CULL_FLAGS = 0u;
 const bool DEPTH_MASK = (CULL_FLAGS & PUNCTUAL_CULL_DEPTH_MASK) != 0u;            // tiled-2.5d
 const bool DEPTHLESS_TILES = (CULL_FLAGS & PUNCTUAL_CULL_DEPTHLESS_TILES) != 0u;  // zbin-2d
 layout(constant_id = PUNCTUAL_SPEC_COARSE_TILES) const uint COARSE_TILES = 0u;  // 0: no coarse pass
+layout(constant_id = PUNCTUAL_SPEC_GRID_WORDS) const uint GRID_WORDS = 3u;  // words a light-grid cell
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 // The lights' view-space culling shapes (makeCullLight in culling.h, made on the CPU).
@@ -86,20 +88,19 @@ vec2 laneDepthExtent(uvec2 tile, uvec2 tileEnd, uvec2 viewport, uint lane, uint 
     return extent;
 }
 
-// 3b. Tiled-2.5d: of this lane's lights that passed the tile (`masks`), those whose depth cells
-//     meet an occupied cell of the tile's extent `distances` (Harada's depth mask) whose segment
-//     their shapes meet (culling.h, makeDepthCellVolume). Called in uniform control flow.
-uvec3 lightsMeetingOccupiedCells(uvec3 masks, uvec2 tile, uvec2 tileEnd, uvec2 viewport, uint lane, uint threads,
-                                 bool spans, vec2 distances, vec2 ndcMin, vec2 ndcMax, vec2 pixelToNdc) {
+// 3b. Tiled-2.5d: this lane's blocks' depth cells, by round (tiles of at most 32 pixels without
+//     spans, for the cells' rectangles). Indexed by the round, the same in every lane: each lane's
+//     columns and rows kept per cell, an index differing between lanes, made lavapipe (which runs
+//     the lanes as one vector) scatter to memory, 1-1.5 ms more of the pass (A/B, 3 rounds).
+uint blockCells[kMaxBlockRounds];
+
+// 3b. Tiled-2.5d: the cells of the tile's extent `distances` (Harada's depth mask) that its pixels
+//     occupy, over the workgroup; this lane's blocks' cells go to blockCells. Called in uniform
+//     control flow.
+uint occupiedDepthCells(uvec2 tile, uvec2 tileEnd, uvec2 viewport, uint lane, uint threads, bool spans, vec2 distances) {
     float maskNear = distances.x;
     float maskScale = depthMaskScale(distances.x, distances.y);
-    // The cells this lane's pixels occupy, and each of its blocks' cells (tiles of at most 32
-    // pixels without spans, for the cells' rectangles below). The blocks' array is indexed by
-    // the round, the same in every lane: each lane's columns and rows kept per cell, an index
-    // differing between lanes, made lavapipe (which runs the lanes as one vector) scatter to
-    // memory, 1-1.5 ms more of the pass (A/B, 3 rounds).
     uint laneCells = 0u;
-    uint blockCells[kMaxBlockRounds];
     bool rects = !spans && TILE_SIZE <= 32u;
     if (!spans) {
         uint blockRound = 0u;
@@ -120,7 +121,17 @@ uvec3 lightsMeetingOccupiedCells(uvec3 masks, uvec2 tile, uvec2 tileEnd, uvec2 v
                                        depthMaskCell(viewDistanceFromDepth(span.y, frame.depthToView.xy), maskNear, maskScale));
         }
     }
-    uint tileCells = workgroupMasks(uvec3(laneCells, 0u, 0u)).x;
+    return workgroupMasks(uvec3(laneCells, 0u, 0u)).x;
+}
+
+// 3b. Tiled-2.5d: of this lane's lights that passed the tile (`masks`, triple `triple`), those
+//     whose depth cells meet an occupied cell of the tile (`tileCells`, occupiedDepthCells) whose
+//     segment their shapes meet (culling.h, makeDepthCellVolume). Called in uniform control flow.
+uvec3 lightsMeetingOccupiedCells(uvec3 masks, uint triple, uint tileCells, uvec2 tile, uvec2 tileEnd, uint lane,
+                                 uint threads, bool spans, vec2 distances, vec2 ndcMin, vec2 ndcMax, vec2 pixelToNdc) {
+    float maskNear = distances.x;
+    float maskScale = depthMaskScale(distances.x, distances.y);
+    bool rects = !spans && TILE_SIZE <= 32u;
     uvec3 unkept = masks;  // this lane's lights that passed the tile and meet no cell yet
     masks = uvec3(0u);
     for (uint cells = tileCells; cells != 0u; cells &= cells - 1u) {  // (uniform)
@@ -140,7 +151,7 @@ uvec3 lightsMeetingOccupiedCells(uvec3 masks, uvec2 tile, uvec2 tileEnd, uvec2 v
         vec4 rect = rects ? columnsRowsRectNdc(tile * TILE_SIZE, combined.x, combined.y, pixelToNdc)
                           : vec4(ndcMin, ndcMax);
         TileVolume cellSegment = makeDepthCellVolume(rect.xy, rect.zw, cell, maskNear, distances.y, frame.ndcToView);
-        uvec3 kept = lightsMeetingDepthCell(unkept, cellSegment, cell, maskNear, maskScale);
+        uvec3 kept = lightsMeetingDepthCell(unkept, triple, cellSegment, cell, maskNear, maskScale);
         masks |= kept;
         unkept &= ~kept;
     }
@@ -175,20 +186,24 @@ void main() {
         segment = makeTileVolume(ndcMin, ndcMax, distances.x, distances.y, frame.ndcToView);
     }
 
-    // 3. The lights against the segment: this lane's share of the candidates.
-    uvec3 masks = occupied ? lightsMeetingSegment(laneCandidates(tile, COARSE_TILES, lane, threads), segment) : uvec3(0u);
+    uint tileCells = 0u;  // tiled-2.5d: the tile's occupied depth cells, once a light has passed
+    bool cellsFound = false;
+    uint cellBase = (tile.y * frame.lightGrid.y + tile.x) * GRID_WORDS;
+    for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) {  // (uniform)
+        // 3. The lights against the segment: this lane's share of the candidates.
+        uvec3 masks = occupied ? lightsMeetingSegment(laneCandidates(tile, COARSE_TILES, lane, threads, triple), triple, segment)
+                               : uvec3(0u);
 
-    // 3b. Tiled-2.5d. (A tile none of whose lights passed reads no depth again.)
-    bool anyPassed = DEPTH_MASK && occupied && workgroupMasks(uvec3(any(notEqual(masks, uvec3(0u))) ? 1u : 0u, 0u, 0u)).x != 0u;
-    if (anyPassed) {  // (uniform)
-        masks = lightsMeetingOccupiedCells(masks, tile, tileEnd, viewport, lane, threads, spans, distances, ndcMin, ndcMax,
-                                           pixelToNdc);
-    }
-    masks = workgroupMasks(masks);
+        // 3b. Tiled-2.5d. (A tile none of whose lights passed reads no depth again.)
+        bool anyPassed = DEPTH_MASK && occupied && workgroupMasks(uvec3(any(notEqual(masks, uvec3(0u))) ? 1u : 0u, 0u, 0u)).x != 0u;
+        if (anyPassed) {  // (uniform)
+            if (!cellsFound) tileCells = occupiedDepthCells(tile, tileEnd, viewport, lane, threads, spans, distances);
+            cellsFound = true;
+            masks = lightsMeetingOccupiedCells(masks, triple, tileCells, tile, tileEnd, lane, threads, spans, distances, ndcMin,
+                                               ndcMax, pixelToNdc);
+        }
 
-    // 4. The tile's cell, always written (an empty tile's masks are zero).
-    uint tileIndex = tile.y * frame.lightGrid.y + tile.x;
-    if (lane < PUNCTUAL_GRID_WORDS) {
-        lightGrid[tileIndex * PUNCTUAL_GRID_WORDS + lane] = lane == 0u ? masks.x : (lane == 1u ? masks.y : masks.z);
+        // 4. The tile's cell, always written (an empty tile's masks are zero).
+        writeCellTriple(cellBase, triple, workgroupMasks(masks), lane);
     }
 }

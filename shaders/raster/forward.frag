@@ -40,6 +40,7 @@ layout(early_fragment_tests) in;
 layout(constant_id = PUNCTUAL_SPEC_LIGHT_SOURCE) const uint LIGHT_SOURCE = PUNCTUAL_LIGHT_SOURCE_ALL;
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
+layout(constant_id = PUNCTUAL_SPEC_GRID_WORDS) const uint GRID_WORDS = 3u;  // words a light-grid cell
 // Debug variant for statistics and heat maps: also counts, per pixel, the lights that really
 // reach it and the brute-force radiance, into lightStats. Never used for timing.
 layout(constant_id = PUNCTUAL_SPEC_WRITE_LIGHT_STATS) const bool WRITE_LIGHT_STATS = false;
@@ -70,7 +71,7 @@ layout(set = 1, binding = 1) uniform sampler2D emissiveTexture;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) readonly buffer GridBlock { uint lightGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_OBJECT_LIGHTS) readonly buffer ObjectLightBlock { uint objectLights[]; };
-layout(std430, set = 0, binding = PUNCTUAL_BINDING_ZBINS) readonly buffer ZBinBlock { GpuZBins zBins; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_ZBINS) readonly buffer ZBinBlock { GpuZBins zBins; uint zBinMasks[]; };
 // Four words per pixel for the opaque surface, then four per pixel for its transparent fragments
 // (gpu_types.h): several of those may land on one pixel, so they add up atomically.
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_STATS) buffer LightStatsBlock { uint lightStatWords[]; };
@@ -205,20 +206,33 @@ void discardWhatThePrepassDropped(GpuMaterial material, bool frontFacing, float 
     if (materialIsMasked(material) && !alphaMaskKeeps(alpha, material.emission.w)) discard;
 }
 
-// The grid sources' words: the set bits of this pixel's cell (tiled, clustered, tiled-2.5d).
-// (Clustered: walking the tile's union of its clusters instead, testing membership per pixel,
-// keeps SIMD lanes uniform but measured 10% slower on lavapipe; see bench/RESULTS.md.)
-uvec3 gridCellWords() {
-    uint base = pixelGridCell() * PUNCTUAL_GRID_WORDS;
-    return uvec3(lightGrid[base], lightGrid[base + 1u], lightGrid[base + 2u]);
+// The grid sources' lights: the set bits of this pixel's cell (tiled, clustered, tiled-2.5d),
+// with GRID_ZBINS (zbin, zbin-2d; URP Forward+ / Drobot) ANDed with the mask of the pixel's z-bin
+// (lights/z_bins.h), found by the stored-start search the CPU binned with. The walk reads them
+// three words at a time (a triple; words past GRID_WORDS read as 0). (Clustered: walking the
+// tile's union of its clusters instead, testing membership per pixel, keeps SIMD lanes uniform but
+// measured 10% slower on lavapipe; see bench/RESULTS.md.)
+struct CellWords {
+    uint cellBase;  // the pixel's cell's first word in lightGrid
+    uint binBase;   // GRID_ZBINS: its z-bin's first word in zBinMasks
+};
+
+CellWords pixelCellWords() {
+    uint bin = 0u;
+    if (LIGHT_SOURCE == PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS) {
+        PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(bin, gl_FragCoord.z, zBins.binStartDepth, PUNCTUAL_ZBIN_COUNT);
+    }
+    return CellWords(pixelGridCell() * GRID_WORDS, bin * GRID_WORDS);
 }
 
-// URP Forward+ / Drobot: the tile's mask (zbin-2d: two-dimensional, every depth) AND the mask of
-// the pixel's z-bin (lights/z_bins.h), found by the stored-start search the CPU binned with.
-uvec3 zBinnedCellWords() {
-    uint bin;
-    PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(bin, gl_FragCoord.z, zBins.binStartDepth, PUNCTUAL_ZBIN_COUNT);
-    return gridCellWords() & zBins.binMask[bin].xyz;
+uint cellWord(CellWords cell, uint word) {
+    if (word >= GRID_WORDS) return 0u;
+    uint bits = lightGrid[cell.cellBase + word];
+    return LIGHT_SOURCE == PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS ? bits & zBinMasks[cell.binBase + word] : bits;
+}
+
+uvec3 cellWordTriple(CellWords cell, uint triple) {
+    return uvec3(cellWord(cell, 3u * triple), cellWord(cell, 3u * triple + 1u), cellWord(cell, 3u * triple + 2u));
 }
 
 // Validation variant: this pixel's surface (position, normal, the sun's cascade) and the shadow
@@ -243,28 +257,33 @@ void writeShadowFactors(vec3 normal) {
 // Statistics variant: the lights the method tested (`tested`), the shadow lookups and taps, the
 // lights really reaching the pixel and the brute-force radiance, against the method's `radiance`.
 void writeLightStats(Surface surface, vec3 radiance, vec3 emission, uint tested) {
-    uint spotCount = frame.spotCount;
     uint lightCount = frame.spotCount + frame.pointCount;
     // The method's own lookups, before the brute-force radiance below takes its own.
-    uint work = packPixelWork(tested, shadowLookups, shadowTaps);
+    uint work = packPixelWork(shadowLookups, shadowTaps);
     uint affecting = 0u;
-    uvec3 affectingWords = uvec3(0u);  // the reaching lights as a grid mask (lightGridWord)
+    // The opaque surface's reaching lights go into its list cell's union (the exact-list floor),
+    // a word at a time: `reachingBits` holds those of word `reachingWord` (lightGridWord).
+    uint pixels = uint(frame.viewport.x * frame.viewport.y);
+    uint cellBase = lightStatsCellWord(pixels, GRID_WORDS, pixelListCell(), 0u);
+    uint reachingWord = 0u;
+    uint reachingBits = 0u;
     vec3 bruteRadiance = shadeSun(surface);
     for (uint i = 0u; i < lightCount; ++i) {
         if (punctualAttenuation(lights[i], inWorldPosition) > 0.0) {
             ++affecting;
-            uint bit = 1u << lightGridBit(i, spotCount);
-            uint word = lightGridWord(i, spotCount);
-            if (word == 0u) affectingWords.x |= bit;
-            else if (word == 1u) affectingWords.y |= bit;
-            else affectingWords.z |= bit;
+            if (!TRANSPARENT && lightGridWord(i) != reachingWord) {
+                if (reachingBits != 0u) atomicOr(lightStatWords[cellBase + reachingWord], reachingBits);
+                reachingWord = lightGridWord(i);
+                reachingBits = 0u;
+            }
+            reachingBits |= 1u << lightGridBit(i);
         }
         bruteRadiance += shadeLight(surface, lights[i]);
     }
+    if (!TRANSPARENT && reachingBits != 0u) atomicOr(lightStatWords[cellBase + reachingWord], reachingBits);
     bruteRadiance += emission;
     uvec2 pixel = uvec2(gl_FragCoord.xy);
     uint index = pixel.y * uint(frame.viewport.x) + pixel.x;
-    uint pixels = uint(frame.viewport.x * frame.viewport.y);
     if (TRANSPARENT) {
         uint base = lightStatsWord(PUNCTUAL_LIGHT_STATS_TRANSPARENT, pixels, index, 0u);
         atomicAdd(lightStatWords[base + PUNCTUAL_LIGHT_STATS_TESTED], tested);
@@ -280,12 +299,9 @@ void writeLightStats(Surface surface, vec3 radiance, vec3 emission, uint tested)
         lightStatWords[base + PUNCTUAL_LIGHT_STATS_REACHING] = affecting | PUNCTUAL_LIGHT_STATS_COVERED;
         lightStatWords[base + PUNCTUAL_LIGHT_STATS_LUMINANCE] = floatBitsToUint(luminance(radiance));
         lightStatWords[base + PUNCTUAL_LIGHT_STATS_BRUTE_LUMINANCE] = floatBitsToUint(luminance(bruteRadiance));
-        // The reaching lights' mask and the pixel's list cell, for the exact-list floor.
-        uint exact = lightStatsWord(PUNCTUAL_LIGHT_STATS_EXACT, pixels, index, 0u);
-        lightStatWords[exact + 0u] = affectingWords.x;
-        lightStatWords[exact + 1u] = affectingWords.y;
-        lightStatWords[exact + 2u] = affectingWords.z;
-        lightStatWords[exact + PUNCTUAL_LIGHT_STATS_LIST_CELL] = pixelListCell();
+        uint list = lightStatsWord(PUNCTUAL_LIGHT_STATS_LIST, pixels, index, 0u);
+        lightStatWords[list + PUNCTUAL_LIGHT_STATS_LIST_CELL] = pixelListCell();
+        lightStatWords[list + PUNCTUAL_LIGHT_STATS_LIST_TESTED] = tested;
     }
 }
 
@@ -311,10 +327,8 @@ void main() {
                                   material.metallicRoughness.x, material.metallicRoughness.y);
 
     precise vec3 radiance = shadeSun(surface);
-    uint spotCount = frame.spotCount;
     uint lightCount = frame.spotCount + frame.pointCount;
     uint tested = 0u;
-    uvec3 gridWords = uvec3(0u);  // the light-grid methods: the pixel's three mask words
     bool walkGridWords = false;
     switch (LIGHT_SOURCE) {
         case PUNCTUAL_LIGHT_SOURCE_ALL:
@@ -332,36 +346,36 @@ void main() {
             tested = count;
             break;
         }
-        case PUNCTUAL_LIGHT_SOURCE_GRID:  // tiled, clustered, tiled-2.5d (the tile grid, fewer bits set)
-            gridWords = gridCellWords();
-            walkGridWords = true;
-            break;
-        case PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS:
-            gridWords = zBinnedCellWords();
+        case PUNCTUAL_LIGHT_SOURCE_GRID:        // tiled, clustered, tiled-2.5d (the tile grid, fewer bits set)
+        case PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS:  // zbin, zbin-2d
             walkGridWords = true;
             break;
         default:
             unknownVariant = true;
             break;
     }
-    // The grid methods' lights: the set bits of the three words, ascending (spots, then points),
-    // added to `radiance` one by one in the brute-force loop's order and association. One loop
-    // over the three words, each step taking the lowest set bit of the first word with any, by
-    // selects rather than branches. Measured on lavapipe, default scene at 1280x720 (A/B, four
-    // rounds): a loop per word 40.3 ms with no lights (brute force 32) and 82.8 with the default
-    // lights, this one 34.2 and 76.4; the same single loop with an if/else chain picking the word
-    // was twice as slow with lights. (Evidently a loop there costs about a pass over its body even
-    // when it takes no step, as SIMD lanes run under masks.)
+    // The grid methods' lights: the set bits of the cell's words, ascending, added to `radiance`
+    // one by one in the brute-force loop's order and association. The words come three at a time
+    // (cellWordTriple; one triple at the design notes' 96 lights), and one loop walks a triple,
+    // each step taking the lowest set bit of the first word with any, by selects rather than
+    // branches. Measured on lavapipe, default scene at 1280x720 (A/B, four rounds): a loop per
+    // word 40.3 ms with no lights (brute force 32) and 82.8 with the default lights, this one 34.2
+    // and 76.4; the same single loop with an if/else chain picking the word was twice as slow with
+    // lights. (Evidently a loop there costs about a pass over its body even when it takes no step,
+    // as SIMD lanes run under masks.)
     if (walkGridWords) {
-        uvec3 words = gridWords;
-        while ((words.x | words.y | words.z) != 0u) {
-            uint word = words.x != 0u ? 0u : (words.y != 0u ? 1u : 2u);
-            uint bits = word == 0u ? words.x : (word == 1u ? words.y : words.z);
-            uint light = lightGridFirstLight(word, spotCount) + uint(findLSB(bits));
-            bits &= bits - 1u;  // clear the lowest set bit: ascending order
-            words = uvec3(word == 0u ? bits : words.x, word == 1u ? bits : words.y, word == 2u ? bits : words.z);
-            radiance += shadeLight(surface, lights[light]);
-            ++tested;
+        CellWords cell = pixelCellWords();
+        for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) {
+            uvec3 words = cellWordTriple(cell, triple);
+            while ((words.x | words.y | words.z) != 0u) {
+                uint word = words.x != 0u ? 0u : (words.y != 0u ? 1u : 2u);
+                uint bits = word == 0u ? words.x : (word == 1u ? words.y : words.z);
+                uint light = lightGridFirstLight(3u * triple + word) + uint(findLSB(bits));
+                bits &= bits - 1u;  // clear the lowest set bit: ascending order
+                words = uvec3(word == 0u ? bits : words.x, word == 1u ? bits : words.y, word == 2u ? bits : words.z);
+                radiance += shadeLight(surface, lights[light]);
+                ++tested;
+            }
         }
     }
     // Emission last, after every light, in the reference's order. It lights nothing else.

@@ -94,24 +94,23 @@ PUNCTUAL_FN uint clusterSliceOfDepth(float depth, const float* sliceStart, uint 
 }
 #endif
 
-// A light-grid cell is PUNCTUAL_GRID_WORDS words: spot bits 0-31, spot bits 32-63, point bits
-// 0-31. With packed lights numbered spots first (0 .. spotCount - 1), then points, light L is
-//   a spot  (L < spotCount):  word L / 32, bit L % 32;
-//   a point (L >= spotCount): word 2, bit L - spotCount;
-// and back, bit b of word w is light lightGridFirstLight(w, spotCount) + b, the first light of
-// a word being 32 w for the spot words and spotCount for the point word. The caps (64 spots, 32
-// points) make every light fit. Walking the words in order and each word's set bits upwards
-// visits lights in ascending packed order, the order of the brute-force loop.
-PUNCTUAL_FN uint lightGridWord(uint light, uint spotCount) {
-    return light < spotCount ? light >> 5u : 2u;
-}
+// A light-grid cell is gridWordsOf(lights) words (gpu_types.h), one bit per packed light (spots
+// first, 0 .. spotCount - 1, then points): light L is bit L % 32 of word L / 32, and bit b of word
+// w is light 32 w + b. Walking the words in order and each word's set bits upwards visits lights
+// in ascending packed order, the order of the brute-force loop, whatever the capacity.
+// (Contiguous, not a word range per kind: 64 + 32 lights are the same three words either way, and
+// a frame with fewer spots needs no padding between them and its points.)
+PUNCTUAL_FN uint lightGridWord(uint light) { return light >> 5u; }
 
-PUNCTUAL_FN uint lightGridBit(uint light, uint spotCount) {
-    return light < spotCount ? light & 31u : light - spotCount;
-}
+PUNCTUAL_FN uint lightGridBit(uint light) { return light & 31u; }
 
-PUNCTUAL_FN uint lightGridFirstLight(uint word, uint spotCount) {
-    return word < 2u ? word * 32u : spotCount;
+PUNCTUAL_FN uint lightGridFirstLight(uint word) { return word * 32u; }
+
+// The mask of word `word` holding every light of a frame of `lightCount` lights: the bits of the
+// lights 32 word .. min(32 word + 32, lightCount) - 1.
+PUNCTUAL_FN uint allLightsWord(uint word, uint lightCount) {
+    uint first = word * 32u;
+    return lightCount >= first + 32u ? 0xFFFFFFFFu : (lightCount > first ? (1u << (lightCount - first)) - 1u : 0u);
 }
 
 // The part of a screen tile between two view distances: a frustum segment. Culling tests a light

@@ -6,15 +6,22 @@
 
 #include "glsl_cpp.h"
 
-// Per-frame light caps. 64 spot + 32 point lights let a tile's light list be three 32-bit words
-// (a 64-bit spot mask and a 32-bit point mask), which is what makes culled and brute-force
-// images bit-identical: set bits are walked in the same ascending order the brute loop uses.
-#define PUNCTUAL_MAX_SPOT_LIGHTS 64
-#define PUNCTUAL_MAX_POINT_LIGHTS 32
-// Shadowed lights per frame: every light the frame keeps can cast a shadow (--shadowed S,P caps
-// them lower). Spots take one view, points six (256 views at most).
-#define PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS PUNCTUAL_MAX_SPOT_LIGHTS
-#define PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS PUNCTUAL_MAX_POINT_LIGHTS
+// Light capacity. A frame keeps at most S spot and P point lights (--max-lights S,P), the most
+// important ones (lights/light_setup.h); the design notes' caps, 64 + 32, are the default. Any
+// capacity up to PUNCTUAL_MAX_LIGHT_CAPACITY of each kind works: a light-grid cell holds one bit
+// per light the frame keeps (gridWordsOf below), and walking its set bits in ascending order
+// visits lights in the brute-force loop's order, which keeps culled and brute-force images
+// bit-identical at every capacity.
+#define PUNCTUAL_DEFAULT_MAX_SPOT_LIGHTS 64
+#define PUNCTUAL_DEFAULT_MAX_POINT_LIGHTS 32
+// 16384 of each kind: a z-bin's range holds 16-bit light indices (Drobot's), and every per-pixel
+// count of lights (tested, reaching) fits its word with room to spare.
+#define PUNCTUAL_MAX_LIGHT_CAPACITY 16384
+// Shadowed lights per frame: at most the design notes' 64 spots and 32 points (--shadowed S,P
+// caps them lower; at a larger light capacity the most important keep their shadows). Spots take
+// one view, points six (256 views at most).
+#define PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS 64
+#define PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS 32
 // Unity's classic forward path gives each object at most 8 lights.
 #define PUNCTUAL_MAX_LIGHTS_PER_OBJECT 8
 
@@ -25,8 +32,8 @@
 #define PUNCTUAL_BINDING_OBJECTS 2
 #define PUNCTUAL_BINDING_MATERIALS 3
 #define PUNCTUAL_BINDING_DEPTH 5          // depth prepass result, read by the culling passes
-#define PUNCTUAL_BINDING_LIGHT_GRID 6     // per tile (or cluster): 3 words = 64-bit spot mask, 32-bit point mask
-#define PUNCTUAL_BINDING_DEPTH_RANGE 7    // GpuDepthRange: the frame's geometry depth range and cluster slice starts
+#define PUNCTUAL_BINDING_LIGHT_GRID 6     // per tile (or cluster): GRID_WORDS words, one bit per light (culling.h)
+#define PUNCTUAL_BINDING_DEPTH_RANGE 7    // GpuDepthRange, then each slice's lights (GRID_WORDS words a slice)
 #define PUNCTUAL_BINDING_OBJECT_LIGHTS 8  // per object: PUNCTUAL_MAX_LIGHTS_PER_OBJECT packed-light indices
 // Debug: per pixel uvec4 (tested, affecting | covered bit, luminances) of the opaque surface; then
 // per pixel the sums over its transparent fragments (tested, affecting, fragments, fragments
@@ -42,8 +49,8 @@
 // width x height) depth of the alphaMode BLEND surfaces in front of the opaque ones; 0 and
 // 0xFFFFFFFF where there are none. Written by transparent_depth.frag, read by the culling kernels.
 #define PUNCTUAL_BINDING_TRANSPARENT_DEPTH 16
-#define PUNCTUAL_BINDING_ZBINS 17             // GpuZBins: the z-bin method's bins (lights/z_bins.h)
-#define PUNCTUAL_BINDING_COARSE_GRID 18       // per coarse tile: 3 mask words, as the light grid's (coarse_culling.comp)
+#define PUNCTUAL_BINDING_ZBINS 17             // GpuZBins, then each bin's mask (GRID_WORDS words a bin; lights/z_bins.h)
+#define PUNCTUAL_BINDING_COARSE_GRID 18       // per coarse tile: GRID_WORDS mask words, as the light grid's (coarse_culling.comp)
 
 // Shadow validation buffer (forward shader's WRITE_SHADOW_FACTORS variant), in 32-bit words:
 // per pixel PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS words (world position xyz, 1 if covered, shading
@@ -53,14 +60,13 @@
 // is the sun's cascade there plus one (0: none).
 #define PUNCTUAL_MAX_SHADOWED_LIGHTS (PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS + PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS)
 #define PUNCTUAL_SUN_SHADOW_SLOT PUNCTUAL_MAX_SHADOWED_LIGHTS
-// Light statistics variant (PUNCTUAL_SPEC_WRITE_LIGHT_STATS), a covered pixel's first word: the
-// lights its list made it test, the shadow-map lookups those lights took (a lookup: one filtered
-// read of one view, cube face or cascade; the sun's blend zone reads two) and the texture
-// instructions those lookups issued (a tap: one compare sample or one gather). Bits 0-7, 8-15,
-// 16-31: at most 96 lights and 96 + 2 lookups of at most 64 taps each (< 2^16) fit.
-#define PUNCTUAL_STATS_TESTED_BITS 8u
-#define PUNCTUAL_STATS_LOOKUP_SHIFT 8u
-#define PUNCTUAL_STATS_TAP_SHIFT 16u
+// Light statistics variant (PUNCTUAL_SPEC_WRITE_LIGHT_STATS), a covered pixel's work word: the
+// shadow-map lookups its lights took (a lookup: one filtered read of one view, cube face or
+// cascade; the sun's blend zone reads two) and the texture instructions those lookups issued (a
+// tap: one compare sample or one gather). Bits 0-7 and 8-31: at most 96 shadowed lights + 2
+// lookups of at most 64 taps each fit. (The lights it tested have a word of their own.)
+#define PUNCTUAL_STATS_LOOKUP_BITS 8u
+#define PUNCTUAL_STATS_TAP_SHIFT 8u
 #define PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS 8
 #define PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS ((PUNCTUAL_MAX_SHADOWED_LIGHTS + 1 + 3) / 4)
 #define PUNCTUAL_SHADOW_FACTOR_NOT_REACHED 255u
@@ -89,8 +95,6 @@
 #define PUNCTUAL_MATERIAL_ALPHA_BLEND 2u   // glTF alphaMode BLEND: the transparent pass
 #define PUNCTUAL_MATERIAL_SINGLE_SIDED 4u  // not doubleSided: back faces are not drawn
 
-// Words per light-grid cell: spot bits 0-31, spot bits 32-63, point bits 0-31.
-#define PUNCTUAL_GRID_WORDS 3
 // Clusters use at most 32 depth slices, so a tile's occupied slices fit one 32-bit mask.
 #define PUNCTUAL_MAX_CLUSTER_SLICES 32
 
@@ -119,6 +123,7 @@
 #define PUNCTUAL_SPEC_SHADOW_FILTER_SIZE 14  // forward: the shadow kernel's size (shadow_kernels.h)
 #define PUNCTUAL_SPEC_COARSE_TILES 15  // culling: fine tiles a side of a coarse tile (0: no coarse pass)
 #define PUNCTUAL_SPEC_TILE_THREADS 16  // tile_culling.comp: invocations per tile (the device's subgroup size)
+#define PUNCTUAL_SPEC_GRID_WORDS 17  // words per light-grid cell (gridWordsOf the frame's lights)
 // tile_culling.comp's workgroups: at most this many invocations (a power of two, at least the 32 or
 // 64 of GPU subgroups; one lane per 2x2 block of a 16-pixel tile).
 #define PUNCTUAL_MAX_TILE_THREADS 64u
@@ -129,29 +134,34 @@
 
 PUNCTUAL_NAMESPACE_BEGIN
 
-PUNCTUAL_FN uint packPixelWork(uint tested, uint lookups, uint taps) {
-    return tested | (lookups << PUNCTUAL_STATS_LOOKUP_SHIFT) | (taps << PUNCTUAL_STATS_TAP_SHIFT);
-}
-PUNCTUAL_FN uint unpackTested(uint word) { return word & ((1u << PUNCTUAL_STATS_TESTED_BITS) - 1u); }
-PUNCTUAL_FN uint unpackShadowLookups(uint word) { return (word >> PUNCTUAL_STATS_LOOKUP_SHIFT) & 0xFFu; }
+PUNCTUAL_FN uint packPixelWork(uint lookups, uint taps) { return lookups | (taps << PUNCTUAL_STATS_TAP_SHIFT); }
+PUNCTUAL_FN uint unpackShadowLookups(uint word) { return word & ((1u << PUNCTUAL_STATS_LOOKUP_BITS) - 1u); }
 PUNCTUAL_FN uint unpackShadowTaps(uint word) { return word >> PUNCTUAL_STATS_TAP_SHIFT; }
+
+// Words per light-grid cell for a frame keeping `lightCount` lights: one bit each (culling.h,
+// lightGridWord), at least one word. The grid, the coarse grid, the slices' and the z-bins' masks
+// all have this many words a cell; the shaders get it as PUNCTUAL_SPEC_GRID_WORDS.
+PUNCTUAL_FN uint gridWordsOf(uint lightCount) { return lightCount == 0u ? 1u : (lightCount + 31u) / 32u; }
 
 // Light statistics buffer (PUNCTUAL_BINDING_LIGHT_STATS, the forward shader's WRITE_LIGHT_STATS
 // variant), in 32-bit words: three blocks, each PUNCTUAL_LIGHT_STATS_PIXEL_WORDS words for every
 // pixel of the frame (width x height), in this order:
-//   OPAQUE      the pixel's opaque surface: WORK packPixelWork(tested, lookups, taps);
-//               REACHING the lights that reach it, with PUNCTUAL_LIGHT_STATS_COVERED set (every
-//               shaded pixel: 0 marks background); LUMINANCE and BRUTE_LUMINANCE the float bits
-//               of the method's and brute force's luminance there.
+//   OPAQUE      the pixel's opaque surface: WORK packPixelWork(lookups, taps); REACHING the lights
+//               that reach it, with PUNCTUAL_LIGHT_STATS_COVERED set (every shaded pixel: 0 marks
+//               background); LUMINANCE and BRUTE_LUMINANCE the float bits of the method's and
+//               brute force's luminance there.
 //   TRANSPARENT summed by atomics over the pixel's alphaMode BLEND fragments: TESTED, REACHING,
 //               FRAGMENTS, and MISSING, the fragments whose luminance fell short of brute force's.
-//   EXACT       the exact-list floor: the PUNCTUAL_GRID_WORDS mask words of the lights reaching the
-//               opaque surface, then (LIST_CELL) the light-list cell the pixel read.
+//   LIST        the opaque surface's light list: LIST_CELL the cell the pixel read, LIST_TESTED
+//               the lights it tested.
+// Then, for the exact-list floor (metrics/culling_stats.h), per list cell GRID_WORDS words: the
+// union (atomicOr) of the masks (culling.h, lightGridWord) of the lights reaching its opaque pixels.
+// Per cell, not per pixel: a pixel's own mask would be GRID_WORDS words, 1 KiB at 8,192 lights.
 #define PUNCTUAL_LIGHT_STATS_PIXEL_WORDS 4u
 #define PUNCTUAL_LIGHT_STATS_BLOCKS 3u
 #define PUNCTUAL_LIGHT_STATS_OPAQUE 0u
 #define PUNCTUAL_LIGHT_STATS_TRANSPARENT 1u
-#define PUNCTUAL_LIGHT_STATS_EXACT 2u
+#define PUNCTUAL_LIGHT_STATS_LIST 2u
 #define PUNCTUAL_LIGHT_STATS_WORK 0u            // OPAQUE's words
 #define PUNCTUAL_LIGHT_STATS_REACHING 1u
 #define PUNCTUAL_LIGHT_STATS_LUMINANCE 2u
@@ -159,7 +169,8 @@ PUNCTUAL_FN uint unpackShadowTaps(uint word) { return word >> PUNCTUAL_STATS_TAP
 #define PUNCTUAL_LIGHT_STATS_TESTED 0u          // TRANSPARENT's words (REACHING is word 1 in both)
 #define PUNCTUAL_LIGHT_STATS_FRAGMENTS 2u
 #define PUNCTUAL_LIGHT_STATS_MISSING 3u
-#define PUNCTUAL_LIGHT_STATS_LIST_CELL 3u       // EXACT's last word, after the mask words
+#define PUNCTUAL_LIGHT_STATS_LIST_CELL 0u       // LIST's words
+#define PUNCTUAL_LIGHT_STATS_LIST_TESTED 1u
 #define PUNCTUAL_LIGHT_STATS_COVERED 0x80000000u
 
 // A shadowed light's slot among the validation buffer's factor bytes (spots, then points), from
@@ -173,6 +184,11 @@ PUNCTUAL_FN uint shadowSlot(uint firstView, uint shadowedSpots) {
 // The index of word `word` of `pixel` in `block`, for a frame of `pixels` pixels.
 PUNCTUAL_FN uint lightStatsWord(uint block, uint pixels, uint pixel, uint word) {
     return (block * pixels + pixel) * PUNCTUAL_LIGHT_STATS_PIXEL_WORDS + word;
+}
+
+// The index of mask word `word` of list cell `cell`'s reaching lights, after the pixel blocks.
+PUNCTUAL_FN uint lightStatsCellWord(uint pixels, uint gridWords, uint cell, uint word) {
+    return PUNCTUAL_LIGHT_STATS_BLOCKS * pixels * PUNCTUAL_LIGHT_STATS_PIXEL_WORDS + cell * gridWords + word;
 }
 
 // A spot or point light. Spots and points share one struct: a point light is a spot whose
@@ -246,23 +262,24 @@ struct GpuDepthRange {
     uint finishedSubgroups;
     // Depth where slice s begins; slice 0 = nearest (depth 1), starts falling with s.
     float sliceStartDepth[PUNCTUAL_MAX_CLUSTER_SLICES];
-    // Per slice, PUNCTUAL_GRID_WORDS mask words (lightGridWord in culling.h) of the lights whose
-    // view-distance extent meets the slice's distances: the only lights a segment of that slice
-    // can meet (cluster_culling.comp tests no other).
-    uint sliceLights[PUNCTUAL_MAX_CLUSTER_SLICES * PUNCTUAL_GRID_WORDS];
+    // The buffer goes on, after this header, with each slice's lights: per slice (all
+    // PUNCTUAL_MAX_CLUSTER_SLICES), GRID_WORDS mask words (lightGridWord in culling.h) of the lights
+    // whose view-distance extent meets the slice's distances: the only lights a segment of that
+    // slice can meet (cluster_culling.comp tests no other).
 };
 
 // The z-bin method's bins (URP Forward+ after Drobot 2017; lights/z_bins.h builds them on the
 // CPU each frame). Bin b covers the depths from binStartDepth[b] down to binStartDepth[b + 1]
 // (reversed depth: bin 0 starts at the near plane, depth 1; the last runs to the far plane), the
 // same stored-start search as the cluster slices (culling.h), so the CPU and the forward pass
-// put a depth in the same bin. binMask[b]: xyz the packed-order mask (spot words, point word;
-// lightGridWord) of every light whose depth-sorted index lies in the bin's range; w the range
-// itself, first | last << 16 (first > last: an empty bin).
+// put a depth in the same bin. binRange[b]: the bin's range of depth-sorted light indices, first |
+// last << 16 (16-bit indices, as Drobot's; first > last: an empty bin). The buffer goes on, after
+// this header, with each bin's range expanded into a packed-order mask (GRID_WORDS words a bin;
+// lightGridWord), which the forward pass ANDs with its tile's.
 #define PUNCTUAL_ZBIN_COUNT 64u
 struct GpuZBins {
     float binStartDepth[PUNCTUAL_ZBIN_COUNT];
-    uvec4 binMask[PUNCTUAL_ZBIN_COUNT];
+    uint binRange[PUNCTUAL_ZBIN_COUNT];
 };
 
 struct GpuObject {

@@ -2,7 +2,11 @@
 // combining a workgroup's values with subgroup operations, spreading a tile's candidate lights over
 // the lanes, reading a pixel's depth span and testing a set of lights against a frustum segment.
 // GLSL only; include after culling.h and the declarations of `frame` (GpuFrame), `depthImage`,
-// `transparentDepth` and `frameCullLights`, with GL_KHR_shader_subgroup_arithmetic enabled.
+// `transparentDepth`, `frameCullLights` and `GRID_WORDS` (the words a light-grid cell), with
+// GL_KHR_shader_subgroup_arithmetic enabled.
+//
+// Light masks travel three words at a time (a triple: words 3 triple .. 3 triple + 2; words past
+// GRID_WORDS are 0): the kernels loop over a cell's triples, one at the design notes' 96 lights.
 //
 // A workgroup is one subgroup on the devices these kernels are sized for (LightGridLayout::
 // tileThreads is the device's subgroup size), and then needs no shared memory and no barrier. A
@@ -59,36 +63,35 @@ uint laneBitsOfWord(uint word, uint lane, uint threads) {
     return (0xFFFFFFFFu / ((1u << threads) - 1u)) << lane;
 }
 
-// The three mask words (culling.h, lightGridWord) of the tile's candidate lights that lane `lane`
-// of `threads` tests: with the coarse pass (coarseTiles > 0), those its big tile kept; else all of
-// the frame's lights.
-uvec3 laneCandidates(uvec2 tile, uint coarseTiles, uint lane, uint threads) {
-    uvec3 candidates;
+// Triple `triple` of the mask words (culling.h, lightGridWord) of the tile's candidate lights that
+// lane `lane` of `threads` tests: with the coarse pass (coarseTiles > 0), those its big tile kept;
+// else all of the frame's lights.
+uint laneCandidateWord(uvec2 tile, uint coarseTiles, uint lane, uint threads, uint word) {
+    if (word >= GRID_WORDS) return 0u;
+    uint candidates;
     if (coarseTiles > 0u) {
         uvec2 coarseTile = tile / coarseTiles;
         uint coarseTilesAcross = (frame.lightGrid.y + coarseTiles - 1u) / coarseTiles;
-        uint coarseBase = (coarseTile.y * coarseTilesAcross + coarseTile.x) * PUNCTUAL_GRID_WORDS;
-        candidates = uvec3(coarseGrid[coarseBase], coarseGrid[coarseBase + 1u], coarseGrid[coarseBase + 2u]);
+        candidates = coarseGrid[(coarseTile.y * coarseTilesAcross + coarseTile.x) * GRID_WORDS + word];
     } else {
-        // Spots fill words 0-1 from bit 0, points word 2 (lightGridWord).
-        uint spots = frame.spotCount;
-        uint points = frame.pointCount;
-        candidates = uvec3(spots >= 32u ? 0xFFFFFFFFu : (1u << spots) - 1u,
-                           spots >= 64u ? 0xFFFFFFFFu : (spots <= 32u ? 0u : (1u << (spots - 32u)) - 1u),
-                           points >= 32u ? 0xFFFFFFFFu : (1u << points) - 1u);
+        candidates = allLightsWord(word, frame.spotCount + frame.pointCount);
     }
-    return candidates & uvec3(laneBitsOfWord(0u, lane, threads), laneBitsOfWord(1u, lane, threads),
-                              laneBitsOfWord(2u, lane, threads));
+    return candidates & laneBitsOfWord(word, lane, threads);
 }
 
-// The lights of `lights` (three mask words) whose shapes may touch `segment` (culling.h) and, for a
-// `cell` other than kAnyDepthCell, whose depth cells (lightDepthMask, the tile's mask of near
-// distance `maskNear` and `maskScale`) include it: tiled-2.5d's per-cell test. One loop over the
-// three words, each step the lowest bit of the first word with any, by selects (forward.frag
+uvec3 laneCandidates(uvec2 tile, uint coarseTiles, uint lane, uint threads, uint triple) {
+    return uvec3(laneCandidateWord(tile, coarseTiles, lane, threads, 3u * triple),
+                 laneCandidateWord(tile, coarseTiles, lane, threads, 3u * triple + 1u),
+                 laneCandidateWord(tile, coarseTiles, lane, threads, 3u * triple + 2u));
+}
+
+// The lights of `lights` (triple `triple` of a mask) whose shapes may touch `segment` (culling.h)
+// and, for a `cell` other than kAnyDepthCell, whose depth cells (lightDepthMask, the tile's mask of
+// near distance `maskNear` and `maskScale`) include it: tiled-2.5d's per-cell test. One loop over
+// the three words, each step the lowest bit of the first word with any, by selects (forward.frag
 // walks its masks so, and why).
 const uint kAnyDepthCell = 0xFFFFFFFFu;
-uvec3 lightsMeetingDepthCell(uvec3 lights, TileVolume segment, uint cell, float maskNear, float maskScale) {
-    uint spotCount = frame.spotCount;
+uvec3 lightsMeetingDepthCell(uvec3 lights, uint triple, TileVolume segment, uint cell, float maskNear, float maskScale) {
     uvec3 meeting = uvec3(0u);
     while ((lights.x | lights.y | lights.z) != 0u) {
         uint word = lights.x != 0u ? 0u : (lights.y != 0u ? 1u : 2u);
@@ -96,7 +99,7 @@ uvec3 lightsMeetingDepthCell(uvec3 lights, TileVolume segment, uint cell, float 
         uint bit = 1u << uint(findLSB(bits));
         uvec3 wordBit = uvec3(word == 0u ? bit : 0u, word == 1u ? bit : 0u, word == 2u ? bit : 0u);
         lights &= ~wordBit;
-        CullLight shape = frameCullLights[lightGridFirstLight(word, spotCount) + uint(findLSB(bits))];
+        CullLight shape = frameCullLights[lightGridFirstLight(3u * triple + word) + uint(findLSB(bits))];
         bool spansCell = cell == kAnyDepthCell || (lightDepthMask(shape, maskNear, maskScale) & (1u << cell)) != 0u;
         if (spansCell && lightMayTouchTile(shape, segment)) meeting |= wordBit;
     }
@@ -104,8 +107,15 @@ uvec3 lightsMeetingDepthCell(uvec3 lights, TileVolume segment, uint cell, float 
 }
 
 // The lights of `lights` whose shapes may touch `segment`, whatever their depth cells.
-uvec3 lightsMeetingSegment(uvec3 lights, TileVolume segment) {
-    return lightsMeetingDepthCell(lights, segment, kAnyDepthCell, 0.0, 0.0);
+uvec3 lightsMeetingSegment(uvec3 lights, uint triple, TileVolume segment) {
+    return lightsMeetingDepthCell(lights, triple, segment, kAnyDepthCell, 0.0, 0.0);
+}
+
+// Writes triple `triple` of a cell's masks, at `cellBase` of lightGrid (lanes 0-2, the words
+// before GRID_WORDS).
+void writeCellTriple(uint cellBase, uint triple, uvec3 masks, uint lane) {
+    uint word = 3u * triple + lane;
+    if (lane < 3u && word < GRID_WORDS) lightGrid[cellBase + word] = lane == 0u ? masks.x : (lane == 1u ? masks.y : masks.z);
 }
 
 // The geometry a pixel shades, as a depth span (nearest, farthest): a pixel under transparent

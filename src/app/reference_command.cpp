@@ -15,6 +15,7 @@
 #include "core/image.h"
 #include "core/output_files.h"
 #include "reference/reference_renderer.h"
+#include "report/frame_stats.h"
 
 namespace punctual::app {
 
@@ -59,6 +60,7 @@ reference::ReferenceSettings referenceSettingsFrom(const RenderOptions& options,
     settings.exposure = options.exposure;
     settings.shadows = shadows;
     settings.transparentShadows = options.shadows.transparent;
+    settings.maxLights = options.maxLights;
     return settings;
 }
 
@@ -114,9 +116,7 @@ int runReferenceCommand(const std::vector<std::string>& args) {
     const FrameLights& lights = renderer.lights();
     std::printf("scene: %s (%zu triangles, %zu objects)\n", scene.source.c_str(), scene.triangleCount(),
                 scene.objects.size());
-    std::printf("lights: %u spot, %u point, %u directional (%u outside the view, %u over the caps)\n",
-                lights.spotCount, lights.pointCount, lights.directionalCount, lights.culledByFrustum,
-                lights.droppedByCap);
+    std::printf("%s\n", report::frameLightsLine(lights, settings.maxLights).c_str());
     std::printf("reference: %ux%u, shadows %s, %d threads, BVH build %.3f s\n", settings.width, settings.height,
                 shadows ? "on" : "off", tbb::this_task_arena::max_concurrency(), stats.buildSeconds);
     std::printf("rays: %llu (%llu primary + %llu shadow) in %.3f s: %.2f M rays/s\n",

@@ -62,9 +62,7 @@ void printFrameSummary(const Scene& scene, const vk::Context& context, const ren
                 scene.objects.size());
     std::printf("device: %s, %ux%u, %s culling, %u frame(s), median GPU times\n", context.deviceName().c_str(),
                 settings.width, settings.height, render::methodName(settings.method), frames);
-    std::printf("lights: %u spot, %u point, %u directional (%u outside the view, %u over the caps)\n",
-                lights.spotCount, lights.pointCount, lights.directionalCount, lights.culledByFrustum,
-                lights.droppedByCap);
+    std::printf("%s\n", frameLightsLine(lights, settings.maxLights).c_str());
     const ShadowPlan& shadows = renderer.shadowPlan();
     if (settings.shadows.enabled) {
         std::printf("shadows: %u spot, %u point (%s), %u views rendered, %u skipped, %.1f MiB %s, %s filter\n",

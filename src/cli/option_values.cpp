@@ -58,4 +58,12 @@ void parseShadowedCounts(const std::string& text, ShadowSettings& shadows) {
     shadows.maxShadowedPoints = parseWhole("--shadowed", text.substr(comma + 1));
 }
 
+LightCapacity parseLightCapacity(const std::string& text) {
+    const size_t comma = text.find(',');
+    if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) {
+        throw Error("--max-lights", "expected S,P (spot and point lights), got '" + text + "'");
+    }
+    return {parseWhole("--max-lights", text.substr(0, comma)), parseWhole("--max-lights", text.substr(comma + 1))};
+}
+
 }  // namespace punctual::cli

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "lights/light_setup.h"
 #include "lights/shadow_setup.h"
 
 namespace punctual::cli {
@@ -34,5 +35,7 @@ std::vector<float> parseNumberList(const std::string& option, const std::string&
                                    const std::string& expected);
 // "S,P" -> the most spot and point lights that cast a shadow (ranges: validateShadowSettings).
 void parseShadowedCounts(const std::string& text, ShadowSettings& shadows);
+// --max-lights S,P: whole numbers (their range is validateRenderSettings's to check).
+LightCapacity parseLightCapacity(const std::string& text);
 
 }  // namespace punctual::cli

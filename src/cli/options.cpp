@@ -86,6 +86,11 @@ void checkOptionCombinations(const RenderOptions& options, bool splitsAndLambda)
     checkOutputExtension("--heatmap", options.heatmapPath, ".png", "PNG");
     checkOutputExtension("--shadow-density", options.shadowDensityPath, ".png", "PNG");
     checkOutputExtension("--stats", options.statsPath, ".json", "JSON");
+    if (options.lights && (options.lights->spot > options.maxLights.spots || options.lights->point > options.maxLights.points)) {
+        throw Error("--lights", std::to_string(options.lights->spot) + "," + std::to_string(options.lights->point) +
+                                    " is over the capacity, --max-lights " + std::to_string(options.maxLights.spots) +
+                                    "," + std::to_string(options.maxLights.points) + ": raise it too");
+    }
     if (options.lightRange && !options.lights) {
         throw Error("--light-range", "sets the range of generated lights: give --lights S,P too");
     }
@@ -145,6 +150,7 @@ render::RenderSettings renderSettingsFrom(const RenderOptions& options) {
     settings.coarseTiles = options.coarseTiles;
     settings.subgroupTiles = options.subgroupTiles;
     settings.shadows = options.shadows;
+    settings.maxLights = options.maxLights;
     return settings;
 }
 

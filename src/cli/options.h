@@ -20,6 +20,7 @@ struct RenderOptions {
     std::optional<uint64_t> sceneTriangles;  // --scene-triangles N: the size of a sized built-in scene
     std::optional<LightCounts> lights;     // --lights S,P[,SEED]
     std::optional<LightRange> lightRange;  // --light-range R|auto (generated lights only)
+    LightCapacity maxLights;               // --max-lights S,P
     uint32_t width = 1280;
     uint32_t height = 720;
     std::optional<std::string> outPath;    // --out FILE.png

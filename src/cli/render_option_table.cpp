@@ -72,9 +72,13 @@ const RenderOptionSpec kRenderOptions[] = {
      [](const RenderOptions&, size_t indent) { return variantHelp(kBuiltinScenes, kDefaultBuiltinScene.value, indent); }},
     {"--scene-triangles", "N", "the size of --scene rooms, 10k to 10M triangles (e.g. 250k, 2M, 1e6;\ndefault 100k)",
      [](RenderOptions& o, const std::string& v, Notes&) { o.sceneTriangles = parseSceneTriangles(v); }},
+    {"--max-lights", "S,P",
+     "the light capacity: each frame keeps at most S spot and P point\nlights, the most important (default 64,32, "
+     "the design notes'; up to\n16384,16384). The light lists hold one bit per light kept",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.maxLights = parseLightCapacity(v); }},
     {"--lights", "S,P[,SEED]",
-     "replace the scene's lights with S spot (<= 64) and P point (<= 32)\nlights generated inside its bounds, each "
-     "reaching something the\ncamera sees (same seed, same lights; seed 1)",
+     "replace the scene's lights with S spot and P point lights (at most\n--max-lights) generated inside its bounds, "
+     "each reaching something\nthe camera sees (same seed, same lights; seed 1)",
      [](RenderOptions& o, const std::string& v, Notes&) { o.lights = parseLightCounts(v); }},
     {"--light-range", "R|auto",
      "with --lights, the generated lights' range: R metres, or auto: their\ndrawn ranges scaled by "

@@ -107,7 +107,8 @@ gpu::GpuDirectionalLight packDirectionalLight(const Light& light) {
     return sun;
 }
 
-FrameLights setupFrameLights(const Scene& scene, const glm::mat4& view, const glm::mat4& projection) {
+FrameLights setupFrameLights(const Scene& scene, const glm::mat4& view, const glm::mat4& projection,
+                             const LightCapacity& capacity) {
     FrameLights frame;
     const Frustum frustum = extractFrustum(projection * view);
     const glm::vec3 cameraPosition = glm::vec3(glm::inverse(view)[3]);
@@ -152,8 +153,8 @@ FrameLights setupFrameLights(const Scene& scene, const glm::mat4& view, const gl
         std::sort(candidates.begin(), candidates.end(),
                   [](const Candidate& a, const Candidate& b) { return a.sceneIndex < b.sceneIndex; });
     };
-    keepMostImportant(spots, PUNCTUAL_MAX_SPOT_LIGHTS);
-    keepMostImportant(points, PUNCTUAL_MAX_POINT_LIGHTS);
+    keepMostImportant(spots, capacity.spots);
+    keepMostImportant(points, capacity.points);
 
     frame.spotCount = static_cast<uint32_t>(spots.size());
     frame.pointCount = static_cast<uint32_t>(points.size());

@@ -1,7 +1,7 @@
 #pragma once
 // CPU light setup for one frame: cull the scene's spot and point lights to the view frustum, keep
-// at most PUNCTUAL_MAX_SPOT_LIGHTS spots and PUNCTUAL_MAX_POINT_LIGHTS points (the most important
-// ones), and pack them into the GPU layout of shaders/shared/gpu_types.h. Also picks the one
+// at most the capacity's spots and points (the most important ones; --max-lights, 64 + 32 by
+// default), and pack them into the GPU layout of shaders/shared/gpu_types.h. Also picks the one
 // directional light (the sun).
 #include <array>
 #include <cstdint>
@@ -14,6 +14,14 @@
 
 namespace punctual {
 
+// How many spot and point lights a frame keeps (--max-lights S,P): the design notes' 64 + 32 by
+// default, at most PUNCTUAL_MAX_LIGHT_CAPACITY of each kind.
+struct LightCapacity {
+    uint32_t spots = PUNCTUAL_DEFAULT_MAX_SPOT_LIGHTS;
+    uint32_t points = PUNCTUAL_DEFAULT_MAX_POINT_LIGHTS;
+    bool operator==(const LightCapacity&) const = default;
+};
+
 struct FrameLights {
     std::vector<gpu::GpuPunctualLight> packed;  // spots first (spotCount), then points (pointCount); no padding to the caps
     std::vector<uint32_t> sceneLightIndex;      // packed[i] came from scene.lights[sceneLightIndex[i]]
@@ -22,7 +30,7 @@ struct FrameLights {
     gpu::GpuDirectionalLight sun{};             // directionToLight.w = 0 when the scene has none
     uint32_t directionalCount = 0;              // 0 or 1: the first directional light of the scene
     uint32_t culledByFrustum = 0;               // spot/point lights whose bounding sphere is outside the view
-    uint32_t droppedByCap = 0;                  // visible lights over the caps, plus directional lights after the first
+    uint32_t droppedByCap = 0;                  // visible lights over the capacity, plus directional lights after the first
 };
 
 // A sphere bounding everything a light can illuminate (attenuation > 0).
@@ -64,6 +72,7 @@ gpu::GpuDirectionalLight packDirectionalLight(const Light& light);
 
 // The whole setup: frustum cull, rank and cap per type, keep the survivors in scene order (so that
 // a light added far away never reorders the others and the shading sum stays the same), pack.
-FrameLights setupFrameLights(const Scene& scene, const glm::mat4& view, const glm::mat4& projection);
+FrameLights setupFrameLights(const Scene& scene, const glm::mat4& view, const glm::mat4& projection,
+                             const LightCapacity& capacity = {});
 
 }  // namespace punctual

@@ -24,9 +24,11 @@ uint32_t zBinOfDepth(const gpu::GpuZBins& bins, float depth) {
     return gpu::clusterSliceOfDepth(depth, bins.binStartDepth, PUNCTUAL_ZBIN_COUNT);
 }
 
-ZBins buildZBins(const std::vector<gpu::CullLight>& cullLights, uint32_t spotCount, glm::vec2 depthToView) {
+ZBins buildZBins(const std::vector<gpu::CullLight>& cullLights, glm::vec2 depthToView) {
     ZBins bins;
     const uint32_t count = uint32_t(cullLights.size());
+    bins.gridWords = gpu::gridWordsOf(count);
+    bins.binMasks.assign(size_t(PUNCTUAL_ZBIN_COUNT) * bins.gridWords, 0u);
     std::vector<Extent> extents;
     for (const gpu::CullLight& light : cullLights) extents.push_back(extentOf(light));
     bins.sortedLights.resize(count);
@@ -72,15 +74,15 @@ ZBins buildZBins(const std::vector<gpu::CullLight>& cullLights, uint32_t spotCou
         }
     }
     for (uint32_t b = 0; b < PUNCTUAL_ZBIN_COUNT; ++b) {
-        uint32_t words[PUNCTUAL_GRID_WORDS] = {0u, 0u, 0u};
+        uint32_t* words = &bins.binMasks[size_t(b) * bins.gridWords];
         if (first[b] <= last[b]) {
             for (uint32_t i = first[b]; i <= last[b]; ++i) {
                 const uint32_t light = bins.sortedLights[i];
-                words[gpu::lightGridWord(light, spotCount)] |= 1u << gpu::lightGridBit(light, spotCount);
+                words[gpu::lightGridWord(light)] |= 1u << gpu::lightGridBit(light);
             }
-            bins.gpu.binMask[b] = glm::uvec4(words[0], words[1], words[2], first[b] | (last[b] << 16));
+            bins.gpu.binRange[b] = first[b] | (last[b] << 16);  // 16-bit indices (PUNCTUAL_MAX_LIGHT_CAPACITY)
         } else {
-            bins.gpu.binMask[b] = glm::uvec4(0u, 0u, 0u, 1u);  // first 1 > last 0: empty
+            bins.gpu.binRange[b] = 1u;  // first 1 > last 0: empty
         }
     }
     return bins;

@@ -6,7 +6,7 @@
 //   2. the lights are sorted by that nearest end (ties by packed index: deterministic);
 //   3. PUNCTUAL_ZBIN_COUNT logarithmic bins between the nearest and the farthest light extent
 //      each hold the [first, last] range of sorted indices of the lights overlapping them;
-//   4. each bin's range is expanded into a packed-order light mask (the grid's three words), so
+//   4. each bin's range is expanded into a packed-order light mask (the grid's words), so
 //      the forward pass ANDs its tile's mask with its bin's and walks the set bits in packed
 //      order, the brute-force loop's order: bit-identical to brute force.
 // A range is looser than the exact set of lights in a bin (it also holds the sorted lights
@@ -14,8 +14,9 @@
 // mask, and what the bench measures.
 //
 // Why the CPU: the lights already pass through it every frame (packing, view transform); sorting
-// at most 96 and filling 64 bins is a few microseconds, where a GPU pass would cost a dispatch, a
-// barrier and a sort. URP builds its bins on the CPU too (Burst jobs).
+// the design notes' 96 and filling 64 bins is a few microseconds (8,192: about a millisecond),
+// where a GPU pass would cost a dispatch, a barrier and a sort. URP builds its bins on the CPU too
+// (Burst jobs).
 #include <cstdint>
 #include <vector>
 
@@ -26,12 +27,18 @@ namespace punctual {
 
 struct ZBins {
     gpu::GpuZBins gpu{};
+    uint32_t gridWords = 1;              // words a bin's mask: gpu::gridWordsOf(the lights)
+    std::vector<uint32_t> binMasks;      // PUNCTUAL_ZBIN_COUNT x gridWords: bin b's mask at b x gridWords
     std::vector<uint32_t> sortedLights;  // packed indices in depth order (nearest extent first)
+
+    const uint32_t* binMask(uint32_t bin) const { return &binMasks[size_t(bin) * gridWords]; }
+    // The GPU buffer (PUNCTUAL_BINDING_ZBINS): the header `gpu`, then binMasks.
+    uint64_t bytes() const { return sizeof(gpu::GpuZBins) + binMasks.size() * sizeof(uint32_t); }
 };
 
-// `cullLights` in packed order (spots first: the first `spotCount`), `depthToView` the camera's
-// (a, b) of viewDistanceFromDepth. Deterministic.
-ZBins buildZBins(const std::vector<gpu::CullLight>& cullLights, uint32_t spotCount, glm::vec2 depthToView);
+// `cullLights` in packed order, `depthToView` the camera's (a, b) of viewDistanceFromDepth.
+// Deterministic.
+ZBins buildZBins(const std::vector<gpu::CullLight>& cullLights, glm::vec2 depthToView);
 
 // The bin of a (reversed) depth: the stored-start search the forward pass makes.
 uint32_t zBinOfDepth(const gpu::GpuZBins& bins, float depth);

@@ -1,9 +1,6 @@
 #include "metrics/culling_stats.h"
 
 #include <algorithm>
-#include <array>
-#include <bit>
-#include <unordered_map>
 
 #include "gpu_types.h"
 
@@ -11,26 +8,14 @@ namespace punctual {
 namespace {
 
 // Lights tested over the covered pixels if each list cell's list held exactly the lights that reach
-// one of its pixels: the union of the cell's masks, counted once per pixel of the cell.
+// one of its pixels: each covered pixel tests its cell's union.
 double exactListTested(const LightStatsImage& image) {
     if (image.listCells.size() != image.covered.size()) return 0.0;
-    using Mask = std::array<uint32_t, PUNCTUAL_GRID_WORDS>;
-    struct Cell {
-        Mask lights{};
-        uint64_t pixels = 0;
-    };
-    std::unordered_map<uint32_t, Cell> cells;
+    double tested = 0.0;
     for (size_t i = 0; i < image.covered.size(); ++i) {
         if (!image.covered[i]) continue;
-        Cell& cell = cells[image.listCells[i]];
-        for (uint32_t w = 0; w < PUNCTUAL_GRID_WORDS; ++w) cell.lights[w] |= image.affectingMasks[i * PUNCTUAL_GRID_WORDS + w];
-        ++cell.pixels;
-    }
-    double tested = 0.0;
-    for (const auto& [key, cell] : cells) {
-        int lights = 0;
-        for (uint32_t word : cell.lights) lights += std::popcount(word);
-        tested += double(lights) * double(cell.pixels);
+        const uint32_t cell = image.listCells[i];
+        if (cell < image.cellReachingLights.size()) tested += double(image.cellReachingLights[cell]);
     }
     return tested;
 }

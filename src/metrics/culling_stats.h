@@ -22,11 +22,12 @@ struct LightStatsImage {
     std::vector<uint32_t> transparentAffecting;
     std::vector<uint32_t> transparentFragments;
     std::vector<uint32_t> transparentMissingLight;  // fragments whose method radiance fell short of brute force's
-    // Per opaque pixel: the lights that reach it as a light-grid mask (PUNCTUAL_GRID_WORDS words,
-    // culling.h's lightGridWord), and its list cell, the key its method's list is a function of
-    // (forward.frag, pixelListCell: the tile, the cluster, the tile and z-bin, the object).
-    std::vector<uint32_t> affectingMasks;
+    // Per opaque pixel, its list cell: the key its method's list is a function of (forward.frag,
+    // pixelListCell: the tile, the cluster, the tile and z-bin, the object).
     std::vector<uint32_t> listCells;
+    // Per list cell, the lights that reach at least one of its opaque pixels (the union of their
+    // masks, gathered on the GPU): the cell's exact list.
+    std::vector<uint32_t> cellReachingLights;
 };
 
 struct CullingStats {

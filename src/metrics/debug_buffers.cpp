@@ -1,6 +1,7 @@
 #include "metrics/debug_buffers.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 
 #include "core/check.h"
@@ -8,18 +9,21 @@
 
 namespace punctual {
 
-uint64_t lightStatsBytes(uint32_t width, uint32_t height) {
-    return uint64_t(width) * height * PUNCTUAL_LIGHT_STATS_BLOCKS * PUNCTUAL_LIGHT_STATS_PIXEL_WORDS * 4;
+uint64_t lightStatsBytes(uint32_t width, uint32_t height, uint32_t listCells, uint32_t gridWords) {
+    return (uint64_t(width) * height * PUNCTUAL_LIGHT_STATS_BLOCKS * PUNCTUAL_LIGHT_STATS_PIXEL_WORDS +
+            uint64_t(listCells) * gridWords) *
+           4;
 }
 
 uint64_t shadowFactorBytes(uint32_t width, uint32_t height) {
     return uint64_t(width) * height * (PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS + PUNCTUAL_SHADOW_DEBUG_FACTOR_WORDS) * 4;
 }
 
-LightStatsImage decodeLightStats(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height) {
-    PUNCTUAL_CHECK(bytes.size() >= lightStatsBytes(width, height), "light statistics buffer too small");
+LightStatsImage decodeLightStats(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height, uint32_t listCells,
+                                 uint32_t gridWords) {
+    PUNCTUAL_CHECK(bytes.size() >= lightStatsBytes(width, height, listCells, gridWords), "light statistics buffer too small");
     const size_t pixels = size_t(width) * height;
-    std::vector<uint32_t> words(pixels * PUNCTUAL_LIGHT_STATS_BLOCKS * PUNCTUAL_LIGHT_STATS_PIXEL_WORDS);
+    std::vector<uint32_t> words(lightStatsBytes(width, height, listCells, gridWords) / sizeof(uint32_t));
     std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
     const auto at = [&](uint32_t block, size_t pixel) {
         return &words[gpu::lightStatsWord(block, uint32_t(pixels), uint32_t(pixel), 0u)];
@@ -38,12 +42,18 @@ LightStatsImage decodeLightStats(const std::vector<uint8_t>& bytes, uint32_t wid
     stats.transparentAffecting.resize(pixels);
     stats.transparentFragments.resize(pixels);
     stats.transparentMissingLight.resize(pixels);
-    stats.affectingMasks.resize(pixels * PUNCTUAL_GRID_WORDS);
     stats.listCells.resize(pixels);
     for (size_t i = 0; i < pixels; ++i) {
-        const uint32_t* e = at(PUNCTUAL_LIGHT_STATS_EXACT, i);
-        std::copy(e, e + PUNCTUAL_GRID_WORDS, &stats.affectingMasks[i * PUNCTUAL_GRID_WORDS]);
-        stats.listCells[i] = e[PUNCTUAL_LIGHT_STATS_LIST_CELL];
+        const uint32_t* list = at(PUNCTUAL_LIGHT_STATS_LIST, i);
+        stats.listCells[i] = list[PUNCTUAL_LIGHT_STATS_LIST_CELL];
+        stats.tested[i] = list[PUNCTUAL_LIGHT_STATS_LIST_TESTED];
+    }
+    stats.cellReachingLights.resize(listCells);
+    for (uint32_t cell = 0; cell < listCells; ++cell) {
+        const uint32_t* mask = &words[gpu::lightStatsCellWord(uint32_t(pixels), gridWords, cell, 0u)];
+        uint32_t lights = 0;
+        for (uint32_t w = 0; w < gridWords; ++w) lights += uint32_t(std::popcount(mask[w]));
+        stats.cellReachingLights[cell] = lights;
     }
     for (size_t i = 0; i < pixels; ++i) {
         const uint32_t* t = at(PUNCTUAL_LIGHT_STATS_TRANSPARENT, i);
@@ -57,7 +67,6 @@ LightStatsImage decodeLightStats(const std::vector<uint8_t>& bytes, uint32_t wid
         const uint32_t work = w[PUNCTUAL_LIGHT_STATS_WORK];
         const uint32_t reaching = w[PUNCTUAL_LIGHT_STATS_REACHING];
         stats.covered[i] = (reaching & PUNCTUAL_LIGHT_STATS_COVERED) ? uint8_t{1} : uint8_t{0};  // every shaded pixel
-        stats.tested[i] = gpu::unpackTested(work);
         stats.shadowLookups[i] = gpu::unpackShadowLookups(work);
         stats.shadowTaps[i] = gpu::unpackShadowTaps(work);
         stats.affecting[i] = reaching & ~PUNCTUAL_LIGHT_STATS_COVERED;

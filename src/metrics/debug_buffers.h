@@ -11,10 +11,11 @@
 
 namespace punctual {
 
-// The light statistics of a width x height frame from its buffer's bytes (at least
-// lightStatsBytes(width, height) of them).
-LightStatsImage decodeLightStats(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height);
-uint64_t lightStatsBytes(uint32_t width, uint32_t height);
+// The light statistics of a width x height frame whose method has `listCells` list cells of
+// `gridWords` mask words each, from its buffer's bytes (at least lightStatsBytes of them).
+LightStatsImage decodeLightStats(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height, uint32_t listCells,
+                                 uint32_t gridWords);
+uint64_t lightStatsBytes(uint32_t width, uint32_t height, uint32_t listCells, uint32_t gridWords);
 
 // The shadow factors of a width x height frame with `slots` shadowed spot and point lights (and
 // the sun's, in PUNCTUAL_SUN_SHADOW_SLOT, when `sun`), from its buffer's bytes (at least

@@ -133,7 +133,7 @@ ReferenceRenderer::ReferenceRenderer(const Scene& scene, const ReferenceSettings
     projection_ = scene.camera.projection(float(settings.width) / float(settings.height));
     inverseViewProjection_ = glm::inverse(glm::dmat4(projection_) * glm::dmat4(view_));
     cameraPosition_ = scene.camera.position();
-    lights_ = setupFrameLights(scene, view_, projection_);
+    lights_ = setupFrameLights(scene, view_, projection_, settings.maxLights);
 }
 
 ReferenceRenderer::~ReferenceRenderer() = default;

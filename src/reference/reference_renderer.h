@@ -32,6 +32,7 @@ struct ReferenceSettings {
     bool shadows = true;        // false: every light is unoccluded (what the GPU draws today)
     // How alphaMode BLEND surfaces shadow (--transparent-shadows), as the GPU's caster passes.
     TransparentShadows transparentShadows = TransparentShadows::Clip;
+    LightCapacity maxLights;    // --max-lights: the same lights as the GPU's frame
     bool showProgress = false;  // one updating line on stderr (the command sets it for terminals)
 };
 

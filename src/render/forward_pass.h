@@ -22,6 +22,7 @@ struct ForwardVariant {
     uint32_t lightSource = 0;  // PUNCTUAL_LIGHT_SOURCE_*: the method's source (LightListMethodInfo)
     uint32_t tileSize = 16;
     uint32_t slices = 1;
+    uint32_t gridWords = 3;  // words a light-grid cell (LightGridLayout::gridWords)
     bool writeLightStats = false;  // debug variant: per-pixel light statistics
     bool shadows = false;
     uint32_t shadowKernel = 0;     // PUNCTUAL_SHADOW_KERNEL_*: the filter's kernel (ShadowFilterInfo)

@@ -48,11 +48,20 @@ std::vector<gpu::CullLight> viewCullLights(const FrameLights& frameLights, const
     return cullLights;
 }
 
+uint32_t listCellCount(const Scene& scene, const RenderSettings& settings, const FramePlan& plan) {
+    switch (methodInfo(settings.method).source.value) {
+        case PUNCTUAL_LIGHT_SOURCE_OBJECT: return std::max<uint32_t>(uint32_t(scene.objects.size()), 1u);
+        case PUNCTUAL_LIGHT_SOURCE_GRID: return plan.gridLayout.cellCount();
+        case PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS: return plan.gridLayout.cellCount() * PUNCTUAL_ZBIN_COUNT;
+        default: return 1;  // brute force: one list for the screen
+    }
+}
+
 FramePlan planFrame(const vk::Context& context, const Scene& scene, const RenderSettings& settings) {
     FramePlan plan;
     plan.view = scene.camera.view;
     plan.projection = scene.camera.projection(float(settings.width) / float(settings.height));
-    plan.lights = setupFrameLights(scene, plan.view, plan.projection);
+    plan.lights = setupFrameLights(scene, plan.view, plan.projection, settings.maxLights);
     plan.shadows = planFrameShadows(context, scene, plan.lights, settings);
     const LightListMethodInfo& method = methodInfo(settings.method);
     if (method.objectLists()) plan.perObjectLists = buildPerObjectLightLists(scene, plan.lights);
@@ -60,9 +69,11 @@ FramePlan planFrame(const vk::Context& context, const Scene& scene, const Render
                                                  settings.clusterSlices, settings.coarseTiles,
                                                  settings.tileThreads ? settings.tileThreads : context.subgroupSize(),
                                                  settings.subgroupTiles && context.computeSubgroupArithmetic());
+    // One bit per light the frame keeps (not per light it could keep): a frame under its capacity
+    // holds and walks no empty words.
+    plan.gridLayout.gridWords = gpu::gridWordsOf(plan.lights.spotCount + plan.lights.pointCount);
     if (method.zBins()) {
-        plan.zBins = buildZBins(viewCullLights(plan.lights, plan.view), plan.lights.spotCount,
-                                glm::vec2(plan.projection[3][2], plan.projection[2][2]));
+        plan.zBins = buildZBins(viewCullLights(plan.lights, plan.view), glm::vec2(plan.projection[3][2], plan.projection[2][2]));
     }
     if (settings.cullObjectsToView) {
         plan.objectsInView = objectsInView(scene, plan.projection * plan.view);

@@ -44,6 +44,10 @@ struct FramePlan {
 // limits). Warns once when the shadow budget reduced views (settings.warnReducedShadows).
 FramePlan planFrame(const vk::Context& context, const Scene& scene, const RenderSettings& settings);
 
+// The cells the method's light lists are a function of (forward.frag, pixelListCell): one for brute
+// force, the scene's objects (per-object), the grid's cells, or its cells times the z-bins.
+uint32_t listCellCount(const Scene& scene, const RenderSettings& settings, const FramePlan& plan);
+
 // The lights' culling shapes in view space (the same function the CPU re-cull of the tests uses).
 std::vector<gpu::CullLight> viewCullLights(const FrameLights& frameLights, const glm::mat4& view);
 

@@ -32,7 +32,7 @@ LightGridLayout LightGridLayout::forMethod(const LightListMethodInfo& method, ui
     layout.coarseTiles = coarse && method.usesLightGrid() && perCoarseTile >= 2 ? perCoarseTile : 0u;
     // One subgroup a tile: subgroup sizes are powers of two (the Vulkan specification); one above
     // the cap is cut to it (the workgroup is then part of a subgroup), one under 4 raised to it (the
-    // kernels write the three mask words with one invocation each).
+    // kernels write each three mask words with one invocation each).
     const bool powerOfTwo = threads != 0 && (threads & (threads - 1)) == 0;
     layout.tileThreads = powerOfTwo ? std::clamp<uint32_t>(threads, 4, PUNCTUAL_MAX_TILE_THREADS) : PUNCTUAL_MAX_TILE_THREADS;
     // A one-subgroup kernel culls where it implements every flag of the method (culling.h); the
@@ -49,26 +49,29 @@ LightCullingPass::LightCullingPass(vk::Context& context, const LightGridLayout& 
       culled_(culled),
       width_(width),
       height_(height),
-      grid_(context, VkDeviceSize(culled ? layout.cellCount() * PUNCTUAL_GRID_WORDS : 1) * sizeof(uint32_t),
+      grid_(context, VkDeviceSize(culled ? layout.gridWordCount() : 1) * sizeof(uint32_t),
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
             vk::MemoryUse::DeviceLocal, "light grid"),
-      depthRange_(context, sizeof(gpu::GpuDepthRange),
+      depthRange_(context, sizeof(gpu::GpuDepthRange) + sizeof(uint32_t) * PUNCTUAL_MAX_CLUSTER_SLICES * layout.gridWords,
                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                   vk::MemoryUse::DeviceLocal, "depth range"),
       // Sized to the lights this frame really uses; one slot when there are none.
       cullLights_(context, std::max<size_t>(cullLights.size(), 1) * sizeof(gpu::CullLight),
                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "cull lights"),
-      zBins_(context, zBins ? sizeof(gpu::GpuZBins) : sizeof(uint32_t),
+      zBins_(context, zBins ? zBins->bytes() : sizeof(uint32_t),
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload, "z-bins"),
       coarseGrid_(context,
-                  VkDeviceSize(culled && layout.coarseTiles ? layout.coarseTilesX() * layout.coarseTilesY() * PUNCTUAL_GRID_WORDS
+                  VkDeviceSize(culled && layout.coarseTiles ? layout.coarseTilesX() * layout.coarseTilesY() * layout.gridWords
                                                             : 1) *
                       sizeof(uint32_t),
                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::DeviceLocal,
                   "coarse light grid") {
     if (!cullLights.empty()) cullLights_.write(cullLights.data(), cullLights.size() * sizeof(gpu::CullLight));
-    if (zBins) zBins_.write(&zBins->gpu, sizeof(gpu::GpuZBins));
+    if (zBins) {
+        zBins_.write(&zBins->gpu, sizeof(gpu::GpuZBins));
+        zBins_.write(zBins->binMasks.data(), zBins->binMasks.size() * sizeof(uint32_t), sizeof(gpu::GpuZBins));
+    }
     // Cells no pixel occupies are never written, and no pixel the frame shades reads one. Zeroed
     // once all the same, so that a study that breaks that rule on purpose (culling by the opaque
     // depth alone, RenderSettings::opaqueCullingDepth) reads "no lights", the same every run,
@@ -95,14 +98,15 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
     // One map for every kernel: an entry whose constant a shader lacks does not affect it (the
     // Vulkan specification), and tile_culling.comp lacks SLICE_COUNT, cluster_culling.comp
     // CULL_FLAGS (it implements none).
-    const std::array<uint32_t, 5> values = {layout_.tileSize, layout_.slices, layout_.cullFlags, layout_.coarseTiles,
-                                            layout_.tileThreads};
-    const std::array<VkSpecializationMapEntry, 5> entries = {{
+    const std::array<uint32_t, 6> values = {layout_.tileSize,    layout_.slices,      layout_.cullFlags,
+                                            layout_.coarseTiles, layout_.tileThreads, layout_.gridWords};
+    const std::array<VkSpecializationMapEntry, 6> entries = {{
         {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, sizeof(uint32_t), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_CULL_FLAGS, 2 * sizeof(uint32_t), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_COARSE_TILES, 3 * sizeof(uint32_t), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_TILE_THREADS, 4 * sizeof(uint32_t), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_GRID_WORDS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};
     const std::span<const uint32_t> kernel = !layout_.subgroupKernel ? std::span<const uint32_t>(compute_light_culling_comp_spv)
@@ -110,11 +114,13 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
                                                                        : std::span<const uint32_t>(compute_tile_culling_comp_spv);
     cullingPipeline_ = context.objects().computePipeline(bindings.pipelineLayout(), kernel, &specialization);
     if (layout_.coarseTiles) {
-        // The coarse kernel reads the tile size, the coarse-tile side and its workgroup size.
-        const std::array<VkSpecializationMapEntry, 3> coarseEntries = {{
+        // The coarse kernel reads the tile size, the coarse-tile side, its workgroup size and the
+        // grid's words.
+        const std::array<VkSpecializationMapEntry, 4> coarseEntries = {{
             {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
             {PUNCTUAL_SPEC_COARSE_TILES, 3 * sizeof(uint32_t), sizeof(uint32_t)},
             {PUNCTUAL_SPEC_TILE_THREADS, 4 * sizeof(uint32_t), sizeof(uint32_t)},
+            {PUNCTUAL_SPEC_GRID_WORDS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
         }};
         const VkSpecializationInfo coarseSpecialization{uint32_t(coarseEntries.size()), coarseEntries.data(),
                                                         sizeof(values), values.data()};
@@ -122,9 +128,14 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
                                                     compute_coarse_culling_comp_spv, &coarseSpecialization);
     }
     if (layout_.slices > 1) {
-        // The range pass's last subgroup also cuts the slices: it reads the slice count.
-        const VkSpecializationMapEntry sliceEntry{PUNCTUAL_SPEC_SLICE_COUNT, 0, sizeof(uint32_t)};
-        const VkSpecializationInfo sliceSpecialization{1, &sliceEntry, sizeof(uint32_t), &layout_.slices};
+        // The range pass's last subgroup also cuts the slices: it reads the slice count and the
+        // grid's words (each slice's lights).
+        const std::array<VkSpecializationMapEntry, 2> sliceEntries = {{
+            {PUNCTUAL_SPEC_SLICE_COUNT, sizeof(uint32_t), sizeof(uint32_t)},
+            {PUNCTUAL_SPEC_GRID_WORDS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
+        }};
+        const VkSpecializationInfo sliceSpecialization{uint32_t(sliceEntries.size()), sliceEntries.data(),
+                                                       sizeof(values), values.data()};
         depthRangePipeline_ = context.objects().computePipeline(bindings.pipelineLayout(),
                                                         compute_depth_range_comp_spv, &sliceSpecialization);
     }

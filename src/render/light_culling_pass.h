@@ -10,8 +10,9 @@
 // nearest and farthest geometry, and its last subgroup fits logarithmic depth slices to that range
 // (and lists each slice's lights by depth); then cluster_culling.comp (one subgroup a tile, where
 // the device allows; else light_culling.comp) culls each tile's occupied slices. The range and
-// coarse passes run side by side, behind one barrier. The light grid holds PUNCTUAL_GRID_WORDS
-// words per cell and is sized to the frame's real tile count (times the slices for clustered).
+// coarse passes run side by side, behind one barrier. The light grid holds gridWords words per cell
+// (one bit per light the frame keeps) and is sized to the frame's real tile count (times the
+// slices for clustered).
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +32,7 @@ struct LightGridLayout {
     uint32_t tilesX = 0;
     uint32_t tilesY = 0;
     uint32_t slices = 1;  // 1: tiled
+    uint32_t gridWords = 3;  // words a cell: gpu::gridWordsOf(the frame's lights); the kernels' GRID_WORDS
     uint32_t cullFlags = 0;  // the method's PUNCTUAL_CULL_* flags (culling.h): tiled-2.5d's depth mask, ...
     bool zBins = false;      // zbin, zbin-2d: the forward pass ANDs the tile's mask with its z-bin's
     uint32_t coarseTiles = 0;  // fine tiles a side of a coarse tile; 0: no coarse pass
@@ -44,6 +46,7 @@ struct LightGridLayout {
     // shared memory.
     bool subgroupKernel = false;
     uint32_t cellCount() const { return tilesX * tilesY * slices; }
+    uint64_t gridWordCount() const { return uint64_t(cellCount()) * gridWords; }
     bool hasCullFlag(uint32_t flag) const { return (cullFlags & flag) != 0; }
     uint32_t coarseTilesX() const { return coarseTiles ? (tilesX + coarseTiles - 1) / coarseTiles : 0; }
     uint32_t coarseTilesY() const { return coarseTiles ? (tilesY + coarseTiles - 1) / coarseTiles : 0; }
@@ -80,8 +83,9 @@ public:
     // The kernels sample the prepass's depth.
     VkShaderStageFlags boundImageStages() const override { return culled_ ? VK_SHADER_STAGE_COMPUTE_BIT : 0; }
 
-    const vk::Buffer& grid() const { return grid_; }              // cellCount * PUNCTUAL_GRID_WORDS words
-    const vk::Buffer& depthRange() const { return depthRange_; }  // gpu::GpuDepthRange
+    const vk::Buffer& grid() const { return grid_; }              // gridWordCount() words
+    // gpu::GpuDepthRange, then PUNCTUAL_MAX_CLUSTER_SLICES x gridWords words: each slice's lights
+    const vk::Buffer& depthRange() const { return depthRange_; }
     const vk::Buffer& coarseGrid() const { return coarseGrid_; }  // the coarse pass's masks
 
 private:
@@ -92,8 +96,8 @@ private:
     vk::Buffer grid_;
     vk::Buffer depthRange_;
     vk::Buffer cullLights_;
-    vk::Buffer zBins_;  // gpu::GpuZBins, or one word for the methods without bins
-    vk::Buffer coarseGrid_;  // coarse tiles x PUNCTUAL_GRID_WORDS words, or one word without the coarse pass
+    vk::Buffer zBins_;  // gpu::GpuZBins and the bins' masks, or one word for the methods without bins
+    vk::Buffer coarseGrid_;  // coarse tiles x gridWords words, or one word without the coarse pass
     // The pipelines: the context's object cache (vk/object_cache.h) owns them.
     VkPipeline cullingPipeline_ = VK_NULL_HANDLE;     // tile_, cluster_ or light_culling.comp
     VkPipeline coarsePipeline_ = VK_NULL_HANDLE;      // the coarse pass (coarse_culling.comp)

@@ -36,6 +36,11 @@ void validateRenderSettings(const RenderSettings& settings) {
         throw Error("--slices", "must be from 1 to " + std::to_string(PUNCTUAL_MAX_CLUSTER_SLICES) + ", got " +
                                     std::to_string(settings.clusterSlices));
     }
+    if (settings.maxLights.spots > PUNCTUAL_MAX_LIGHT_CAPACITY || settings.maxLights.points > PUNCTUAL_MAX_LIGHT_CAPACITY) {
+        throw Error("--max-lights", "at most " + std::to_string(PUNCTUAL_MAX_LIGHT_CAPACITY) + " of each kind, got " +
+                                        std::to_string(settings.maxLights.spots) + "," +
+                                        std::to_string(settings.maxLights.points));
+    }
     validateShadowSettings(settings.shadows);
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "lights/light_setup.h"
 #include "lights/shadow_setup.h"
 #include "render/light_list_method.h"
 #include "scene/scene.h"
@@ -40,6 +41,7 @@ struct RenderSettings {
     bool collectLightStats = false;  // allocate what readLightStats() needs
     bool collectShadowFactors = false;  // allocate what readShadowFactors() needs
     ShadowSettings shadows;
+    LightCapacity maxLights;  // --max-lights: the spots and points a frame keeps (lights/light_setup.h)
     // For the failure study only (bench), never needed to render correctly: the camera the sun's
     // cascades are fitted to, when not the scene's. The shimmering study renders one camera's
     // pixels under the cascades of a moving one, so that every frame shows the same receivers.

@@ -96,6 +96,7 @@ struct Renderer::Resources {
         variant.lightSource = methodInfo(settings.method).source.value;
         variant.tileSize = grid.tileSize;
         variant.slices = grid.slices;
+        variant.gridWords = grid.gridWords;
         variant.writeLightStats = stats;
         variant.shadows = settings.shadows.enabled;
         const ShadowFilterInfo& filter = shadowFilterInfo(settings.shadows.filter);
@@ -131,8 +132,10 @@ struct Renderer::Resources {
                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "lights"),
           objectLights(storageWords(context, plan.perObjectLists.lights, "object lights")),
           // The light statistics' blocks (gpu_types.h): opaque surfaces, transparent fragments,
-          // the opaque surface's reaching-light mask and list cell.
-          lightStats(debugOutput(context, settings.collectLightStats, lightStatsBytes(settings.width, settings.height),
+          // the opaque surface's list cell and tested lights, then each list cell's reaching lights.
+          lightStats(debugOutput(context, settings.collectLightStats,
+                                 lightStatsBytes(settings.width, settings.height, listCellCount(sceneData, settings, plan),
+                                                 plan.gridLayout.gridWords),
                                  "light stats")),
           shadowDebug(debugOutput(context, settings.collectShadowFactors, shadowFactorBytes(settings.width, settings.height),
                                   "shadow debug")),
@@ -410,7 +413,8 @@ gpu::GpuDepthRange Renderer::readDepthRange() {
 LightStatsImage Renderer::readLightStats() {
     PUNCTUAL_CHECK(settings_.collectLightStats, "light statistics were not requested (collectLightStats)");
     submitAndWait(resources_->lightStatsCommands);
-    return decodeLightStats(readBuffer(resources_->lightStats), settings_.width, settings_.height);
+    return decodeLightStats(readBuffer(resources_->lightStats), settings_.width, settings_.height,
+                            listCellCount(scene_, settings_, plan_), plan_.gridLayout.gridWords);
 }
 
 ShadowFactorImage Renderer::readShadowFactors() {

@@ -213,6 +213,13 @@ std::string timingTable(const render::PassTimings& ms) {
     return table;
 }
 
+std::string frameLightsLine(const FrameLights& lights, const LightCapacity& capacity) {
+    return "lights: " + std::to_string(lights.spotCount) + " spot, " + std::to_string(lights.pointCount) + " point, " +
+           std::to_string(lights.directionalCount) + " directional (" + std::to_string(lights.culledByFrustum) +
+           " outside the view, " + std::to_string(lights.droppedByCap) + " over the capacity, --max-lights " +
+           std::to_string(capacity.spots) + "," + std::to_string(capacity.points) + ")";
+}
+
 std::string unshadowedLightsLine(const render::Renderer& renderer) {
     const ShadowSettings& settings = renderer.settings().shadows;
     const ShadowPlan& plan = renderer.shadowPlan();

@@ -31,6 +31,11 @@ nlohmann::json geometryStatsJson(const render::Renderer& renderer, const Scene& 
 
 std::string timingTable(const render::PassTimings& ms);
 
+// "lights: 64 spot, 32 point, 1 directional (12 outside the view, 3988 over the capacity,
+// --max-lights 64,32)": the frame's lights, and the ones it dropped. Printed by render and
+// reference.
+std::string frameLightsLine(const FrameLights& lights, const LightCapacity& capacity);
+
 // "lights without a shadow: 84 of 96 (84 over --shadowed 8,4, 0 cast none); the shadow figures
 // count the shadowed only", or "" when every spot and point light of the frame has a shadow or
 // shadows are off. Printed by render, compare and validate.

@@ -284,8 +284,8 @@ Scene makeDefaultScene() {
     scene.computeBounds();
     addCamera(scene);
     LightPlacer placer(scene);
-    addSpotLights(scene, placer, PUNCTUAL_MAX_SPOT_LIGHTS);
-    addPointLights(scene, placer, PUNCTUAL_MAX_POINT_LIGHTS);
+    addSpotLights(scene, placer, PUNCTUAL_DEFAULT_MAX_SPOT_LIGHTS);
+    addPointLights(scene, placer, PUNCTUAL_DEFAULT_MAX_POINT_LIGHTS);
     return scene;
 }
 

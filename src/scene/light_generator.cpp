@@ -13,8 +13,8 @@ namespace punctual {
 
 namespace {
 
-constexpr uint32_t kMaxSpot = PUNCTUAL_MAX_SPOT_LIGHTS;
-constexpr uint32_t kMaxPoint = PUNCTUAL_MAX_POINT_LIGHTS;
+// The most lights of each kind any frame can keep (--max-lights S,P sets how many it does).
+constexpr uint32_t kMaxLights = PUNCTUAL_MAX_LIGHT_CAPACITY;
 constexpr float kDegree = 0.0174532925f;  // pi / 180
 // Redraws go to the bounds widened by this fraction of their diagonal: at least the shortest
 // generated range (0.25 x the diagonal), so a light in the margin can still reach the model.
@@ -22,7 +22,7 @@ constexpr float kRedrawMargin = 0.25f;
 constexpr uint32_t kPlacementAttempts = 32;
 
 [[noreturn]] void throwOverCaps(uint64_t spotCount, uint64_t pointCount) {
-    throw Error("--lights", "at most " + std::to_string(kMaxSpot) + " spot and " + std::to_string(kMaxPoint) +
+    throw Error("--lights", "at most " + std::to_string(kMaxLights) + " spot and " + std::to_string(kMaxLights) +
                                 " point lights (got " + std::to_string(spotCount) + "," +
                                 std::to_string(pointCount) + ")");
 }
@@ -112,7 +112,7 @@ PlacementRegions placementRegions(const Bounds& bounds, float diagonal) {
 }  // namespace
 
 void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed, const LightRange& range) {
-    if (spotCount > kMaxSpot || pointCount > kMaxPoint) throwOverCaps(spotCount, pointCount);
+    if (spotCount > kMaxLights || pointCount > kMaxLights) throwOverCaps(spotCount, pointCount);
     if (scene.bounds.empty())
         throw Error("--lights", "the scene has no geometry whose bounds could hold generated lights");
 
@@ -222,7 +222,7 @@ LightCounts parseLightCounts(const std::string& text) {
     const uint64_t point = parseField(fields[1], text, "point count");
     LightCounts counts;
     if (fields.size() == 3) counts.seed = parseField(fields[2], text, "seed");
-    if (spot > kMaxSpot || point > kMaxPoint) throwOverCaps(spot, point);
+    if (spot > kMaxLights || point > kMaxLights) throwOverCaps(spot, point);
     counts.spot = static_cast<uint32_t>(spot);
     counts.point = static_cast<uint32_t>(point);
     return counts;

@@ -87,8 +87,9 @@ float generatedLightRange(float drawn, const LightRange& rule, uint32_t lights);
 //    something the camera sees with the range it keeps.
 //  - intensities proportional to range^2: the illuminance at a given fraction of the range is then
 //    independent of the scene's scale (scaling a scene by s scales ranges by s, intensities by s^2).
-// Throws Error("--lights", ...) when the counts exceed the per-frame caps (64 spot, 32 point) or
-// the scene has no geometry to take bounds from. Call Scene::computeBounds() first.
+// Throws Error("--lights", ...) when a count exceeds PUNCTUAL_MAX_LIGHT_CAPACITY (the command line
+// also holds them to --max-lights) or the scene has no geometry to take bounds from. Call
+// Scene::computeBounds() first.
 void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed, const LightRange& range = {});
 
 // Sets every spot and point light's range to `fraction` x the scene's bounds diagonal and scales
@@ -109,7 +110,8 @@ struct LightCounts {
 };
 
 // Parses the `--lights` argument "S,P" or "S,P,SEED" (decimal, non-negative, no spaces; SEED
-// defaults to 1). Throws Error("--lights", ...) for anything else, including counts over the caps.
+// defaults to 1). Throws Error("--lights", ...) for anything else, including counts over
+// PUNCTUAL_MAX_LIGHT_CAPACITY.
 LightCounts parseLightCounts(const std::string& text);
 
 }  // namespace punctual

@@ -44,13 +44,14 @@ static_assert(offsetof(GpuShadowView, params) == 64);
 static_assert(offsetof(GpuShadowView, atlasRect) == 80);
 static_assert(offsetof(GpuShadowView, texel) == 96);
 
-static_assert(sizeof(GpuDepthRange) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES * (1 + PUNCTUAL_GRID_WORDS));
-static_assert(offsetof(GpuDepthRange, sliceLights) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES);
+// The slices' lights follow the header as a uint array: at its size, a multiple of 4.
+static_assert(sizeof(GpuDepthRange) == 16 + 4 * PUNCTUAL_MAX_CLUSTER_SLICES);
 static_assert(offsetof(GpuDepthRange, sliceStartDepth) == 16);
-// A light bit for each light of a frame in the grid's words.
-static_assert(PUNCTUAL_GRID_WORDS * 32 == PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS);
-static_assert(sizeof(GpuZBins) == 4 * PUNCTUAL_ZBIN_COUNT + 16 * PUNCTUAL_ZBIN_COUNT);
-static_assert(offsetof(GpuZBins, binMask) == 4 * PUNCTUAL_ZBIN_COUNT);  // 256: a multiple of uvec4's 16
+// The bins' masks follow the header as a uint array.
+static_assert(sizeof(GpuZBins) == 4 * PUNCTUAL_ZBIN_COUNT + 4 * PUNCTUAL_ZBIN_COUNT);
+static_assert(offsetof(GpuZBins, binRange) == 4 * PUNCTUAL_ZBIN_COUNT);
+// A z-bin's range holds 16-bit indices of the depth-sorted lights.
+static_assert(2 * PUNCTUAL_MAX_LIGHT_CAPACITY <= 0x10000);
 
 // CullLight (culling.h) is read from a std430 buffer: each vec3 + float pair packs into 16 bytes.
 static_assert(sizeof(CullLight) == 48);
@@ -72,11 +73,11 @@ static_assert(offsetof(GpuMaterial, baseColorTexture) == 104);
 static_assert(offsetof(GpuMaterial, flags) == 108);
 static_assert(offsetof(GpuMaterial, emissiveTexture) == 112);
 
-// The light statistics buffer: the exact block's mask words and list cell fit a pixel's words, and
-// the covered bit leaves room for every light a frame can hold.
-static_assert(PUNCTUAL_GRID_WORDS + 1 <= PUNCTUAL_LIGHT_STATS_PIXEL_WORDS);
-static_assert(PUNCTUAL_LIGHT_STATS_LIST_CELL == PUNCTUAL_GRID_WORDS);
-static_assert(PUNCTUAL_LIGHT_STATS_EXACT < PUNCTUAL_LIGHT_STATS_BLOCKS);
-static_assert(PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS < PUNCTUAL_LIGHT_STATS_COVERED);
+// The light statistics buffer: the list block's words fit a pixel's, the covered bit leaves room
+// for every light a frame can hold, and the work word for every shadowed light's lookups.
+static_assert(PUNCTUAL_LIGHT_STATS_LIST_TESTED < PUNCTUAL_LIGHT_STATS_PIXEL_WORDS);
+static_assert(PUNCTUAL_LIGHT_STATS_LIST < PUNCTUAL_LIGHT_STATS_BLOCKS);
+static_assert(2 * PUNCTUAL_MAX_LIGHT_CAPACITY < PUNCTUAL_LIGHT_STATS_COVERED);
+static_assert(PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS + PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS + 2 < (1u << PUNCTUAL_STATS_LOOKUP_BITS));
 
 }  // namespace punctual::gpu

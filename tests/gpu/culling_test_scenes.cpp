@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "gpu_types.h"
+#include "scene/default_scene.h"
+#include "scene/light_generator.h"
 #include "scene/study_scenes.h"
 
 namespace punctual::testing {
@@ -78,15 +80,15 @@ std::vector<NamedScene> adversarialCullingScenes() {
     {
         // All 96 lights (the caps: 64 spots and 32 points) overlap one spot on the floor.
         Scene scene = floorScene("all 96 lights overlapping one spot");
-        for (int i = 0; i < PUNCTUAL_MAX_SPOT_LIGHTS; ++i) {
-            const float angle = 6.2831853f * float(i) / float(PUNCTUAL_MAX_SPOT_LIGHTS);
+        for (int i = 0; i < PUNCTUAL_DEFAULT_MAX_SPOT_LIGHTS; ++i) {
+            const float angle = 6.2831853f * float(i) / float(PUNCTUAL_DEFAULT_MAX_SPOT_LIGHTS);
             const glm::vec3 position(3.0f * std::cos(angle), 4.0f + 0.02f * float(i), 3.0f * std::sin(angle));
             scene.lights.push_back(
                 withColor(spotLight(position, glm::vec3(0.0f) - position, 9.0f, 0.6f, 0.2f, 0.45f),
                           glm::vec3(0.5f + 0.5f * std::cos(angle), 0.7f, 0.5f + 0.5f * std::sin(angle))));
         }
-        for (int i = 0; i < PUNCTUAL_MAX_POINT_LIGHTS; ++i) {
-            const float angle = 6.2831853f * float(i) / float(PUNCTUAL_MAX_POINT_LIGHTS);
+        for (int i = 0; i < PUNCTUAL_DEFAULT_MAX_POINT_LIGHTS; ++i) {
+            const float angle = 6.2831853f * float(i) / float(PUNCTUAL_DEFAULT_MAX_POINT_LIGHTS);
             scene.lights.push_back(pointLight(glm::vec3(1.5f * std::cos(angle), 1.0f, 1.5f * std::sin(angle)), 4.0f, 0.3f));
         }
         scenes.push_back({scene.source, scene});
@@ -104,6 +106,13 @@ Scene largeFloorScene(int lightCount) {
                       glm::vec3(0.6f + 0.4f * std::cos(angle), 0.8f, 0.6f + 0.4f * std::sin(angle))));
     }
     scene.computeBounds();
+    return scene;
+}
+
+Scene manyLightsScene(uint32_t spots, uint32_t points) {
+    Scene scene = makeDefaultScene();
+    scene.computeBounds();
+    replaceLights(scene, spots, points, 7, LightRange{LightRange::Kind::ConstantDensity, 0.0f});
     return scene;
 }
 

@@ -30,4 +30,10 @@ std::vector<NamedScene> adversarialCullingScenes();
 // per-object lists drop some.
 Scene largeFloorScene(int lightCount);
 
+// The default scene's hall lit by `spots` + `points` generated lights (seed 7) at constant density
+// (--light-range auto): past the design notes' 96, so that a light-grid cell has many words (one
+// bit a light; 1,000 lights: 32 words, eleven triples of the subgroup kernels, four chunks of the
+// shared-memory kernel).
+Scene manyLightsScene(uint32_t spots, uint32_t points);
+
 }  // namespace punctual::testing

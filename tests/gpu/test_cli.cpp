@@ -186,6 +186,12 @@ TEST(Cli, BadOptionsFailCleanly) {
     expectCleanFailure(folder, "render --cascade-lambda 0.5 --cascade-splits 0.1,0.2,0.4", "conflicts with --cascade-splits");
     expectCleanFailure(folder, "render --heatmap h.webp", "writes PNG there");
     expectCleanFailure(folder, "render --light-range auto", "give --lights S,P too");
+    // The light capacity: S,P, each at most 16384, and generated lights within it.
+    for (const char* capacity : {"64", "1,2,3", "a,b", "-1,2", "16385,0", "0,16385", ""}) {
+        expectCleanFailure(folder, std::string("render --max-lights '") + capacity + "'", "--max-lights");
+    }
+    expectCleanFailure(folder, "render --lights 65,0", "65,0 is over the capacity, --max-lights 64,32: raise it too");
+    expectCleanFailure(folder, "render --lights 100,100 --max-lights 100,99", "is over the capacity, --max-lights 100,99");
     for (const char* range : {"0", "-2", "nan", "inf", "1e7", "5m", ""}) {
         expectCleanFailure(folder, std::string("render --lights 4,4 --light-range '") + range + "'", "--light-range");
     }

@@ -24,9 +24,11 @@ namespace {
 
 using render::LightListMethod;
 
+// Every scene's lights kept, however many (a frame's grid has a bit for each light it keeps).
 render::RenderSettings settingsFor(LightListMethod method, uint32_t width = 256, uint32_t height = 144) {
     render::RenderSettings settings = testing::renderSettings(width, height);
     settings.method = method;
+    settings.maxLights = {PUNCTUAL_MAX_LIGHT_CAPACITY, PUNCTUAL_MAX_LIGHT_CAPACITY};
     return settings;
 }
 
@@ -64,6 +66,8 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
     const glm::vec4 ndcToView(1.0f / projection[0][0], 1.0f / projection[1][1], projection[2][0], projection[2][1]);
     const glm::mat4 inverseViewProjection = glm::inverse(projection * renderer.view());
     const uint32_t lightCount = lights.spotCount + lights.pointCount;
+    const uint32_t words = layout.gridWords;  // a cell's mask words (gpu::gridWordsOf the lights)
+    EXPECT_EQ(words, gpu::gridWordsOf(lightCount));
 
     // The slice of a depth in the frame's stored slice starts: the shaders' search (culling.h).
     auto sliceOf = [&](float d) {
@@ -74,8 +78,8 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
     };
     // The word and bit of a light in a cell: the culling kernel's mapping (culling.h).
     auto bitOf = [&](uint32_t light, uint32_t& word) {
-        word = gpu::lightGridWord(light, lights.spotCount);
-        return 1u << gpu::lightGridBit(light, lights.spotCount);
+        word = gpu::lightGridWord(light);
+        return 1u << gpu::lightGridBit(light);
     };
 
     // Per-cell and per-tile depth extents, as the culling kernel finds them.
@@ -122,7 +126,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
     };
     // The coarse pass: each big tile keeps the lights that meet its column, near to far plane.
     const uint32_t coarseTilesX = layout.coarseTilesX();
-    std::vector<uint32_t> coarse(size_t(coarseTilesX) * layout.coarseTilesY() * PUNCTUAL_GRID_WORDS, 0u);
+    std::vector<uint32_t> coarse(size_t(coarseTilesX) * layout.coarseTilesY() * words, 0u);
     for (uint32_t cy = 0; cy < layout.coarseTilesY(); ++cy) {
         for (uint32_t cx = 0; cx < coarseTilesX; ++cx) {
             glm::vec2 ndcMin, ndcMax;
@@ -132,7 +136,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
                 if (!gpu::lightMayTouchTile(cullLights[light], column)) continue;
                 uint32_t word = 0;
                 const uint32_t bit = bitOf(light, word);
-                coarse[(size_t(cy) * coarseTilesX + cx) * PUNCTUAL_GRID_WORDS + word] |= bit;
+                coarse[(size_t(cy) * coarseTilesX + cx) * words + word] |= bit;
             }
         }
     }
@@ -202,7 +206,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
             const uint32_t tile = ty * layout.tilesX + tx;
             if (tileFar[tile] == 0.0f) continue;
             const size_t coarseBase =
-                layout.coarseTiles ? (size_t(ty / layout.coarseTiles) * coarseTilesX + tx / layout.coarseTiles) * PUNCTUAL_GRID_WORDS : 0;
+                layout.coarseTiles ? (size_t(ty / layout.coarseTiles) * coarseTilesX + tx / layout.coarseTiles) * words : 0;
             const float maskScale = gpu::depthMaskScale(tileNear[tile], tileFar[tile]);
             for (uint32_t slice = 0; slice < layout.slices; ++slice) {
                 const uint32_t cell = tile * layout.slices + slice;
@@ -232,7 +236,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
                         }
                         if (!meets) continue;
                     }
-                    reference[cell * PUNCTUAL_GRID_WORDS + word] |= bit;
+                    reference[cell * words + word] |= bit;
                 }
             }
         }
@@ -240,27 +244,27 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
 
     ReferenceCheck check;
     for (size_t i = 0; i < grid.size(); ++i) {
-        if (cellFar[i / PUNCTUAL_GRID_WORDS] == 0.0f) continue;  // empty cells are never read, nor written
+        if (cellFar[i / words] == 0.0f) continue;  // empty cells are never read, nor written
         for (uint32_t b = 0; b < 32; ++b) {
             ++check.maskBits;
             check.maskDisagreements += ((grid[i] ^ reference[i]) >> b) & 1u;
         }
         if (layout.coarseTiles) {
-            const uint32_t tile = uint32_t(i / PUNCTUAL_GRID_WORDS) / layout.slices;
+            const uint32_t tile = uint32_t(i / words) / layout.slices;
             const uint32_t tx = tile % layout.tilesX;
             const uint32_t ty = tile / layout.tilesX;
             const size_t coarseWord =
-                (size_t(ty / layout.coarseTiles) * coarseTilesX + tx / layout.coarseTiles) * PUNCTUAL_GRID_WORDS + i % PUNCTUAL_GRID_WORDS;
+                (size_t(ty / layout.coarseTiles) * coarseTilesX + tx / layout.coarseTiles) * words + i % words;
             check.fineOutsideCoarse += size_t(std::popcount(grid[i] & ~coarseGrid[coarseWord]));
         }
     }
     for (size_t i = 0; i < coarseGrid.size() && layout.coarseTiles; ++i) {
-        // Only the words of real lights: spot words up to the spot count, the point word's low bits.
-        const uint32_t word = uint32_t(i % PUNCTUAL_GRID_WORDS);
-        const uint32_t first = gpu::lightGridFirstLight(word, lights.spotCount);
-        const uint32_t end = word < 2 ? std::min(lights.spotCount, first + 32) : lightCount;
+        // Only the bits of real lights: the last word's low bits.
+        const uint32_t word = uint32_t(i % words);
+        const uint32_t first = gpu::lightGridFirstLight(word);
+        const uint32_t end = std::min(lightCount, first + 32);
         for (uint32_t light = first; light < end; ++light) {
-            const uint32_t bit = 1u << gpu::lightGridBit(light, lights.spotCount);
+            const uint32_t bit = 1u << gpu::lightGridBit(light);
             ++check.coarseBits;
             check.coarseKept += (coarseGrid[i] & bit) ? 1 : 0;
             check.coarseDisagreements += ((coarseGrid[i] ^ coarse[i]) & bit) ? 1 : 0;
@@ -275,15 +279,15 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
             const glm::vec3 position = glm::vec3(world) / world.w;
             const uint32_t cell = cellOf(x, y);
             // zbin: the pixel's bin mask, ANDed with the tile's as forward.frag does (all ones otherwise).
-            glm::uvec4 binMask(~0u);
-            if (layout.zBins) binMask = renderer.zBins()->gpu.binMask[zBinOfDepth(renderer.zBins()->gpu, d)];
+            const uint32_t* binMask = layout.zBins ? renderer.zBins()->binMask(zBinOfDepth(renderer.zBins()->gpu, d)) : nullptr;
             for (uint32_t light = 0; light < lightCount; ++light) {
                 if (gpu::punctualAttenuation(lights.packed[light], position) <= 0.0f) continue;
                 ++check.reachingPairs;
                 uint32_t word = 0;
                 const uint32_t bit = bitOf(light, word);
-                if (!(grid[cell * PUNCTUAL_GRID_WORDS + word] & binMask[int(word)] & bit)) ++check.culledOnGpu;
-                if (!(reference[cell * PUNCTUAL_GRID_WORDS + word] & binMask[int(word)] & bit)) ++check.culledByReference;
+                const uint32_t binWord = binMask ? binMask[word] : ~0u;
+                if (!(grid[cell * words + word] & binWord & bit)) ++check.culledOnGpu;
+                if (!(reference[cell * words + word] & binWord & bit)) ++check.culledByReference;
             }
         }
     }
@@ -293,6 +297,7 @@ ReferenceCheck checkAgainstReference(render::Renderer& renderer) {
 std::vector<testing::NamedScene> allScenes() {
     std::vector<testing::NamedScene> scenes = testing::adversarialCullingScenes();
     scenes.insert(scenes.begin(), testing::NamedScene{"default scene", makeDefaultScene()});
+    scenes.push_back({"1,000 lights", testing::manyLightsScene(600, 400)});
     return scenes;
 }
 
@@ -381,6 +386,9 @@ TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
         // Sky between the street's objects: blocks holding background pixels, which give their
         // slice (clustered) the whole block's rectangle when their geometry lies in one slice.
         {{"outdoor", makeOutdoorScene()}, {{16u, true, 0u}}},
+        // Past the design notes' 96: cells of 32 words, the subgroup kernels' eleven triples
+        // against the shared-memory kernel's four chunks.
+        {{"1,000 lights", testing::manyLightsScene(600, 400)}, {{16u, true, 0u}, {13u, false, 0u}}},
     };
     size_t comparedWords = 0;
     size_t setWords = 0;

@@ -69,11 +69,11 @@ TEST(SceneCli, WarehouseKeepsTheMostImportantLampsAndSaysHowManyItDropped) {
     EXPECT_EQ(stats["scene"].get<std::string>(), warehouse_scene::kSource);
     const nlohmann::json& lights = stats["lights"];
     EXPECT_EQ(lights["in_scene"].get<int>(), 4096);
-    EXPECT_EQ(lights["spot"].get<int>(), PUNCTUAL_MAX_SPOT_LIGHTS);  // the capacity, full
-    EXPECT_EQ(lights["point"].get<int>(), PUNCTUAL_MAX_POINT_LIGHTS);
+    EXPECT_EQ(lights["spot"].get<int>(), PUNCTUAL_DEFAULT_MAX_SPOT_LIGHTS);  // the capacity, full
+    EXPECT_EQ(lights["point"].get<int>(), PUNCTUAL_DEFAULT_MAX_POINT_LIGHTS);
     const int dropped = lights["dropped_by_cap"].get<int>();
-    EXPECT_EQ(dropped + lights["culled_by_frustum"].get<int>() + PUNCTUAL_MAX_SPOT_LIGHTS + PUNCTUAL_MAX_POINT_LIGHTS, 4096);
-    EXPECT_NE(run.out.find(std::to_string(dropped) + " over the caps"), std::string::npos) << run.out;
+    EXPECT_EQ(dropped + lights["culled_by_frustum"].get<int>() + PUNCTUAL_DEFAULT_MAX_SPOT_LIGHTS + PUNCTUAL_DEFAULT_MAX_POINT_LIGHTS, 4096);
+    EXPECT_NE(run.out.find(std::to_string(dropped) + " over the capacity, --max-lights 64,32"), std::string::npos) << run.out;
     const ImageRgba8 image = readPng(png);
     testing::saveTestImage("scene_cli_warehouse", image);
     EXPECT_GT(testing::fractionBrighterThan(image, 20), 0.02);  // the kept lamps light some rooms

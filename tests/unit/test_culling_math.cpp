@@ -13,7 +13,9 @@
 namespace punctual {
 namespace {
 
+using gpu::allLightsWord;
 using gpu::clusterSliceOfDepth;
+using gpu::gridWordsOf;
 using gpu::lightGridBit;
 using gpu::lightGridFirstLight;
 using gpu::lightGridWord;
@@ -195,58 +197,61 @@ TEST(SpotBoundingSphere, BothCasesMeetAt45Degrees) {
 
 // ---- light grid: packed light <-> (word, bit) ---------------------------------------------------
 
-TEST(LightGrid, SpotsFillWordsZeroAndOnePointsWordTwo) {
-    // 40 spots (0-39), then points from 40.
-    EXPECT_EQ(lightGridWord(0, 40), 0u);
-    EXPECT_EQ(lightGridBit(0, 40), 0u);
-    EXPECT_EQ(lightGridWord(31, 40), 0u);
-    EXPECT_EQ(lightGridBit(31, 40), 31u);
-    EXPECT_EQ(lightGridWord(32, 40), 1u);
-    EXPECT_EQ(lightGridBit(32, 40), 0u);
-    EXPECT_EQ(lightGridWord(39, 40), 1u);
-    EXPECT_EQ(lightGridBit(39, 40), 7u);
-    EXPECT_EQ(lightGridWord(40, 40), 2u);  // the first point
-    EXPECT_EQ(lightGridBit(40, 40), 0u);
-    EXPECT_EQ(lightGridWord(71, 40), 2u);  // the 32nd point
-    EXPECT_EQ(lightGridBit(71, 40), 31u);
+TEST(LightGrid, LightLIsBitLMod32OfWordLDiv32) {
+    // Spots and points alike, in packed order: 64 spots then 32 points fill words 0-2.
+    EXPECT_EQ(lightGridWord(0), 0u);
+    EXPECT_EQ(lightGridBit(0), 0u);
+    EXPECT_EQ(lightGridWord(31), 0u);
+    EXPECT_EQ(lightGridBit(31), 31u);
+    EXPECT_EQ(lightGridWord(32), 1u);
+    EXPECT_EQ(lightGridBit(32), 0u);
+    EXPECT_EQ(lightGridWord(95), 2u);  // the design notes' last light
+    EXPECT_EQ(lightGridBit(95), 31u);
+    EXPECT_EQ(lightGridWord(8191), 255u);  // 8,192 lights: 256 words
+    EXPECT_EQ(lightGridBit(8191), 31u);
+    EXPECT_EQ(lightGridFirstLight(0), 0u);
+    EXPECT_EQ(lightGridFirstLight(2), 64u);
+    EXPECT_EQ(lightGridFirstLight(255), 8160u);
 }
 
-TEST(LightGrid, FullAndEmptySpotCaps) {
-    // 64 spots: the last spot is word 1 bit 31, light 64 the first point.
-    EXPECT_EQ(lightGridWord(63, 64), 1u);
-    EXPECT_EQ(lightGridBit(63, 64), 31u);
-    EXPECT_EQ(lightGridWord(64, 64), 2u);
-    EXPECT_EQ(lightGridBit(64, 64), 0u);
-    // No spots: every light is a point.
-    EXPECT_EQ(lightGridWord(5, 0), 2u);
-    EXPECT_EQ(lightGridBit(5, 0), 5u);
+TEST(LightGrid, WordsPerCellHoldEveryLightAndNoEmptyWord) {
+    // ceil(lights / 32), one word for none (a cell is never empty of words).
+    EXPECT_EQ(gridWordsOf(0), 1u);
+    EXPECT_EQ(gridWordsOf(1), 1u);
+    EXPECT_EQ(gridWordsOf(32), 1u);
+    EXPECT_EQ(gridWordsOf(33), 2u);
+    EXPECT_EQ(gridWordsOf(PUNCTUAL_DEFAULT_MAX_SPOT_LIGHTS + PUNCTUAL_DEFAULT_MAX_POINT_LIGHTS), 3u);
+    EXPECT_EQ(gridWordsOf(8192), 256u);
+    EXPECT_EQ(gridWordsOf(2 * PUNCTUAL_MAX_LIGHT_CAPACITY), 1024u);
 }
 
-TEST(LightGrid, FirstLightOfEachWord) {
-    EXPECT_EQ(lightGridFirstLight(0, 40), 0u);
-    EXPECT_EQ(lightGridFirstLight(1, 40), 32u);
-    EXPECT_EQ(lightGridFirstLight(2, 40), 40u);
-    EXPECT_EQ(lightGridFirstLight(2, 0), 0u);
+TEST(LightGrid, AllLightsWordSetsExactlyTheFramesLights) {
+    // 40 lights: word 0 full, word 1 bits 0-7, word 2 none.
+    EXPECT_EQ(allLightsWord(0, 40), 0xFFFFFFFFu);
+    EXPECT_EQ(allLightsWord(1, 40), 0xFFu);
+    EXPECT_EQ(allLightsWord(2, 40), 0u);
+    EXPECT_EQ(allLightsWord(1, 64), 0xFFFFFFFFu);
+    EXPECT_EQ(allLightsWord(0, 0), 0u);
 }
 
 TEST(LightGrid, WalkingTheWordsVisitsEveryLightOnceInAscendingOrder) {
-    // For every spot count, with the most points: set every light's bit, then walk the words and
-    // their bits upwards as forward.frag does; the lights come back as 0, 1, 2, ...
-    for (uint32_t spots = 0; spots <= PUNCTUAL_MAX_SPOT_LIGHTS; ++spots) {
-        const uint32_t lights = spots + PUNCTUAL_MAX_POINT_LIGHTS;
-        uint32_t words[PUNCTUAL_GRID_WORDS] = {};
+    // For light counts up to 8,192: set every light's bit, then walk the words and their bits
+    // upwards as forward.frag does; the lights come back as 0, 1, 2, ...
+    for (const uint32_t lights : {0u, 1u, 40u, 96u, 97u, 1000u, 8192u}) {
+        std::vector<uint32_t> words(gridWordsOf(lights), 0u);
         for (uint32_t light = 0; light < lights; ++light) {
-            ASSERT_LT(lightGridWord(light, spots), uint32_t(PUNCTUAL_GRID_WORDS));
-            ASSERT_LT(lightGridBit(light, spots), 32u);
-            const uint32_t bit = 1u << lightGridBit(light, spots);
-            EXPECT_EQ(words[lightGridWord(light, spots)] & bit, 0u) << "two lights share a bit";
-            words[lightGridWord(light, spots)] |= bit;
+            ASSERT_LT(lightGridWord(light), words.size());
+            ASSERT_LT(lightGridBit(light), 32u);
+            const uint32_t bit = 1u << lightGridBit(light);
+            EXPECT_EQ(words[lightGridWord(light)] & bit, 0u) << "two lights share a bit";
+            words[lightGridWord(light)] |= bit;
         }
         uint32_t expected = 0;
-        for (uint32_t word = 0; word < PUNCTUAL_GRID_WORDS; ++word) {
+        for (uint32_t word = 0; word < words.size(); ++word) {
+            EXPECT_EQ(words[word], allLightsWord(word, lights)) << lights;
             for (uint32_t bit = 0; bit < 32; ++bit) {
                 if (words[word] & (1u << bit)) {
-                    EXPECT_EQ(lightGridFirstLight(word, spots) + bit, expected++) << spots;
+                    EXPECT_EQ(lightGridFirstLight(word) + bit, expected++) << lights;
                 }
             }
         }

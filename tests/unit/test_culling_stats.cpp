@@ -11,7 +11,8 @@ namespace punctual {
 namespace {
 
 // An image of `pixels` opaque pixels, each given its reaching lights (a mask over lights 0..31 of
-// the first grid word), its list cell and the lights its method tested.
+// the first grid word), its list cell and the lights its method tested. Each cell's reaching
+// lights are the union of its covered pixels' masks, as forward.frag gathers them.
 struct PixelSpec {
     uint32_t reaching;  // bit i: light i reaches the pixel
     uint32_t cell;
@@ -29,9 +30,14 @@ LightStatsImage imageOf(const std::vector<PixelSpec>& pixels) {
         image.affecting.push_back(uint32_t(std::popcount(p.reaching)));
         image.methodLuminance.push_back(1.0f);
         image.bruteLuminance.push_back(1.0f);
-        image.affectingMasks.insert(image.affectingMasks.end(), {p.reaching, 0u, 0u});
         image.listCells.push_back(p.cell);
     }
+    std::vector<uint32_t> unions;
+    for (const PixelSpec& p : pixels) {
+        if (p.cell >= unions.size()) unions.resize(p.cell + 1, 0u);
+        if (p.covered) unions[p.cell] |= p.reaching;
+    }
+    for (const uint32_t lights : unions) image.cellReachingLights.push_back(uint32_t(std::popcount(lights)));
     return image;
 }
 
@@ -57,14 +63,12 @@ TEST(CullingStats, OneCellPerPixelIsAPerfectFloorAndOneCellForAllIsBruteForcesUn
     EXPECT_DOUBLE_EQ(computeCullingStats(imageOf(oneCell)).floorEfficiency, 1.5);
 }
 
-TEST(CullingStats, TheFloorCountsLightsInEveryGridWord) {
-    // Two spots in words 0 and 1 and a point in word 2 reach one pixel; another pixel of the cell
-    // is reached by nothing: 3 reaching lights, the floor tests 3 at each pixel, 6.
+TEST(CullingStats, TheFloorTestsTheCellsGatheredLightsWhateverTheirWords) {
+    // 3 lights reach one pixel of cell 4 (say in three grid words; the GPU counted the cell's
+    // union: debug buffers' decoding), none the other: the floor tests 3 at each pixel, 6.
     LightStatsImage image = imageOf({{0u, 4u, 3u}, {0u, 4u, 3u}});
     image.affecting[0] = 3;
-    image.affectingMasks[0] = 1u << 5;
-    image.affectingMasks[1] = 1u << 31;
-    image.affectingMasks[2] = 1u;
+    image.cellReachingLights[4] = 3;
     EXPECT_DOUBLE_EQ(computeCullingStats(image).floorEfficiency, 2.0);
 }
 

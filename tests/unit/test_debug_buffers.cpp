@@ -24,10 +24,12 @@ uint32_t floatBits(float value) {
 TEST(DebugBuffers, LightStatisticsDecodeEachBlockAndWord) {
     // A 2 x 1 frame: pixel 0 covered, pixel 1 background (all zero, as cleared).
     const uint32_t width = 2, height = 1, pixels = 2;
-    std::vector<uint8_t> bytes(lightStatsBytes(width, height), 0);
-    EXPECT_EQ(bytes.size(), 2u * 3u * 4u * 4u);  // 2 pixels, 3 blocks of 4 words
+    // Three list cells of two mask words each (up to 64 lights).
+    const uint32_t listCells = 3, gridWords = 2;
+    std::vector<uint8_t> bytes(lightStatsBytes(width, height, listCells, gridWords), 0);
+    EXPECT_EQ(bytes.size(), (2u * 3u * 4u + 3u * 2u) * 4u);  // 2 pixels, 3 blocks of 4 words; 3 cells of 2 words
     const auto word = [&](uint32_t block, uint32_t pixel, uint32_t w) { return gpu::lightStatsWord(block, pixels, pixel, w); };
-    putWord(bytes, word(PUNCTUAL_LIGHT_STATS_OPAQUE, 0, PUNCTUAL_LIGHT_STATS_WORK), gpu::packPixelWork(12, 3, 27));
+    putWord(bytes, word(PUNCTUAL_LIGHT_STATS_OPAQUE, 0, PUNCTUAL_LIGHT_STATS_WORK), gpu::packPixelWork(3, 27));
     putWord(bytes, word(PUNCTUAL_LIGHT_STATS_OPAQUE, 0, PUNCTUAL_LIGHT_STATS_REACHING), 5u | PUNCTUAL_LIGHT_STATS_COVERED);
     putWord(bytes, word(PUNCTUAL_LIGHT_STATS_OPAQUE, 0, PUNCTUAL_LIGHT_STATS_LUMINANCE), floatBits(0.25f));
     putWord(bytes, word(PUNCTUAL_LIGHT_STATS_OPAQUE, 0, PUNCTUAL_LIGHT_STATS_BRUTE_LUMINANCE), floatBits(0.5f));
@@ -35,10 +37,14 @@ TEST(DebugBuffers, LightStatisticsDecodeEachBlockAndWord) {
     putWord(bytes, word(PUNCTUAL_LIGHT_STATS_TRANSPARENT, 1, PUNCTUAL_LIGHT_STATS_REACHING), 9);
     putWord(bytes, word(PUNCTUAL_LIGHT_STATS_TRANSPARENT, 1, PUNCTUAL_LIGHT_STATS_FRAGMENTS), 2);
     putWord(bytes, word(PUNCTUAL_LIGHT_STATS_TRANSPARENT, 1, PUNCTUAL_LIGHT_STATS_MISSING), 1);
-    for (uint32_t w = 0; w < PUNCTUAL_GRID_WORDS; ++w) putWord(bytes, word(PUNCTUAL_LIGHT_STATS_EXACT, 0, w), 0x10u << w);
-    putWord(bytes, word(PUNCTUAL_LIGHT_STATS_EXACT, 0, PUNCTUAL_LIGHT_STATS_LIST_CELL), 77);
+    putWord(bytes, word(PUNCTUAL_LIGHT_STATS_LIST, 0, PUNCTUAL_LIGHT_STATS_LIST_CELL), 2);
+    putWord(bytes, word(PUNCTUAL_LIGHT_STATS_LIST, 0, PUNCTUAL_LIGHT_STATS_LIST_TESTED), 12);
+    // Cell 2 reached by lights 0, 1 and 40 (word 1, bit 8); cell 0 by light 63.
+    putWord(bytes, gpu::lightStatsCellWord(pixels, gridWords, 2, 0), 0x3u);
+    putWord(bytes, gpu::lightStatsCellWord(pixels, gridWords, 2, 1), 0x100u);
+    putWord(bytes, gpu::lightStatsCellWord(pixels, gridWords, 0, 1), 0x80000000u);
 
-    const LightStatsImage stats = decodeLightStats(bytes, width, height);
+    const LightStatsImage stats = decodeLightStats(bytes, width, height, listCells, gridWords);
     ASSERT_EQ(stats.tested.size(), 2u);
     EXPECT_EQ(stats.covered, (std::vector<uint8_t>{1, 0}));
     EXPECT_EQ(stats.tested, (std::vector<uint32_t>{12, 0}));
@@ -51,9 +57,8 @@ TEST(DebugBuffers, LightStatisticsDecodeEachBlockAndWord) {
     EXPECT_EQ(stats.transparentAffecting, (std::vector<uint32_t>{0, 9}));
     EXPECT_EQ(stats.transparentFragments, (std::vector<uint32_t>{0, 2}));
     EXPECT_EQ(stats.transparentMissingLight, (std::vector<uint32_t>{0, 1}));
-    EXPECT_EQ(stats.affectingMasks[0], 0x10u);
-    EXPECT_EQ(stats.affectingMasks[PUNCTUAL_GRID_WORDS - 1], 0x10u << (PUNCTUAL_GRID_WORDS - 1));
-    EXPECT_EQ(stats.listCells, (std::vector<uint32_t>{77, 0}));
+    EXPECT_EQ(stats.listCells, (std::vector<uint32_t>{2, 0}));
+    EXPECT_EQ(stats.cellReachingLights, (std::vector<uint32_t>{1, 0, 3}));
 }
 
 TEST(DebugBuffers, ShadowFactorsDecodeSurfacesSlotsAndTheSun) {

@@ -198,16 +198,16 @@ TEST(LightGen, FlatSceneGetsLightsAboveIt) {
     }
 }
 
-TEST(LightGen, RejectsOverCapsAndEmptyScenes) {
+TEST(LightGen, RejectsOverTheLargestCapacityAndEmptyScenes) {
     Scene scene = hall();
     try {
-        replaceLights(scene, 65, 0, 1);
+        replaceLights(scene, 16385, 0, 1);
         FAIL() << "expected an Error";
     } catch (const Error& e) {
         EXPECT_EQ(e.subject(), "--lights");
-        EXPECT_STREQ(e.what(), "--lights: at most 64 spot and 32 point lights (got 65,0)");
+        EXPECT_STREQ(e.what(), "--lights: at most 16384 spot and 16384 point lights (got 16385,0)");
     }
-    EXPECT_THROW(replaceLights(scene, 0, 33, 1), Error);
+    EXPECT_THROW(replaceLights(scene, 0, 16385, 1), Error);
     Scene empty;
     EXPECT_THROW(replaceLights(empty, 1, 1, 1), Error);
 }
@@ -306,7 +306,7 @@ TEST(LightGen, ParseAcceptsCountsAndSeed) {
 }
 
 TEST(LightGen, ParseRejectsJunk) {
-    for (const char* bad : {"", "a,b", "-1,2", "65,0", "0,33", "1", "1,2,3,4", "1,,2", ",1", "1,2,", " 1,2",
+    for (const char* bad : {"", "a,b", "-1,2", "16385,0", "0,16385", "1", "1,2,3,4", "1,,2", ",1", "1,2,", " 1,2",
                             "1.5,2", "+1,2", "1,2,18446744073709551616", "99999999999999999999999,1"}) {
         try {
             parseLightCounts(bad);
@@ -320,11 +320,13 @@ TEST(LightGen, ParseRejectsJunk) {
 
 TEST(LightGen, ParseOverCapMessage) {
     try {
-        parseLightCounts("0,33");
+        parseLightCounts("0,16385");
         FAIL();
     } catch (const Error& e) {
-        EXPECT_EQ(e.problem(), "at most 64 spot and 32 point lights (got 0,33)");
+        EXPECT_EQ(e.problem(), "at most 16384 spot and 16384 point lights (got 0,16385)");
     }
+    // Up to the largest capacity parses (the command line holds it to --max-lights).
+    EXPECT_EQ(parseLightCounts("16384,16384").spot, 16384u);
 }
 
 // ---- --light-range ----------------------------------------------------------------------------

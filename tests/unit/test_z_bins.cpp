@@ -23,24 +23,31 @@ gpu::CullLight lightAt(float distance, float radius) {
     return light;
 }
 
-// The bin (masks and range) a pixel at view distance `distance` reads.
-glm::uvec4 binAt(const ZBins& bins, float distance) {
-    return bins.gpu.binMask[zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(distance, kDepthToView))];
+// The bin a pixel at view distance `distance` reads: its range and its mask's words.
+struct Bin {
+    uint32_t range = 0;
+    std::vector<uint32_t> mask;
+    uint32_t word(uint32_t w) const { return w < mask.size() ? mask[w] : 0u; }
+};
+
+Bin binAt(const ZBins& bins, float distance) {
+    const uint32_t b = zBinOfDepth(bins.gpu, gpu::depthFromViewDistance(distance, kDepthToView));
+    return {bins.gpu.binRange[b], std::vector<uint32_t>(bins.binMask(b), bins.binMask(b) + bins.gridWords)};
 }
 
-uint32_t first(const glm::uvec4& bin) { return bin.w & 0xFFFFu; }
-uint32_t last(const glm::uvec4& bin) { return bin.w >> 16; }
+uint32_t first(const Bin& bin) { return bin.range & 0xFFFFu; }
+uint32_t last(const Bin& bin) { return bin.range >> 16; }
 
 TEST(ZBins, LightsAreSortedByTheirNearestExtent) {
     // Packed: spot 0 at 10..14, spot 1 at 2..4, point 2 at 5..9 (spotCount 2). Nearest ends 10, 2, 5.
-    const ZBins bins = buildZBins({lightAt(12.0f, 2.0f), lightAt(3.0f, 1.0f), lightAt(7.0f, 2.0f)}, 2, kDepthToView);
+    const ZBins bins = buildZBins({lightAt(12.0f, 2.0f), lightAt(3.0f, 1.0f), lightAt(7.0f, 2.0f)}, kDepthToView);
     EXPECT_EQ(bins.sortedLights, (std::vector<uint32_t>{1, 2, 0}));
 }
 
 TEST(ZBins, StartsRunFromTheNearPlaneThroughTheLightsExtentLogarithmically) {
     // Extents 2..4 and 8..32 (nearest 2, farthest 32): bin s >= 1 starts at 2 x 16^(s / 64), so bin
     // 16 starts at 2 x 16^(1/4) = 4, bin 32 at 8 and bin 48 at 16.
-    const ZBins bins = buildZBins({lightAt(3.0f, 1.0f), lightAt(20.0f, 12.0f)}, 2, kDepthToView);
+    const ZBins bins = buildZBins({lightAt(3.0f, 1.0f), lightAt(20.0f, 12.0f)}, kDepthToView);
     EXPECT_EQ(bins.gpu.binStartDepth[0], 1.0f);
     EXPECT_NEAR(gpu::viewDistanceFromDepth(bins.gpu.binStartDepth[1], kDepthToView), 2.0f * std::pow(16.0f, 1.0f / 64.0f), 1e-3f);
     EXPECT_NEAR(gpu::viewDistanceFromDepth(bins.gpu.binStartDepth[16], kDepthToView), 4.0f, 1e-3f);
@@ -53,40 +60,38 @@ TEST(ZBins, EachBinHoldsTheRangeOfSortedLightsOverlappingIt) {
     // Sorted: A (2..4, packed 1), B (3..6, packed 0), C (8..32, packed 2, a point; spotCount 2).
     // Bins (starts as above with nearest 2, farthest 32): distances 2..4 are bins 0..15, 4..8 are
     // bins 16..31, 8..32 bins 32..63. A spans bins 0..16 at most, B 7..26 or so, C 32..63.
-    const ZBins bins = buildZBins({lightAt(4.5f, 1.5f), lightAt(3.0f, 1.0f), lightAt(20.0f, 12.0f)}, 2, kDepthToView);
+    const ZBins bins = buildZBins({lightAt(4.5f, 1.5f), lightAt(3.0f, 1.0f), lightAt(20.0f, 12.0f)}, kDepthToView);
     ASSERT_EQ(bins.sortedLights, (std::vector<uint32_t>{1, 0, 2}));
-    // A pixel at distance 3.5 is inside A and B: its bin's range is sorted 0..1, mask spots 0 and 1.
-    const glm::uvec4 both = binAt(bins, 3.5f);
+    // A pixel at distance 3.5 is inside A and B: its bin's range is sorted 0..1, mask lights 0 and 1.
+    const Bin both = binAt(bins, 3.5f);
     EXPECT_EQ(first(both), 0u);
     EXPECT_EQ(last(both), 1u);
-    EXPECT_EQ(both.x, 0x3u);
-    EXPECT_EQ(both.z, 0u);
+    EXPECT_EQ(both.word(0), 0x3u);
     // At 5 only B: range 1..1.
-    const glm::uvec4 onlyB = binAt(bins, 5.0f);
+    const Bin onlyB = binAt(bins, 5.0f);
     EXPECT_EQ(first(onlyB), 1u);
     EXPECT_EQ(last(onlyB), 1u);
-    EXPECT_EQ(onlyB.x, 0x1u);  // packed spot 0
+    EXPECT_EQ(onlyB.word(0), 0x1u);  // packed light 0
     // At 7, in the gap: empty.
-    const glm::uvec4 gap = binAt(bins, 7.0f);
+    const Bin gap = binAt(bins, 7.0f);
     EXPECT_GT(first(gap), last(gap));
-    EXPECT_EQ(gap.x | gap.y | gap.z, 0u);
-    // At 30, C alone: the point word's bit 0 (packed 2 = the first point).
-    const glm::uvec4 onlyC = binAt(bins, 30.0f);
+    EXPECT_EQ(gap.word(0), 0u);
+    // At 30, C alone: bit 2 (packed 2, the first point: one bit per light, culling.h).
+    const Bin onlyC = binAt(bins, 30.0f);
     EXPECT_EQ(first(onlyC), 2u);
     EXPECT_EQ(last(onlyC), 2u);
-    EXPECT_EQ(onlyC.x | onlyC.y, 0u);
-    EXPECT_EQ(onlyC.z, 0x1u);
+    EXPECT_EQ(onlyC.word(0), 0x4u);
 }
 
 TEST(ZBins, ARangeAlsoHoldsTheSortedLightsBetweenItsEnds) {
     // The scheme's looseness: A 2..40 (a long extent), B 5..6, C 10..12, sorted A, B, C. A bin at
     // distance 11 meets A and C, so its range is 0..2 and holds B too, which does not reach it.
-    const ZBins bins = buildZBins({lightAt(21.0f, 19.0f), lightAt(5.5f, 0.5f), lightAt(11.0f, 1.0f)}, 3, kDepthToView);
+    const ZBins bins = buildZBins({lightAt(21.0f, 19.0f), lightAt(5.5f, 0.5f), lightAt(11.0f, 1.0f)}, kDepthToView);
     ASSERT_EQ(bins.sortedLights, (std::vector<uint32_t>{0, 1, 2}));
-    const glm::uvec4 bin = binAt(bins, 11.0f);
+    const Bin bin = binAt(bins, 11.0f);
     EXPECT_EQ(first(bin), 0u);
     EXPECT_EQ(last(bin), 2u);
-    EXPECT_EQ(bin.x, 0x7u);
+    EXPECT_EQ(bin.word(0), 0x7u);
 }
 
 TEST(ZBins, EveryDistanceInsideALightFindsItInItsBin) {
@@ -94,7 +99,7 @@ TEST(ZBins, EveryDistanceInsideALightFindsItInItsBin) {
     // mask holds that light.
     std::vector<gpu::CullLight> lights;
     for (int i = 0; i < 40; ++i) lights.push_back(lightAt(0.5f + 2.3f * float(i % 17), 0.2f + 0.9f * float(i % 5)));
-    const ZBins bins = buildZBins(lights, 32, kDepthToView);
+    const ZBins bins = buildZBins(lights, kDepthToView);
     size_t checked = 0;
     for (uint32_t light = 0; light < lights.size(); ++light) {
         const float centre = -lights[light].sphereCenter.z;
@@ -103,9 +108,8 @@ TEST(ZBins, EveryDistanceInsideALightFindsItInItsBin) {
             const float d = std::max(centre - lights[light].sphereRadius * 0.999f +
                                          lights[light].sphereRadius * 1.998f * float(k) / 50.0f,
                                      0.11f);
-            const glm::uvec4 bin = binAt(bins, d);
-            const uint32_t word = gpu::lightGridWord(light, 32);
-            EXPECT_NE(bin[int(word)] & (1u << gpu::lightGridBit(light, 32)), 0u) << light << " at " << d;
+            const Bin bin = binAt(bins, d);
+            EXPECT_NE(bin.word(gpu::lightGridWord(light)) & (1u << gpu::lightGridBit(light)), 0u) << light << " at " << d;
             ++checked;
         }
     }
@@ -113,9 +117,11 @@ TEST(ZBins, EveryDistanceInsideALightFindsItInItsBin) {
 }
 
 TEST(ZBins, NoLightsMakeEmptyBins) {
-    const ZBins bins = buildZBins({}, 0, kDepthToView);
+    const ZBins bins = buildZBins({}, kDepthToView);
+    ASSERT_EQ(bins.gridWords, 1u);
     for (uint32_t b = 0; b < PUNCTUAL_ZBIN_COUNT; ++b) {
-        EXPECT_EQ(bins.gpu.binMask[b].x | bins.gpu.binMask[b].y | bins.gpu.binMask[b].z, 0u);
+        EXPECT_EQ(bins.binMask(b)[0], 0u);
+        EXPECT_GT(bins.gpu.binRange[b] & 0xFFFFu, bins.gpu.binRange[b] >> 16);  // empty
     }
 }
 
