@@ -16,7 +16,6 @@
 //     blocks' rectangle, combined over the workgroup) and each lane keeps those of its lights
 //     whose depth cells include it and whose shapes meet its segment (until none is left to keep);
 //  4. combine the masks with subgroupOr; lanes 0-2 write them.
-// (Step 3b's cells come from the depths once per tile, before the triples.)
 // The masks are those of light_culling.comp's one-slice case bit for bit: the same lights are
 // tested against the same segments, whose distances come from the same extreme depths, with the
 // same cells and rectangles.
@@ -88,19 +87,24 @@ vec2 laneDepthExtent(uvec2 tile, uvec2 tileEnd, uvec2 viewport, uint lane, uint 
     return extent;
 }
 
-// 3b. Tiled-2.5d: this lane's blocks' depth cells, by round (tiles of at most 32 pixels without
-//     spans, for the cells' rectangles). Indexed by the round, the same in every lane: each lane's
-//     columns and rows kept per cell, an index differing between lanes, made lavapipe (which runs
-//     the lanes as one vector) scatter to memory, 1-1.5 ms more of the pass (A/B, 3 rounds).
-uint blockCells[kMaxBlockRounds];
-
-// 3b. Tiled-2.5d: the cells of the tile's extent `distances` (Harada's depth mask) that its pixels
-//     occupy, over the workgroup; this lane's blocks' cells go to blockCells. Called in uniform
-//     control flow.
-uint occupiedDepthCells(uvec2 tile, uvec2 tileEnd, uvec2 viewport, uint lane, uint threads, bool spans, vec2 distances) {
+// 3b. Tiled-2.5d: of this lane's lights that passed the tile (`masks`, triple `triple`), those
+//     whose depth cells meet an occupied cell of the tile's extent `distances` (Harada's depth
+//     mask) whose segment their shapes meet (culling.h, makeDepthCellVolume). The cells come from
+//     the depths again for each triple with lights left to test (one at the design notes' 96):
+//     found once per tile for every triple, they took a private array outside this function,
+//     which lavapipe keeps in memory: the pass 12.1 -> 14.5 ms at 1280x720 (A/B, 3 rounds).
+//     Called in uniform control flow.
+uvec3 lightsMeetingOccupiedCells(uvec3 masks, uint triple, uvec2 tile, uvec2 tileEnd, uvec2 viewport, uint lane, uint threads,
+                                 bool spans, vec2 distances, vec2 ndcMin, vec2 ndcMax, vec2 pixelToNdc) {
     float maskNear = distances.x;
     float maskScale = depthMaskScale(distances.x, distances.y);
+    // The cells this lane's pixels occupy, and each of its blocks' cells (tiles of at most 32
+    // pixels without spans, for the cells' rectangles below). The blocks' array is indexed by
+    // the round, the same in every lane: each lane's columns and rows kept per cell, an index
+    // differing between lanes, made lavapipe (which runs the lanes as one vector) scatter to
+    // memory, 1-1.5 ms more of the pass (A/B, 3 rounds).
     uint laneCells = 0u;
+    uint blockCells[kMaxBlockRounds];
     bool rects = !spans && TILE_SIZE <= 32u;
     if (!spans) {
         uint blockRound = 0u;
@@ -121,17 +125,7 @@ uint occupiedDepthCells(uvec2 tile, uvec2 tileEnd, uvec2 viewport, uint lane, ui
                                        depthMaskCell(viewDistanceFromDepth(span.y, frame.depthToView.xy), maskNear, maskScale));
         }
     }
-    return workgroupMasks(uvec3(laneCells, 0u, 0u)).x;
-}
-
-// 3b. Tiled-2.5d: of this lane's lights that passed the tile (`masks`, triple `triple`), those
-//     whose depth cells meet an occupied cell of the tile (`tileCells`, occupiedDepthCells) whose
-//     segment their shapes meet (culling.h, makeDepthCellVolume). Called in uniform control flow.
-uvec3 lightsMeetingOccupiedCells(uvec3 masks, uint triple, uint tileCells, uvec2 tile, uvec2 tileEnd, uint lane,
-                                 uint threads, bool spans, vec2 distances, vec2 ndcMin, vec2 ndcMax, vec2 pixelToNdc) {
-    float maskNear = distances.x;
-    float maskScale = depthMaskScale(distances.x, distances.y);
-    bool rects = !spans && TILE_SIZE <= 32u;
+    uint tileCells = workgroupMasks(uvec3(laneCells, 0u, 0u)).x;
     uvec3 unkept = masks;  // this lane's lights that passed the tile and meet no cell yet
     masks = uvec3(0u);
     for (uint cells = tileCells; cells != 0u; cells &= cells - 1u) {  // (uniform)
@@ -157,6 +151,24 @@ uvec3 lightsMeetingOccupiedCells(uvec3 masks, uint triple, uint tileCells, uvec2
     }
     return masks;
 }
+
+// Steps 3 to 4 for triple `triple` of the tile's mask words (subgroup_tiles.glsl), in main's
+// variables: a macro, so that the one-triple case needs no loop (below).
+#define PUNCTUAL_CULL_WORD_TRIPLE(triple)                                                                               \
+    {                                                                                                                   \
+        /* 3. The lights against the segment: this lane's share of the candidates. */                                  \
+        uvec3 masks = occupied ? lightsMeetingSegment(laneCandidates(tile, COARSE_TILES, lane, threads, triple), triple, segment) \
+                               : uvec3(0u);                                                                             \
+        /* 3b. Tiled-2.5d. (A tile none of whose lights passed reads no depth again.) */                                \
+        bool anyPassed = DEPTH_MASK && occupied &&                                                                      \
+                         workgroupMasks(uvec3(any(notEqual(masks, uvec3(0u))) ? 1u : 0u, 0u, 0u)).x != 0u;              \
+        if (anyPassed) { /* (uniform) */                                                                                \
+            masks = lightsMeetingOccupiedCells(masks, triple, tile, tileEnd, viewport, lane, threads, spans, distances, \
+                                               ndcMin, ndcMax, pixelToNdc);                                             \
+        }                                                                                                               \
+        /* 4. The tile's cell, always written (an empty tile's masks are zero). */                                      \
+        writeCellTriple(cellBase, triple, workgroupMasks(masks), lane);                                                 \
+    }
 
 void main() {
     uint lane = gl_LocalInvocationIndex;
@@ -186,24 +198,12 @@ void main() {
         segment = makeTileVolume(ndcMin, ndcMax, distances.x, distances.y, frame.ndcToView);
     }
 
-    uint tileCells = 0u;  // tiled-2.5d: the tile's occupied depth cells, once a light has passed
-    bool cellsFound = false;
     uint cellBase = (tile.y * frame.lightGrid.y + tile.x) * GRID_WORDS;
-    for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) {  // (uniform)
-        // 3. The lights against the segment: this lane's share of the candidates.
-        uvec3 masks = occupied ? lightsMeetingSegment(laneCandidates(tile, COARSE_TILES, lane, threads, triple), triple, segment)
-                               : uvec3(0u);
-
-        // 3b. Tiled-2.5d. (A tile none of whose lights passed reads no depth again.)
-        bool anyPassed = DEPTH_MASK && occupied && workgroupMasks(uvec3(any(notEqual(masks, uvec3(0u))) ? 1u : 0u, 0u, 0u)).x != 0u;
-        if (anyPassed) {  // (uniform)
-            if (!cellsFound) tileCells = occupiedDepthCells(tile, tileEnd, viewport, lane, threads, spans, distances);
-            cellsFound = true;
-            masks = lightsMeetingOccupiedCells(masks, triple, tileCells, tile, tileEnd, lane, threads, spans, distances, ndcMin,
-                                               ndcMax, pixelToNdc);
-        }
-
-        // 4. The tile's cell, always written (an empty tile's masks are zero).
-        writeCellTriple(cellBase, triple, workgroupMasks(masks), lane);
+    if (GRID_WORDS <= 3u) {
+        // Up to the design notes' 96 lights: one triple, with no loop around it (measured on
+        // lavapipe: the one-trip loop cost tiled-2.5d's pass 20%, 12.1 -> 14.7 ms at 1280x720).
+        PUNCTUAL_CULL_WORD_TRIPLE(0u)
+    } else {
+        for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) PUNCTUAL_CULL_WORD_TRIPLE(triple)  // (uniform)
     }
 }

@@ -112,7 +112,7 @@ struct ShadowPlan {
     std::vector<ShadowView> views;  // spots first (one each), then points (six each), then cascades
     uint32_t shadowedSpots = 0;     // spot lights with a view
     uint32_t shadowedPoints = 0;    // point lights with six
-    uint32_t droppedByCap = 0;      // shadow-casting lights over the caps (they stay unshadowed)
+    uint32_t droppedByCap = 0;      // shadow-casting lights over --shadowed (they stay unshadowed)
 
     // Of a frame's `punctualLights` spot and point lights, those without a shadow map: the ones
     // over the caps (droppedByCap) and the ones that cast none (their scene light says so, or

@@ -87,10 +87,10 @@ public:
 
     // Depth buffer of the last frame, row-major top to bottom, in [0, 1] (1 = background).
     std::vector<float> readDepth();
-    // The light grid of the last frame: gridLayout().cellCount() * PUNCTUAL_GRID_WORDS words
+    // The light grid of the last frame: gridLayout().gridWordCount() words
     // (tiled and clustered only). Clustered also reports the frame's geometry depth range.
     std::vector<uint32_t> readLightGrid();
-    // The coarse pass's masks of the last frame: coarseTilesX() * coarseTilesY() * PUNCTUAL_GRID_WORDS
+    // The coarse pass's masks of the last frame: coarseTilesX() * coarseTilesY() * gridWords
     // words (gridLayout()); empty without the coarse pass.
     std::vector<uint32_t> readCoarseGrid();
     gpu::GpuDepthRange readDepthRange();
