@@ -20,6 +20,8 @@ SWEEPS = [
     ("mix", "lights (spot + point)", "lights", light_count),
     ("spot-only", "spot lights", "lights", light_count),
     ("point-only", "point lights", "lights", light_count),
+    ("scale", "lights (half spots), constant density", "lights", light_count),
+    ("scale-fixed", "lights (half spots), fixed range", "lights", light_count),
     ("range", "light range (fraction of the scene's diagonal)", "range",
      lambda r: number(r, "light_range")),
     ("pixels", "pixels (width x height)", "pixels", pixels),
@@ -31,7 +33,9 @@ LINE_FIELDS = ["method", "shadows", "shadow_res", "shadow_format", "shadow_filte
                "point_layout", "cascades"]
 LINE_STYLES = ["-", "--", ":", "-."]
 LIGHT_PANELS = [("mix", "mix (spot:point = 2:1)"), ("spot-only", "spot lights only"),
-                ("point-only", "point lights only")]
+                ("point-only", "point lights only"), ("scale", "16-8192 at constant density"),
+                ("scale-fixed", "16-8192 at the fixed range")]
+COUNT_SERIES = ("mix", "spot-only", "point-only", "scale", "scale-fixed")
 
 
 def fit_slope(points):
@@ -129,7 +133,7 @@ def chart_sweep(rows, names, series, axis_label, variable, x_of, laws=None):
                              "points": sum(1 for r in own if not is_flagged(r)
                                            and (x_of(r) or 0) > 0 and (number(r, column) or 0) > 0),
                              "law": law_text(what, variable, slope)})
-        if series in ("mix", "spot-only", "point-only"):
+        if series in COUNT_SERIES:
             set_count_axis(ax, [x_of(r) for r in rs])
             ax.set_xlabel(axis_label)
         else:

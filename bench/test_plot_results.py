@@ -26,7 +26,7 @@ COLUMNS = plot_results.known_columns(PASSES)
 COST = {"brute": 12.0, "per-object": 1.6, "tiled": 1.8, "clustered": 1.7, "hybrid": 1.5,
         "mystery": 2.5}
 # The series the new sweeps add (docs/BENCH_RESULTS.md), and the columns of an older bench.
-SWEEP_SERIES = ["range", "pixels", "triangles", "shadow-budget"]
+SWEEP_SERIES = ["scale", "scale-fixed", "range", "pixels", "triangles", "shadow-budget"]
 OLD_COLUMNS = """config series method spot point shadows shadow_res shadow_filter point_layout frames
     depth_ms culling_ms shadows_ms forward_ms total_ms forward_spread_ms total_spread_ms
     tested_per_pixel affecting_per_pixel efficiency missed_energy image_error pixels_off
@@ -106,6 +106,14 @@ def full_rows(methods=METHODS):
     for n in (4, 16, 32):
         for m in methods:
             rows.append(row(f"point-{m}-{n}", "point-only", m, 0, n))
+    # The scale series: thousands of lights, each count its own set (half spots); at constant
+    # density culled methods stay nearly flat, at the fixed range every method grows.
+    for series, flat in (("scale", True), ("scale-fixed", False)):
+        for n in (16, 256, 4096):
+            for m in methods:
+                growth = n / 16 if m == "brute" or not flat else (n / 16) ** 0.1
+                rows.append(row(f"{series}-{m}-{n}", series, m, n // 2, n // 2,
+                                forward_ms=COST[m] * 16 * growth))
     for m in methods:
         for on in (0, 1):
             rows.append(row(f"shadows-{m}-{on}", "shadows", m, 64, 32, shadows=on,

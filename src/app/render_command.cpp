@@ -134,6 +134,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
             nlohmann::json stats = frameStatsJson(result, renderer, scene, context.deviceName(), options.frames);
             stats["culling"] = cullingStatsJson(culling, renderer);
             stats["shadows"] = shadowStatsJson(renderer);
+            stats["memory"]["light_grid_floor_bytes"] = lightGridFloorBytes(renderer);
             outputs.add(*options.statsPath, stats.dump(2) + "\n");
         }
         if (options.heatmapPath) {

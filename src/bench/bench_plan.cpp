@@ -56,6 +56,31 @@ void addLightCountSeries(std::vector<BenchConfig>& configs, bool quick) {
     }
 }
 
+// Thousands of lights (issue 32): 16 to 8,192, half spots and half points, each count's own set,
+// at constant density (scale: --light-range auto, the lights reaching a pixel about as 96 put
+// them) and at the fixed range (scale-fixed: every pixel under more lights as they multiply).
+// --quick: 16 and 128 at constant density.
+void addScaleSeries(std::vector<BenchConfig>& configs, bool quick) {
+    std::vector<uint32_t> counts;
+    for (uint32_t count = 16; count <= (quick ? 128 : kBenchScaleLights); count *= quick ? 8 : 2) counts.push_back(count);
+    for (const bool constantDensity : {true, false}) {
+        if (quick && !constantDensity) continue;
+        for (uint32_t count : counts) {
+            for (render::LightListMethod method : benchMethods(quick)) {
+                BenchConfig config;
+                config.series = constantDensity ? "scale" : "scale-fixed";
+                config.method = method;
+                config.spot = count / 2;
+                config.point = count / 2;
+                config.ownLights = true;
+                config.constantDensity = constantDensity;
+                config.shadows = shadowsOff();
+                configs.push_back(config);
+            }
+        }
+    }
+}
+
 BenchConfig fullLightSet(const char* series, render::LightListMethod method) {
     BenchConfig config;
     config.series = series;
@@ -227,6 +252,9 @@ const std::vector<BenchSeries>& benchSeries() {
                     joinNames(render::methodNames(), ", ") + " (shadows off)"},
         {"spot-only", "spot lights 8-64 alone, as mix"},
         {"point-only", "point lights 4-32 alone, as mix"},
+        {"scale", "lights 16-8192, half spots, at constant density (--light-range auto), x every method "
+                  "(shadows off)"},
+        {"scale-fixed", "lights 16-8192, half spots, at the fixed range, x every method (shadows off)"},
         {"range", "64 + 32 lights at ranges 0.1-0.7 x the scene's diagonal (overlap alone), x every method"},
         {"pixels", "64 + 32 lights at 320x180 to 2560x1440 (pixels alone), x every method"},
         {"shadows", "64 + 32 lights, shadows off and on, per method"},
@@ -247,6 +275,7 @@ std::vector<BenchConfig> benchPlan(bool quick) {
     // In benchSeries() order, each series (and each group) consecutive.
     std::vector<BenchConfig> configs;
     addLightCountSeries(configs, quick);
+    addScaleSeries(configs, quick);
     addRangeSeries(configs, quick);
     addPixelSeries(configs, quick);
     addShadowSeries(configs, quick);
@@ -259,6 +288,8 @@ std::vector<BenchConfig> benchPlan(bool quick) {
 std::string benchGroupKey(const BenchConfig& config) {
     std::string key = config.series;
     if (config.scene) key += std::string("/") + config.scene->name + "/" + std::to_string(config.triangles);
+    // The scale series: a group per count, so that a round holds one count's renderers.
+    if (config.ownLights) key += "/" + std::to_string(config.spot + config.point);
     return key;
 }
 

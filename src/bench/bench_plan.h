@@ -15,9 +15,12 @@ namespace punctual::bench {
 // The range every generated light gets in the series that hold the overlap fixed, as a share of
 // the scene's bounds diagonal: the middle of the generator's 0.25-0.45.
 inline constexpr float kBenchLightRange = 0.35f;
-// The largest generated set (the per-frame caps); smaller counts take its first lights.
+// The largest generated set of the series up to the design notes' caps; smaller counts take its
+// first lights. (The scale series generates its own, up to kBenchScaleLights.)
 inline constexpr uint32_t kBenchSpots = 64;
 inline constexpr uint32_t kBenchPoints = 32;
+// The scale series' largest count: half spots, half points.
+inline constexpr uint32_t kBenchScaleLights = 8192;
 // Frames per round visit; the round keeps each pass's fastest (fastestPerPass, bench_rows.h).
 // Three is where a light sweep at 640x360 stopped having flagged configurations here
 // (bench/RESULTS.md); --quick keeps one frame, to stay a quick look.
@@ -34,6 +37,10 @@ struct BenchConfig {
     uint32_t spot = 0;
     uint32_t point = 0;
     float lightRange = kBenchLightRange;  // generated lights only
+    // The scale series: the lights generated for the configuration itself (past the bench's 96),
+    // at constant density (--light-range auto) or, false, at lightRange.
+    bool ownLights = false;
+    bool constantDensity = false;
     uint32_t width = 0;                    // 0: the run's --size
     uint32_t height = 0;
     ShadowSettings shadows;

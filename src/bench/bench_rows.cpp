@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "report/frame_stats.h"
 #include "report/validation_report.h"
 #include "core/memory_usage.h"
 #include "lights/cascade_setup.h"
@@ -47,7 +48,7 @@ std::vector<std::string> benchColumns(const std::vector<std::string>& passes) {
           "filter_taps_per_pixel", "shadow_views", "shadow_texels_rendered", "shadow_filter_taps", "objects_in_view",
           "camera_triangles", "depth_triangles", "forward_triangles", "transparent_triangles", "shadow_triangles",
           "depth_draws", "forward_draws", "transparent_draws", "shadow_draws", "shadow_draws_max",
-          "shadow_memory_bytes", "light_grid_bytes", "scene_bytes", "frame_bytes", "device_bytes", "peak_rss_bytes",
+          "shadow_memory_bytes", "light_grid_bytes", "light_grid_floor_bytes", "scene_bytes", "frame_bytes", "device_bytes", "peak_rss_bytes",
           "efficiency", "floor_efficiency", "missed_energy", "image_error", "pixels_off", "shadow_reduced_views", "shadow_misclassified",
           "shadow_misclassified_all", "shadow_misclassified_1px", "shadow_false_shadow", "shadow_false_lit",
           "sun_misclassified", "sun_misclassified_1px"}) {
@@ -167,6 +168,7 @@ void addCounters(BenchRow& row, render::Renderer& renderer, const LightStatsImag
     const render::DeviceMemory memory = renderer.deviceMemory();
     row["shadow_memory_bytes"] = std::to_string(memory.shadows);
     row["light_grid_bytes"] = std::to_string(memory.lightGrid);
+    row["light_grid_floor_bytes"] = std::to_string(report::lightGridFloorBytes(renderer));
     row["scene_bytes"] = std::to_string(memory.scene);
     row["frame_bytes"] = std::to_string(memory.frame);
     row["device_bytes"] = std::to_string(memory.total());

@@ -60,6 +60,13 @@ BenchRun::Measurement BenchRun::prepare(const BenchConfig& config) {
         if (config.validateShadows && !made.embree) made.embree = std::make_unique<reference::EmbreeScene>(made.scene);
         m.scene = &made.scene;
         m.geometry = made.embree.get();
+    } else if (config.ownLights) {
+        m.ownScene = std::make_unique<Scene>(fullSet_);
+        const LightRange rule{config.constantDensity ? LightRange::Kind::ConstantDensity : LightRange::Kind::Drawn, 0.0f};
+        replaceLights(*m.ownScene, config.spot, config.point, 1, rule);
+        if (!config.constantDensity) setLightRanges(*m.ownScene, config.lightRange);
+        m.scene = m.ownScene.get();
+        m.geometry = &embree_;
     } else {
         m.ownScene = std::make_unique<Scene>(fullSet_);
         setLightRanges(*m.ownScene, config.lightRange);
@@ -74,6 +81,9 @@ BenchRun::Measurement BenchRun::prepare(const BenchConfig& config) {
     }
     settings.method = config.method;
     settings.coarseTiles = config.coarseTiles;
+    // Every light the configuration has (at least the design notes' 64 + 32).
+    settings.maxLights = {std::max<uint32_t>(settings.maxLights.spots, config.spot),
+                          std::max<uint32_t>(settings.maxLights.points, config.point)};
     settings.shadows = config.shadows;
     settings.collectLightStats = true;  // rendered apart, untimed (addCounters)
     settings.collectShadowFactors = config.validateShadows;

@@ -81,9 +81,9 @@ const RenderOptionSpec kRenderOptions[] = {
      "each reaching something\nthe camera sees (same seed, same lights; seed 1)",
      [](RenderOptions& o, const std::string& v, Notes&) { o.lights = parseLightCounts(v); }},
     {"--light-range", "R|auto",
-     "with --lights, the generated lights' range: R metres, or auto: their\ndrawn ranges scaled by "
-     "cbrt(96 / (S + P)), so that about as many\nlights reach a point as 96 do (constant density); "
-     "default: drawn,\n0.25-0.45 x the scene's diagonal",
+     "with --lights, the generated lights' range: R metres, or auto: their\ndrawn ranges all scaled by "
+     "the one factor that lets about as many\nlights reach what the camera sees as 96 do (constant density; "
+     "no\nredraws towards the view); default: drawn, 0.25-0.45 x the scene's\ndiagonal",
      [](RenderOptions& o, const std::string& v, Notes&) { o.lightRange = parseLightRangeValue(v); }},
     {"--size", "WxH", "output size in pixels (default 1280x720)",
      [](RenderOptions& o, const std::string& v, Notes&) { parseSize(v, o.width, o.height); }},

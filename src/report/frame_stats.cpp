@@ -1,5 +1,6 @@
 #include "report/frame_stats.h"
 
+#include <bit>
 #include <cstdio>
 
 #include "core/memory_usage.h"
@@ -59,6 +60,12 @@ nlohmann::json frameStatsJson(const render::FrameResult& result, const render::R
                        {"light_grid_bytes", memory.lightGrid},
                        {"frame_bytes", memory.frame}};
     return stats;
+}
+
+uint64_t lightGridFloorBytes(render::Renderer& renderer) {
+    uint64_t entries = 0;
+    for (const uint32_t word : renderer.readLightGrid()) entries += uint64_t(std::popcount(word));
+    return entries * kLightIndexBytes;
 }
 
 nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Renderer& renderer) {

@@ -17,6 +17,12 @@ nlohmann::json frameStatsJson(const render::FrameResult& result, const render::R
 // {"method", "tile_size", "slices", "tested_per_pixel", "affecting_per_pixel", "efficiency",
 //  "max_tested", "max_affecting", "missed_energy", "pixels_missing_light", "covered_pixels",
 //  "per_object": {"objects_over_cap", "max_candidates"}}
+// The light lists' floor: the (cell, light) entries the grid holds (its set bits), times a 16-bit
+// light index (every capacity's index fits 16 bits, PUNCTUAL_MAX_LIGHT_CAPACITY): what lists
+// storing exactly their lights would take. Reads the grid back; 0 for the methods without one.
+uint64_t lightGridFloorBytes(render::Renderer& renderer);
+inline constexpr uint64_t kLightIndexBytes = 2;
+
 nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Renderer& renderer);
 
 // {"enabled", "resolution", "filter", "samples", "penumbra", "bias", "strength", "point_layout",

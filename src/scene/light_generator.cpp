@@ -74,9 +74,35 @@ float generatedLightRange(float drawn, const LightRange& rule, uint32_t lights) 
     switch (rule.kind) {
         case LightRange::Kind::Drawn: return drawn;
         case LightRange::Kind::Metres: return rule.metres;
-        case LightRange::Kind::ConstantDensity: return drawn * constantDensityRangeScale(lights);
+        case LightRange::Kind::ConstantDensity: return drawn;  // scaled once all are drawn (fittedDensityScale)
     }
+    (void)lights;
     return drawn;
+}
+
+float fittedDensityScale(const std::vector<Light>& lights, const std::vector<glm::vec3>& probes) {
+    if (lights.size() == kDensityReferenceLights) return 1.0f;
+    if (probes.empty()) return constantDensityRangeScale(uint32_t(lights.size()));
+    std::vector<float> leastScales;  // per (light, probe) pair that can count
+    for (const Light& light : lights) {
+        const float cosOuter = std::cos(light.outerConeAngle);
+        for (const glm::vec3& probe : probes) {
+            const glm::vec3 toProbe = probe - light.position;
+            const float distance = glm::length(toProbe);
+            if (light.type == LightType::Spot && !(glm::dot(toProbe, light.direction) > cosOuter * distance)) continue;
+            leastScales.push_back(distance / std::max(light.range, 1e-6f));
+        }
+    }
+    const auto atOne = size_t(std::count_if(leastScales.begin(), leastScales.end(), [](float s) { return s < 1.0f; }));
+    const double wanted = double(atOne) * double(kDensityReferenceLights) / double(lights.size());
+    const size_t k = size_t(std::llround(wanted));
+    if (atOne == 0 || k == 0) return 1.0f;
+    if (k >= leastScales.size()) return *std::max_element(leastScales.begin(), leastScales.end()) * 1.001f;
+    // s between the k-th and (k+1)-th smallest: exactly k pairs below it.
+    std::nth_element(leastScales.begin(), leastScales.begin() + std::ptrdiff_t(k), leastScales.end());
+    const float above = leastScales[k];
+    const float below = *std::max_element(leastScales.begin(), leastScales.begin() + std::ptrdiff_t(k));
+    return 0.5f * (below + above);
 }
 
 namespace {
@@ -162,7 +188,9 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
         return light;
     };
 
-    // A light that reaches nothing the camera sees is drawn again (all its parameters, from the
+    // A light that reaches nothing the camera sees is drawn again (not for auto ranges: their
+    // redraws would depend on ranges not yet fitted, and pull lights towards what the camera sees,
+    // against a constant density) (all its parameters, from the
     // same random sequence, so the result still depends on the seed alone): first in the same
     // region, so a scene whose camera is inside (a room) keeps its lights where they were meant to
     // be, then in the widened one, which a closed model needs. After kPlacementAttempts draws
@@ -171,6 +199,7 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
     const LightReach reach(scene);
     auto place = [&](auto&& draw, uint32_t i) {
         const Light firstDraw = draw(i, first);
+        if (range.kind == LightRange::Kind::ConstantDensity) return firstDraw;
         if (reach.empty() || reach.reaches(firstDraw)) return firstDraw;
         for (uint32_t attempt = 1; attempt < kPlacementAttempts; ++attempt) {
             Light light = draw(i, attempt < kPlacementAttempts / 2 ? first : widened);
@@ -183,6 +212,14 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
     lights.reserve(size_t(spotCount) + pointCount);
     for (uint32_t i = 0; i < spotCount; ++i) lights.push_back(place(drawSpot, i));
     for (uint32_t i = 0; i < pointCount; ++i) lights.push_back(place(drawPoint, i));
+    if (range.kind == LightRange::Kind::ConstantDensity) {
+        // Ranges and intensities scaled together (intensity ~ range^2, as drawn).
+        const float scale = fittedDensityScale(lights, reach.samplePoints());
+        for (Light& light : lights) {
+            light.range *= scale;
+            light.intensity *= scale * scale;
+        }
+    }
     scene.lights = std::move(lights);
 }
 

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -43,8 +44,9 @@ struct LightRange {
     enum class Kind : uint8_t {
         Drawn,            // as drawn: 0.25-0.45 x the bounds diagonal (the default)
         Metres,           // every light `metres`
-        ConstantDensity,  // as drawn, scaled so the lights reaching a point stay about as many as
-                          // kDensityReferenceLights put there (auto)
+        ConstantDensity,  // as drawn, all scaled so that the lights reaching a point the camera sees
+                          // stay about as many as kDensityReferenceLights put there (auto;
+                          // fittedDensityScale)
     };
     Kind kind = Kind::Drawn;
     float metres = 0.0f;
@@ -53,16 +55,27 @@ struct LightRange {
 // The light count whose drawn ranges set the density `auto` keeps: the design notes' 64 + 32.
 inline constexpr uint32_t kDensityReferenceLights = 64 + 32;
 
-// The range scale that keeps the density of lights reaching a point: a point lies in a light's
-// reach with a probability proportional to the volume it reaches, r^3 for a sphere and for a
-// cone of a given angle alike, so `lights` lights reach it about as often as the reference count
-// when lights x r^3 stays the same: r scales by cbrt(kDensityReferenceLights / lights). 1 for the
-// reference count (exactly: cbrt(1)), 1 for none. "About": a reach clipped by the scene's bounds
-// or the camera's view counts less than its volume, so below the reference count, where ranges
-// grow past the scene, fewer lights reach a point than the reference put there (measured on the
-// hall: 17.8 a pixel with 96 drawn lights, 12.0 with 48 auto, 4.1 with 12; bench/RESULTS.md).
-// The rule is for growing counts, whose shrinking ranges the bounds clip less.
+// The range scale that keeps the density of lights reaching a point in free space: a point lies in
+// a light's reach with a probability proportional to the volume it reaches, r^3 for a sphere and
+// for a cone of a given angle alike, so `lights` lights reach it about as often as the reference
+// count when lights x r^3 stays the same: r scales by cbrt(kDensityReferenceLights / lights). 1
+// for the reference count (exactly: cbrt(1)), 1 for none. Real scenes clip a reach by their
+// bounds, the more the longer it is (the hall's 8 m of height against ranges of 12-22 m): there
+// the rule let the lights reaching a pixel grow from 18 at 96 lights to 109 at 7,616 (measured).
+// Auto fits its scale to the scene instead (fittedDensityScale); this is its fallback where the
+// camera sees no geometry.
 float constantDensityRangeScale(uint32_t lights);
+
+// The one range scale s (every light's range times s) for which `lights` reach the points
+// `probes` kDensityReferenceLights / lights.size() times as often as they do at their own ranges:
+// then, as drawn from one distribution, they reach them about as often as kDensityReferenceLights
+// of its lights would at their own ranges. A light reaches a point where attenuation > 0: within
+// its range, and inside a spot's outer cone (which scaling does not change). So each (light,
+// probe) pair has the least scale at which it counts, distance / range (none outside a cone), and
+// s lies between the K-th and (K+1)-th smallest of them, K the pairs counted at scale 1 times the
+// count ratio. 1 for kDensityReferenceLights lights (exactly) and where no pair counts; the
+// fallback rule without probes.
+float fittedDensityScale(const std::vector<Light>& lights, const std::vector<glm::vec3>& probes);
 
 // The range of a generated light drawn at `drawn` metres under `rule`, among `lights` lights.
 float generatedLightRange(float drawn, const LightRange& rule, uint32_t lights);

@@ -59,6 +59,13 @@ LightReach::LightReach(const Scene& scene, uint32_t gridSide) : bvh_(scene) {
     }
 }
 
+std::vector<glm::vec3> LightReach::samplePoints() const {
+    std::vector<glm::vec3> points;
+    points.reserve(samples_.size());
+    for (const Sample& sample : samples_) points.push_back(sample.point);
+    return points;
+}
+
 bool LightReach::reaches(const Light& light) const {
     if (light.type == LightType::Directional) return true;
     const float cosOuter = float(portableCos(double(light.outerConeAngle)));

@@ -27,6 +27,8 @@ public:
     // No sample: the scene has no triangles, or the camera sees none of them. Nothing to test.
     bool empty() const { return samples_.empty(); }
     size_t sampleCount() const { return samples_.size(); }
+    // The samples' points (lifted off their surfaces), in the samples' order.
+    std::vector<glm::vec3> samplePoints() const;
 
     // Whether a point or spot light reaches some sample (see above). Casts at most
     // kMaxShadowRays segments, spread over the view; directional lights are not tested (true).

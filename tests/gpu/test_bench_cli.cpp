@@ -63,7 +63,7 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
               "shadow_lookups_per_pixel,filter_taps_per_pixel,shadow_views,shadow_texels_rendered,shadow_filter_taps,"
               "objects_in_view,camera_triangles,depth_triangles,forward_triangles,transparent_triangles,"
               "shadow_triangles,depth_draws,forward_draws,transparent_draws,shadow_draws,shadow_draws_max,"
-              "shadow_memory_bytes,light_grid_bytes,scene_bytes,frame_bytes,device_bytes,peak_rss_bytes,efficiency,floor_efficiency,"
+              "shadow_memory_bytes,light_grid_bytes,light_grid_floor_bytes,scene_bytes,frame_bytes,device_bytes,peak_rss_bytes,efficiency,floor_efficiency,"
               "missed_energy,image_error,pixels_off,shadow_reduced_views,shadow_misclassified,"
               "shadow_misclassified_all,shadow_misclassified_1px,shadow_false_shadow,shadow_false_lit,"
               "sun_misclassified,sun_misclassified_1px,sun_cascade0_misclassified_1px,sun_cascade1_misclassified_1px,"
@@ -83,8 +83,9 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
         methods.insert(method);
     }
     EXPECT_GE(rows, 30u);
-    // --quick: the mix alone for the light counts (the full run adds spots and points alone).
-    EXPECT_EQ(series, (std::set<std::string>{"mix", "range", "pixels", "shadows",
+    // --quick: the mix alone for the light counts (the full run adds spots and points alone), and
+    // thousands of lights at constant density alone (the full run adds the fixed range).
+    EXPECT_EQ(series, (std::set<std::string>{"mix", "scale", "range", "pixels", "shadows",
                                              "shadow-quality", "shadow-budget", "shadow-filters", "cascades", "triangles",
                                              "methods"}));
     EXPECT_EQ(methods, quickNames(render::kLightListMethods));

@@ -79,6 +79,27 @@ TEST(SceneCli, WarehouseKeepsTheMostImportantLampsAndSaysHowManyItDropped) {
     EXPECT_GT(testing::fractionBrighterThan(image, 20), 0.02);  // the kept lamps light some rooms
 }
 
+// --light-range auto holds the lights reaching a pixel about where 96 put them, where drawn ranges
+// let them grow with the count (measured on the hall at 320x180: 17.8 a pixel at 96, 27.5 at
+// 1,932 kept; drawn ranges 87 at 2,000).
+TEST(SceneCli, AutoLightRangeHoldsTheLightsReachingAPixelAsTheyMultiply) {
+    testing::TempFolder folder;
+    const auto affectingPerPixel = [&](const std::string& lights) {
+        const std::string json = folder.file("stats.json");
+        const RunResult run = runPunctual(folder, "render --lights " + lights + " --max-lights 1000,1000 --shadows off " +
+                                                      "--size 160x90 --stats " + quoted(json));
+        EXPECT_EQ(run.exitCode, 0) << run.err;
+        return nlohmann::json::parse(readText(json))["culling"]["affecting_per_pixel"].get<double>();
+    };
+    const double reference = affectingPerPixel("64,32 --light-range auto");
+    const double automatic = affectingPerPixel("1000,1000 --light-range auto");
+    const double drawn = affectingPerPixel("1000,1000");
+    EXPECT_GT(reference, 5.0);  // not vacuous: lights reach the pixels
+    EXPECT_LT(automatic, 2.0 * reference);
+    EXPECT_GT(automatic, 0.5 * reference);
+    EXPECT_GT(drawn, 3.0 * reference);
+}
+
 TEST(SceneCli, OutdoorTakesGeneratedLights) {
     testing::TempFolder folder;
     const std::string png = folder.file("outdoor.png");

@@ -332,8 +332,9 @@ TEST(LightGen, ParseOverCapMessage) {
 // ---- --light-range ----------------------------------------------------------------------------
 
 TEST(LightGen, ConstantDensityScaleKnownAnswers) {
-    // r scales by cbrt(96 / N): the reference count keeps its ranges exactly, 1/8 of it doubles
-    // them, 8 times it halves them (a point lies in N lights' reach about N r^3 / V times).
+    // The fallback, for free space: r scales by cbrt(96 / N): the reference count keeps its ranges
+    // exactly, 1/8 of it doubles them, 8 times it halves them (a point lies in N lights' reach
+    // about N r^3 / V times).
     EXPECT_EQ(constantDensityRangeScale(kDensityReferenceLights), 1.0f);
     EXPECT_EQ(constantDensityRangeScale(12), 2.0f);
     EXPECT_FLOAT_EQ(constantDensityRangeScale(768), 0.5f);
@@ -341,33 +342,62 @@ TEST(LightGen, ConstantDensityScaleKnownAnswers) {
     EXPECT_EQ(constantDensityRangeScale(0), 1.0f);
     EXPECT_EQ(generatedLightRange(3.0f, {}, 12), 3.0f);
     EXPECT_EQ(generatedLightRange(3.0f, {LightRange::Kind::Metres, 7.5f}, 12), 7.5f);
-    EXPECT_EQ(generatedLightRange(3.0f, {LightRange::Kind::ConstantDensity, 0.0f}, 12), 6.0f);
+    // Auto draws as drawn; the fit scales them all afterwards.
+    EXPECT_EQ(generatedLightRange(3.0f, {LightRange::Kind::ConstantDensity, 0.0f}, 12), 3.0f);
 }
 
-TEST(LightGen, AutoRangeAtTheReferenceCountIsTheDrawnRange) {
-    // 64 + 32 lights with auto are the default lights bit for bit: the default density does not move.
-    Scene drawn = hall();
-    Scene automatic = hall();
-    replaceLights(drawn, 64, 32, 3);
-    replaceLights(automatic, 64, 32, 3, {LightRange::Kind::ConstantDensity, 0.0f});
-    ASSERT_EQ(drawn.lights.size(), 96u);
-    for (size_t i = 0; i < drawn.lights.size(); ++i) EXPECT_TRUE(identical(drawn.lights[i], automatic.lights[i])) << i;
+Light pointAt(glm::vec3 position, float range) {
+    Light light;
+    light.type = LightType::Point;
+    light.position = position;
+    light.range = range;
+    return light;
 }
 
-TEST(LightGen, AutoRangeScalesFewerLightsUpAndKeepsTheirIlluminanceShare) {
-    // A scene without geometry in view redraws nothing, so the same seed draws the same lights
-    // and only the ranges (and with them the intensities, as range^2) change.
-    Scene drawn = hall();
-    Scene automatic = hall();
-    replaceLights(drawn, 8, 4, 3);
-    replaceLights(automatic, 8, 4, 3, {LightRange::Kind::ConstantDensity, 0.0f});
-    ASSERT_EQ(automatic.lights.size(), 12u);
-    for (size_t i = 0; i < drawn.lights.size(); ++i) {
-        const Light& d = drawn.lights[i];
-        const Light& a = automatic.lights[i];
-        EXPECT_EQ(a.range, d.range * 2.0f) << i;  // cbrt(96 / 12) = 2 exactly
-        EXPECT_NEAR(a.intensity / d.intensity, 4.0f, 1e-5f) << i;
-        EXPECT_TRUE(sameBits(a.position, d.position)) << i;
+TEST(LightGen, FittedDensityScaleKnownAnswers) {
+    // One probe at the origin; 192 points of range 1000 at distances 1, 2, ..., 192: every pair
+    // counts at scale 1 (least scales k / 1000). Twice the reference count: half as many pairs
+    // should count, 96, so s lies between the 96th and 97th least scales: 0.0965.
+    const std::vector<glm::vec3> origin = {glm::vec3(0.0f)};
+    std::vector<Light> lights;
+    for (int k = 1; k <= 192; ++k) lights.push_back(pointAt(glm::vec3(float(k), 0.0f, 0.0f), 1000.0f));
+    EXPECT_FLOAT_EQ(fittedDensityScale(lights, origin), 0.0965f);
+    // A spot shining away from the probe never counts, at any scale: it changes nothing (but the
+    // count ratio: 193 lights want 192 x 96 / 193 = 95.5 -> 96 pairs, the same s).
+    Light away = pointAt(glm::vec3(0.5f, 0.0f, 0.0f), 1000.0f);
+    away.type = LightType::Spot;
+    away.direction = glm::vec3(1.0f, 0.0f, 0.0f);
+    away.outerConeAngle = 0.5f;
+    lights.push_back(away);
+    EXPECT_FLOAT_EQ(fittedDensityScale(lights, origin), 0.0965f);
+    // The reference count keeps its ranges exactly; no probe falls back to the cube root.
+    lights.resize(kDensityReferenceLights);
+    EXPECT_EQ(fittedDensityScale(lights, origin), 1.0f);
+    lights.resize(12);
+    EXPECT_EQ(fittedDensityScale(lights, {}), 2.0f);
+    // Fewer lights than the reference grow: 12 lights of range 1000 at 1..12 all count already;
+    // 8 x 12 pairs are wanted, more than exist, so s passes the farthest (12 / 1000).
+    EXPECT_GT(fittedDensityScale(lights, origin), 0.012f);
+}
+
+TEST(LightGen, AutoRangeScalesEveryLightByOneFactorAndKeepsItsIlluminanceShare) {
+    // A scene without geometry in view redraws nothing and gives no probes, so the same seed draws
+    // the same lights, and auto scales every range by the fallback's one factor (intensities as
+    // range^2): cbrt(96 / 12) = 2 exactly, cbrt(96 / 600) below 1.
+    for (const auto& [spots, points] : {std::pair<uint32_t, uint32_t>{8, 4}, {400, 200}}) {
+        Scene drawn = hall();
+        Scene automatic = hall();
+        replaceLights(drawn, spots, points, 3);
+        replaceLights(automatic, spots, points, 3, {LightRange::Kind::ConstantDensity, 0.0f});
+        ASSERT_EQ(automatic.lights.size(), size_t(spots + points));
+        const float scale = constantDensityRangeScale(spots + points);
+        for (size_t i = 0; i < drawn.lights.size(); ++i) {
+            const Light& d = drawn.lights[i];
+            const Light& a = automatic.lights[i];
+            EXPECT_EQ(a.range, d.range * scale) << i;
+            EXPECT_NEAR(a.intensity / d.intensity, scale * scale, 1e-5f) << i;
+            EXPECT_TRUE(sameBits(a.position, d.position)) << i;
+        }
     }
 }
 
