@@ -75,8 +75,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
         render::Renderer renderer(context, scene, settings);
         if (!headerPrinted) {
             // The same lights are shadowed for every method: said once, above the table.
-            const std::string unshadowed = unshadowedLightsLine(renderer);
-            if (!unshadowed.empty()) std::printf("%s\n\n", unshadowed.c_str());
+            for (const std::string& said : {droppedLightsLine(renderer), unshadowedLightsLine(renderer)}) {
+                if (!said.empty()) std::printf("%s\n\n", said.c_str());
+            }
             printHeader(renderer.passNames());
         }
         const render::FrameResult result = renderer.render(options.frames, 1);

@@ -130,8 +130,9 @@ void printValidationSummary(const Scene& scene, const RenderOptions& options, co
                 shadowFilterName(shadows.filter), shadowResolutionName(shadows).c_str(),
                 describeShadowTiers(renderer.shadowPlan()).c_str(), shadowFormatName(shadows.format),
                 pointShadowLayoutName(shadows.pointLayout));
-    const std::string unshadowed = unshadowedLightsLine(renderer);
-    if (!unshadowed.empty()) std::printf("%s\n", unshadowed.c_str());
+    for (const std::string& said : {droppedLightsLine(renderer), unshadowedLightsLine(renderer)}) {
+        if (!said.empty()) std::printf("%s\n", said.c_str());
+    }
     line("spots", validation.spots);
     line("points", validation.points);
     if (validation.sun) {

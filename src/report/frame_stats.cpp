@@ -227,6 +227,15 @@ std::string frameLightsLine(const FrameLights& lights, const LightCapacity& capa
            std::to_string(capacity.spots) + "," + std::to_string(capacity.points) + ")";
 }
 
+std::string droppedLightsLine(const render::Renderer& renderer) {
+    const FrameLights& lights = renderer.lights();
+    const LightCapacity& capacity = renderer.settings().maxLights;
+    if (lights.droppedByCap == 0) return "";
+    return "lights over the capacity: " + std::to_string(lights.droppedByCap) + " dropped, " +
+           std::to_string(lights.spotCount + lights.pointCount) + " kept, the most important (--max-lights " +
+           std::to_string(capacity.spots) + "," + std::to_string(capacity.points) + ")";
+}
+
 std::string unshadowedLightsLine(const render::Renderer& renderer) {
     const ShadowSettings& settings = renderer.settings().shadows;
     const ShadowPlan& plan = renderer.shadowPlan();

@@ -42,6 +42,11 @@ std::string timingTable(const render::PassTimings& ms);
 // reference.
 std::string frameLightsLine(const FrameLights& lights, const LightCapacity& capacity);
 
+// "lights over the capacity: 4000 dropped, 96 kept, the most important (--max-lights 64,32)",
+// or "" when the frame kept every spot and point light in view. Printed by compare and validate
+// (render and reference print frameLightsLine).
+std::string droppedLightsLine(const render::Renderer& renderer);
+
 // "lights without a shadow: 84 of 96 (84 over --shadowed 8,4, 0 cast none); the shadow figures
 // count the shadowed only", or "" when every spot and point light of the frame has a shadow or
 // shadows are off. Printed by render, compare and validate.

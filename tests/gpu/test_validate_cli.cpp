@@ -139,6 +139,24 @@ TEST(ValidateCli, LightsWithoutAShadowAreCountedWhereverShadowsAreReported) {
     EXPECT_EQ(all.out.find("lights without a shadow"), std::string::npos);
 }
 
+// Lights over the capacity are dropped, the most important kept, and compare and validate say how
+// many in one line (render and reference say it in their lights line: test_scene_cli.cpp).
+TEST(ValidateCli, LightsOverTheCapacityAreCountedInOneLine) {
+    testing::TempFolder folder;
+    const std::string line = "lights over the capacity: 4000 dropped, 96 kept, the most important (--max-lights 64,32)";
+    const RunResult validate =
+        runPunctual(folder, "validate --validate --scene warehouse --size 64x36 --out-dir '" + folder.file("v") + "'");
+    ASSERT_EQ(validate.exitCode, 0) << validate.err;
+    EXPECT_NE(validate.out.find(line), std::string::npos) << validate.out;
+    const RunResult compare = runPunctual(folder, "compare --validate --scene warehouse --size 64x36");
+    ASSERT_EQ(compare.exitCode, 0) << compare.err;
+    EXPECT_NE(compare.out.find(line), std::string::npos) << compare.out;
+    // Within the capacity, nothing is dropped and the line is not printed.
+    const RunResult all = runPunctual(folder, "compare --validate --size 64x36 --lights 16,8");
+    ASSERT_EQ(all.exitCode, 0) << all.err;
+    EXPECT_EQ(all.out.find("lights over the capacity"), std::string::npos) << all.out;
+}
+
 TEST(ValidateCli, ABadEdgeBandFailsWithOneLine) {
     testing::TempFolder folder;
     for (const char* value : {"-1", "65", "x", "1px"}) {
