@@ -152,6 +152,8 @@ def chart_section(chart):
            f'(<a href="{href("charts/" + name + ".svg")}">SVG</a>)']
     if chart["laws"]:
         out.append("<br>Laws: " + "; ".join(e(f"{w['line']}: {w['law']}") for w in chart["laws"]))
+    if chart.get("crossovers"):
+        out.append("<br>Crossings (the black crosses): " + "; ".join(e(c["text"]) for c in chart["crossovers"]))
     if chart["flagged"]:
         out.append('<br><span class="flagged">Flagged (drawn hollow, spread over the limit): '
                    + ", ".join(e(c) for c in chart["flagged"]) + "</span>")

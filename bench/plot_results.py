@@ -406,18 +406,18 @@ CHARTS = [
 
 def draw_charts(rows, names, charts_dir, outputs):
     """Draws every chart into `outputs` (written at its commit); returns ([{name, title,
-    caption, skipped (the reason or None), flagged (configurations drawn hollow), laws}], every
-    law fitted)."""
+    caption, skipped (the reason or None), flagged (configurations drawn hollow), laws,
+    crossovers}], every law fitted, every crossing found)."""
     os.makedirs(charts_dir, exist_ok=True)
-    done, laws = [], []
+    done, laws, crossovers = [], [], []
     for name, title, function, args in CHARTS:
         caption = " ".join((function.__doc__ or "").split())
         entry = {"name": name, "title": title, "caption": caption, "skipped": None,
-                 "flagged": [], "laws": []}
-        own = []
+                 "flagged": [], "laws": [], "crossovers": []}
+        own, crossed = [], []
         try:
             if function is sweep_charts.chart_sweep:
-                fig = function(rows, names, *args, laws=own)
+                fig = function(rows, names, *args, laws=own, crossovers=crossed)
             else:
                 fig = function(rows, names, *args)
         except SkipChart as reason:
@@ -430,10 +430,12 @@ def draw_charts(rows, names, charts_dir, outputs):
             continue
         entry["flagged"] = list(getattr(fig, "flagged", []))
         entry["laws"] = own
+        entry["crossovers"] = crossed
         laws += own
+        crossovers += crossed
         save_chart(fig, charts_dir, name, outputs)
         done.append(entry)
-    return done, laws
+    return done, laws, crossovers
 
 
 def json_text(document):
@@ -469,10 +471,10 @@ def write_report(out_dir, outputs):
     limit = flag_limit(document)
     mark_flags(rows, limit)
     configure_matplotlib()
-    charts, laws = draw_charts(rows, names, os.path.join(out_dir, "charts"), outputs)
+    charts, laws, crossovers = draw_charts(rows, names, os.path.join(out_dir, "charts"), outputs)
     model = cost_model.fit_cost_model(rows, names["passes"])
     outputs.write_text(os.path.join(out_dir, "laws.json"),
-                       json_text(sweep_charts.laws_document(laws)))
+                       json_text(sweep_charts.laws_document(laws, crossovers)))
     outputs.write_text(os.path.join(out_dir, "cost_model.json"),
                        json_text(cost_model.model_document(model)))
     index = bench_report.render_index(header, rows, charts, bench_report.list_images(out_dir),

@@ -51,6 +51,29 @@ def fit_slope(points):
     return sum((lx - mx) * (ly - my) for lx, ly in logs) / sxx
 
 
+def crossings(points_a, points_b):
+    """The x values where line a's time crosses line b's: between two consecutive x that both
+    lines have, where log(a / b) changes sign, interpolated linearly in log x and log time (the
+    charts' axes). Each as (x, time there, the line faster below it: "a" or "b")."""
+    a = {x: y for x, y in points_a if x is not None and y is not None and x > 0 and y > 0}
+    b = {x: y for x, y in points_b if x is not None and y is not None and x > 0 and y > 0}
+    xs = sorted(set(a) & set(b))
+    found = []
+    for x1, x2 in zip(xs, xs[1:]):
+        d1, d2 = math.log(a[x1] / b[x1]), math.log(a[x2] / b[x2])
+        if d1 == 0 or d1 * d2 >= 0:
+            continue
+        t = d1 / (d1 - d2)
+        x = math.exp(math.log(x1) + t * (math.log(x2) - math.log(x1)))
+        y = math.exp(math.log(a[x1]) + t * (math.log(a[x2]) - math.log(a[x1])))
+        found.append((x, y, "a" if d1 < 0 else "b"))
+    return found
+
+
+# The passes whose crossings a sweep reports: the forward pass and the whole frame.
+CROSSING_PASSES = ("forward", "frame")
+
+
 def law_text(what, variable, slope):
     """"forward ∝ pixels^1.01"."""
     return f"{what} ∝ {variable}^{slope:.2f}"
@@ -101,14 +124,17 @@ def set_sweep_axis(ax, xs, label):
     ax.set_xlabel(label)
 
 
-def chart_sweep(rows, names, series, axis_label, variable, x_of, laws=None):
+def chart_sweep(rows, names, series, axis_label, variable, x_of, laws=None, crossovers=None):
     """Median GPU time of every pass (a panel each, the whole frame last) against the series'
     swept variable, a line per method (and per other setting that varies), error bars the
     interquartile range over the rounds, flagged configurations hollow. Each line's legend entry
     gives its fitted law, the least-squares slope of log time on log x over x > 0 and time > 0
     (flagged rows left out): a slope of 1 is time in proportion to x. Axes are logarithmic where
-    the values span more than ten times; rows with x = 0 are left off a log axis."""
+    the values span more than ten times; rows with x = 0 are left off a log axis. Where two
+    methods' forward or whole-frame lines cross, a black cross marks the point, and the crossing
+    is listed (crossovers.json's)."""
     laws = [] if laws is None else laws  # every fitted law is appended here
+    crossovers = [] if crossovers is None else crossovers  # and every crossing
     rs = [r for r in series_rows(rows, series) if x_of(r) is not None]
     xs_all = [x_of(r) for r in rs]
     log_x = is_wide([x for x in xs_all if x > 0])
@@ -121,7 +147,8 @@ def chart_sweep(rows, names, series, axis_label, variable, x_of, laws=None):
     for ax, column in zip(axes, columns):
         what = column[:-len("_ms")] if column != "total_ms" else "frame"
         values = []
-        for label, method, own, variant in lines_of(rs, names["methods"]):
+        lines = lines_of(rs, names["methods"])
+        for label, method, own, variant in lines:
             slope = fit_slope([(x_of(r), number(r, column)) for r in own if not is_flagged(r)])
             colour, marker = method_style(method, names["methods"])
             text = label if slope is None else f"{label}: {law_text(what, variable, slope)}"
@@ -133,6 +160,8 @@ def chart_sweep(rows, names, series, axis_label, variable, x_of, laws=None):
                              "points": sum(1 for r in own if not is_flagged(r)
                                            and (x_of(r) or 0) > 0 and (number(r, column) or 0) > 0),
                              "law": law_text(what, variable, slope)})
+        if what in CROSSING_PASSES:
+            mark_crossings(ax, lines, x_of, column, series, variable, what, crossovers)
         if series in COUNT_SERIES:
             set_count_axis(ax, [x_of(r) for r in rs])
             ax.set_xlabel(axis_label)
@@ -146,6 +175,25 @@ def chart_sweep(rows, names, series, axis_label, variable, x_of, laws=None):
     fig.suptitle(f"the {series} series: time per pass against {variable}")
     fig.tight_layout()
     return fig
+
+
+def mark_crossings(ax, lines, x_of, column, series, variable, what, crossovers):
+    """Marks and lists where the lines of two methods (lines_of's, the first of each method)
+    cross in `column`."""
+    firsts = {}
+    for label, method, own, variant in lines:
+        firsts.setdefault(method, (label, own))
+    methods = list(firsts)
+    for i, a in enumerate(methods):
+        for b in methods[i + 1:]:
+            points = [[(x_of(r), number(r, column)) for r in firsts[m][1] if not is_flagged(r)] for m in (a, b)]
+            for x, y, faster in crossings(*points):
+                below, above = (a, b) if faster == "a" else (b, a)
+                ax.plot([x], [y], marker="x", color="black", markersize=7, linestyle="none")
+                crossovers.append({"series": series, "x": variable, "pass": what, "at": round(x, 4),
+                                   "faster_below": below, "faster_above": above,
+                                   "text": f"{what}: {below} faster below {variable} ≈ {short(x)}, "
+                                           f"{above} above"})
 
 
 def chart_lights_reaching(rows, names):
@@ -197,7 +245,10 @@ def sweep_chart_list():
     return charts
 
 
-def laws_document(laws):
-    """laws.json's contents: every fitted slope, in chart order."""
+def laws_document(laws, crossovers=()):
+    """laws.json's contents: every fitted slope, in chart order, and every crossing of two
+    methods' forward or whole-frame lines."""
     return {"fit": "least squares of log(median GPU ms) on log(x), over x > 0 and time > 0, "
-                   "flagged rows left out", "laws": laws}
+                   "flagged rows left out", "laws": laws,
+            "crossing": "where log(a / b) changes sign between two consecutive x, interpolated in "
+                        "log x (flagged rows left out)", "crossovers": list(crossovers)}

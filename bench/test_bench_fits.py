@@ -43,6 +43,37 @@ class SlopeTest(unittest.TestCase):
         self.assertAlmostEqual(sweep_charts.fit_slope([(0, 5), (2, 4), (4, 16), (8, 0)]), 2.0)
         self.assertIsNone(sweep_charts.fit_slope([(3, 1), (3, 2), (0, 1)]))
 
+    def test_crossings_known_answers(self):
+        # a = x (slope 1), b = 4 sqrt(x) (slope 1/2): equal at x = 16. Between 4 and 64 in log
+        # space the difference log(a / b) = log(x) / 2 - log 4 is linear in log x, so the
+        # interpolation is exact: x = 16, time 16, a faster below.
+        a = [(x, float(x)) for x in (1, 4, 64, 256)]
+        b = [(x, 4.0 * x ** 0.5) for x in (1, 4, 64, 256)]
+        (x, y, faster), = sweep_charts.crossings(a, b)
+        self.assertAlmostEqual(x, 16.0)
+        self.assertAlmostEqual(y, 16.0)
+        self.assertEqual(faster, "a")
+        self.assertEqual(sweep_charts.crossings(b, a)[0][2], "b")
+        # Lines that never cross, touch at a shared point only, or share fewer than two x.
+        self.assertEqual(sweep_charts.crossings([(1, 1), (2, 2)], [(1, 3), (2, 5)]), [])
+        self.assertEqual(sweep_charts.crossings([(1, 1), (2, 2)], [(1, 1), (2, 3)]), [])
+        self.assertEqual(sweep_charts.crossings([(1, 1), (2, 2)], [(2, 1), (3, 5)]), [])
+
+    def test_count_sweep_marks_where_brute_force_stops_winning(self):
+        # Brute force's forward pass grows with the lights, tiled's barely: they cross once, and
+        # the crossing is listed with the faster line on each side.
+        rows = [synthetic.row(f"s-{m}-{n}", "scale", m, n // 2, n // 2,
+                              forward_ms=(n / 16.0 if m == "brute" else 4.0 * (n / 16.0) ** 0.1))
+                for n in (16, 64, 256, 1024) for m in ("brute", "tiled")]
+        crossed = []
+        _, _, function, args = next(c for c in synthetic.plot_results.CHARTS if c[0] == "sweep_scale")
+        function(strings(rows), NAMES, *args, laws=[], crossovers=crossed)
+        forward = [c for c in crossed if c["pass"] == "forward"]
+        self.assertEqual(len(forward), 1)
+        self.assertEqual((forward[0]["faster_below"], forward[0]["faster_above"]), ("brute", "tiled"))
+        # 16 x (4^(1/0.9)) lights: brute n/16 meets 4 (n/16)^0.1 at (n/16)^0.9 = 4.
+        self.assertAlmostEqual(forward[0]["at"], 16.0 * 4.0 ** (1 / 0.9), places=2)
+
     def test_pixels_sweep_reports_slope_one(self):
         laws = []
         _, _, function, args = next(c for c in synthetic.plot_results.CHARTS

@@ -281,7 +281,8 @@ void writeLightStats(Surface surface, vec3 radiance, vec3 emission, uint tested)
     // The opaque surface's reaching lights go into its list cell's union (the exact-list floor),
     // a word at a time: `reachingBits` holds those of word `reachingWord` (lightGridWord).
     uint pixels = uint(frame.viewport.x * frame.viewport.y);
-    uint cellBase = lightStatsCellWord(pixels, GRID_WORDS, pixelListCell(), 0u);
+    uint listCell = TRANSPARENT ? 0u : pixelListCell();
+    uint cellBase = lightStatsCellWord(pixels, GRID_WORDS, listCell, 0u);
     uint reachingWord = 0u;
     uint reachingBits = 0u;
     vec3 bruteRadiance = shadeSun(surface);
@@ -317,7 +318,7 @@ void writeLightStats(Surface surface, vec3 radiance, vec3 emission, uint tested)
         lightStatWords[base + PUNCTUAL_LIGHT_STATS_LUMINANCE] = floatBitsToUint(luminance(radiance));
         lightStatWords[base + PUNCTUAL_LIGHT_STATS_BRUTE_LUMINANCE] = floatBitsToUint(luminance(bruteRadiance));
         uint list = lightStatsWord(PUNCTUAL_LIGHT_STATS_LIST, pixels, index, 0u);
-        lightStatWords[list + PUNCTUAL_LIGHT_STATS_LIST_CELL] = pixelListCell();
+        lightStatWords[list + PUNCTUAL_LIGHT_STATS_LIST_CELL] = listCell;
         lightStatWords[list + PUNCTUAL_LIGHT_STATS_LIST_TESTED] = tested;
     }
 }

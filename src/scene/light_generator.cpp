@@ -135,6 +135,14 @@ PlacementRegions placementRegions(const Bounds& bounds, float diagonal) {
                    glm::vec3(bounds.max.x + margin, std::max(bounds.max.y, yHigh) + margin, bounds.max.z + margin)}};
 }
 
+// Every range times `scale`, and every intensity times its square (intensity ~ range^2, as drawn).
+void scaleRanges(std::vector<Light>& lights, float scale) {
+    for (Light& light : lights) {
+        light.range *= scale;
+        light.intensity *= scale * scale;
+    }
+}
+
 }  // namespace
 
 void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64_t seed, const LightRange& range) {
@@ -212,14 +220,7 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
     lights.reserve(size_t(spotCount) + pointCount);
     for (uint32_t i = 0; i < spotCount; ++i) lights.push_back(place(drawSpot, i));
     for (uint32_t i = 0; i < pointCount; ++i) lights.push_back(place(drawPoint, i));
-    if (range.kind == LightRange::Kind::ConstantDensity) {
-        // Ranges and intensities scaled together (intensity ~ range^2, as drawn).
-        const float scale = fittedDensityScale(lights, reach.samplePoints());
-        for (Light& light : lights) {
-            light.range *= scale;
-            light.intensity *= scale * scale;
-        }
-    }
+    if (range.kind == LightRange::Kind::ConstantDensity) scaleRanges(lights, fittedDensityScale(lights, reach.samplePoints()));
     scene.lights = std::move(lights);
 }
 
