@@ -70,13 +70,12 @@ float constantDensityRangeScale(uint32_t lights) {
     return std::cbrt(float(kDensityReferenceLights) / float(lights));
 }
 
-float generatedLightRange(float drawn, const LightRange& rule, uint32_t lights) {
+float generatedLightRange(float drawn, const LightRange& rule) {
     switch (rule.kind) {
         case LightRange::Kind::Drawn: return drawn;
         case LightRange::Kind::Metres: return rule.metres;
         case LightRange::Kind::ConstantDensity: return drawn;  // scaled once all are drawn (fittedDensityScale)
     }
-    (void)lights;
     return drawn;
 }
 
@@ -156,7 +155,6 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
     const Bounds& first = regions.first;
     const Bounds& widened = regions.widened;
 
-    const uint32_t lightCount = spotCount + pointCount;
     PortableRandom random(seed);
     auto randomPosition = [&](const Bounds& region) {
         const float x = random.uniform(region.min.x, region.max.x);
@@ -174,7 +172,7 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
         light.color = randomLightColor(random);
         light.outerConeAngle = random.uniform(25.0f, 50.0f) * kDegree;
         light.innerConeAngle = light.outerConeAngle * random.uniform(0.5f, 0.9f);
-        light.range = generatedLightRange(diagonal * random.uniform(0.25f, 0.45f), range, lightCount);
+        light.range = generatedLightRange(diagonal * random.uniform(0.25f, 0.45f), range);
         // Spots are brighter per steradian than points (they light a smaller area): on the axis
         // at half the range the illuminance is I * 0.879 / (r/2)^2 = 3.5 * I / r^2, i.e.
         // 0.26-0.53 lux for I = (0.075-0.15) r^2.
@@ -189,7 +187,7 @@ void replaceLights(Scene& scene, uint32_t spotCount, uint32_t pointCount, uint64
         light.position = randomPosition(region);
         light.direction = glm::vec3(0.0f, -1.0f, 0.0f);  // unused by points
         light.color = randomLightColor(random);
-        light.range = generatedLightRange(diagonal * random.uniform(0.25f, 0.45f), range, lightCount);
+        light.range = generatedLightRange(diagonal * random.uniform(0.25f, 0.45f), range);
         // 0.09-0.18 lux at half the range (see above), since points overlap more.
         light.intensity = light.range * light.range * random.uniform(0.025f, 0.05f);
         light.castsShadow = true;

@@ -77,8 +77,9 @@ float constantDensityRangeScale(uint32_t lights);
 // fallback rule without probes.
 float fittedDensityScale(const std::vector<Light>& lights, const std::vector<glm::vec3>& probes);
 
-// The range of a generated light drawn at `drawn` metres under `rule`, among `lights` lights.
-float generatedLightRange(float drawn, const LightRange& rule, uint32_t lights);
+// The range of a generated light drawn at `drawn` metres under `rule` (auto: as drawn; the fit
+// scales every light once all are drawn, fittedDensityScale).
+float generatedLightRange(float drawn, const LightRange& rule);
 
 // Replaces ALL of the scene's lights, directional ones included (a generated set is meant to be
 // the scene's whole lighting, so results depend only on S, P and the seed), with `spotCount`
@@ -97,7 +98,8 @@ float generatedLightRange(float drawn, const LightRange& rule, uint32_t lights);
 //    inner cone 0.5-0.9 x outer.
 //  - ranges 0.25-0.45 x the bounds diagonal, so lights overlap whatever the scene's size; or as
 //    `range` says (generatedLightRange), before the reach test, so every light still reaches
-//    something the camera sees with the range it keeps.
+//    something the camera sees with the range it keeps. Auto ranges draw without the reach test
+//    and are then scaled by one fitted factor (fittedDensityScale).
 //  - intensities proportional to range^2: the illuminance at a given fraction of the range is then
 //    independent of the scene's scale (scaling a scene by s scales ranges by s, intensities by s^2).
 // Throws Error("--lights", ...) when a count exceeds PUNCTUAL_MAX_LIGHT_CAPACITY (the command line

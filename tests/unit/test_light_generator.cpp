@@ -340,10 +340,10 @@ TEST(LightGen, ConstantDensityScaleKnownAnswers) {
     EXPECT_FLOAT_EQ(constantDensityRangeScale(768), 0.5f);
     EXPECT_FLOAT_EQ(constantDensityRangeScale(8192), std::cbrt(96.0f / 8192.0f));
     EXPECT_EQ(constantDensityRangeScale(0), 1.0f);
-    EXPECT_EQ(generatedLightRange(3.0f, {}, 12), 3.0f);
-    EXPECT_EQ(generatedLightRange(3.0f, {LightRange::Kind::Metres, 7.5f}, 12), 7.5f);
+    EXPECT_EQ(generatedLightRange(3.0f, {}), 3.0f);
+    EXPECT_EQ(generatedLightRange(3.0f, {LightRange::Kind::Metres, 7.5f}), 7.5f);
     // Auto draws as drawn; the fit scales them all afterwards.
-    EXPECT_EQ(generatedLightRange(3.0f, {LightRange::Kind::ConstantDensity, 0.0f}, 12), 3.0f);
+    EXPECT_EQ(generatedLightRange(3.0f, {LightRange::Kind::ConstantDensity, 0.0f}), 3.0f);
 }
 
 Light pointAt(glm::vec3 position, float range) {
