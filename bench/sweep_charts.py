@@ -132,7 +132,7 @@ def chart_sweep(rows, names, series, axis_label, variable, x_of, laws=None, cros
     (flagged rows left out): a slope of 1 is time in proportion to x. Axes are logarithmic where
     the values span more than ten times; rows with x = 0 are left off a log axis. Where two
     methods' forward or whole-frame lines cross, a black cross marks the point, and the crossing
-    is listed (crossovers.json's)."""
+    is listed (laws.json's crossovers)."""
     laws = [] if laws is None else laws  # every fitted law is appended here
     crossovers = [] if crossovers is None else crossovers  # and every crossing
     rs = [r for r in series_rows(rows, series) if x_of(r) is not None]

@@ -19,7 +19,6 @@ namespace punctual {
 struct LightCapacity {
     uint32_t spots = PUNCTUAL_DEFAULT_MAX_SPOT_LIGHTS;
     uint32_t points = PUNCTUAL_DEFAULT_MAX_POINT_LIGHTS;
-    bool operator==(const LightCapacity&) const = default;
 };
 
 struct FrameLights {
