@@ -10,7 +10,8 @@
 //     give its nearest and farthest depth and the columns and rows of its pixels, each combined
 //     over the workgroup. The slice gets its frustum segment (cut to that rectangle of the tile);
 //     each lane tests its candidates whose depth extent meets the slice's (sliceLights, listed by
-//     depth_range.comp) against it, and the masks are combined with subgroupOr and written.
+//     depth_range.comp) against it, and the masks are combined with subgroupOr and written (index
+//     lists: gathered, then written as the cell's list, writeCellList).
 // A light is kept in a cluster where its shapes meet the cluster's segment (culling.h,
 // lightMayTouchTile). There is no whole-tile test first: on the default scene it changed no list
 // (the coarse pass and the slices' depth lists already keep the tests to lights near the tile), and
@@ -58,6 +59,7 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly b
 };
 
 #include "depth_blocks.glsl"
+#include "light_lists.glsl"
 #include "subgroup_tiles.glsl"
 
 const uint kBlocks = (TILE_SIZE + 1u) / 2u;  // 2x2 blocks a side (an odd size's last is half outside)
@@ -191,6 +193,7 @@ void main() {
                                  3u * triple + 2u < GRID_WORDS ? sliceLights[word + 2u] : 0u);
             writeCellTriple(cellBase, triple, workgroupMasks(lightsMeetingSegment(lights, triple, segment)), lane);
         }
+        if (INDEX_LISTS) writeCellList(tileIndex * SLICE_COUNT + slice);  // (uniform)
         float beyond = workgroupMax(part.beyond);
         if (beyond == 0.0) break;  // (uniform)
         PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, beyond, depthRange.sliceStartDepth, SLICE_COUNT);

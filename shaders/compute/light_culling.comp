@@ -14,7 +14,9 @@
 //  4. the masks (one bit per light, culling.h) of every occupied slice are written out.
 // Steps 3-4 take the lights a chunk at a time (up to 8 mask words, 256 lights), so that shared
 // memory holds one chunk's lights whatever the capacity; at the design notes' 96 the one chunk is
-// all of them.
+// all of them. Index lists (light_lists.glsl): a cell's list needs its count before its first
+// entry, so with several chunks steps 3-4 run twice, the first time counting each cell's lights
+// (then each list's words are claimed), the second writing them; with one chunk, once.
 // Tiled with DEPTH_MASK (--culling tiled-2.5d) adds Harada's 2.5D test to step 3: the tile's
 // 32-cell depth mask (culling.h) is built from its pixels once their min..max extent is known,
 // and a light that passed the tile test is kept only if its depth cells meet an occupied one
@@ -70,6 +72,7 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly b
 };
 
 #include "depth_blocks.glsl"
+#include "light_lists.glsl"
 
 const uint kThreads = gl_WorkGroupSize.x;
 
@@ -98,6 +101,14 @@ shared uint tileMaxDistance;
 shared uint occupiedSlices[SLICE_COUNT];
 shared TileVolume occupiedVolumes[SLICE_COUNT];
 shared uint tileDepthMask;  // DEPTH_MASK: the occupied cells of the tile's depth extent
+// Index lists, per written cell (a list slot: tiled's one cell, clustered's occupied slices in
+// occupiedSlices order), each kept by one thread: the cell's lights counted so far, its list's
+// start, the entries written and the last of them.
+const uint kListSlots = INDEX_LISTS ? SLICE_COUNT : 1u;
+shared uint slotCount[kListSlots];
+shared uint slotStart[kListSlots];
+shared uint slotWritten[kListSlots];
+shared uint slotLast[kListSlots];
 shared TileVolume cellVolumes[DEPTH_MASK ? PUNCTUAL_DEPTH_MASK_CELLS : 1u];  // DEPTH_MASK: each cell's segment
 
 // The chunk of lights steps 3-4 take: its first mask word, and its words (kChunkWords, fewer in
@@ -197,6 +208,10 @@ void clearTileState(uint thread) {
         cellRows[i] = 0u;
     }
     for (uint i = thread; i < SLICE_COUNT; i += kThreads) sliceStart[i] = depthRange.sliceStartDepth[i];
+    for (uint i = thread; i < kListSlots; i += kThreads) {
+        slotCount[i] = 0u;
+        slotWritten[i] = 0u;
+    }
     if (thread == 0u) {
         occupiedCount = 0u;
         tileMinDistance = 0x7F7FFFFFu;
@@ -465,6 +480,43 @@ void writeTileCells(uvec2 tile, uint thread) {
     }
 }
 
+// 4, index lists: the chunk's words of each list slot's cell (the slice of tiled's one slot is 0),
+//    each slot by one thread, the same every chunk and pass. `counting`: the chunk's lights are
+//    added to the cell's count, and after the last chunk (`lastChunk`) its list's words are claimed
+//    and its header written; `writing`: the chunk's lights are written into its list, in order.
+//    (One pass with one chunk does all three.) Serial per cell: the fallback kernel's lists are a
+//    matter of correctness, not speed.
+void writeTileLists(uvec2 tile, uint thread, bool counting, bool lastChunk, bool writing) {
+    uint tileIndex = tile.y * frame.lightGrid.y + tile.x;
+    uint slots = SLICE_COUNT == 1u ? 1u : occupiedCount;
+    for (uint slot = thread; slot < slots; slot += kThreads) {
+        uint slice = SLICE_COUNT == 1u ? 0u : occupiedSlices[slot];
+        if (counting) {
+            uint count = slotCount[slot];
+            for (uint word = 0u; word < chunkWords; ++word) count += bitCount(sliceMasks[slice * kChunkWords + word]);
+            slotCount[slot] = count;
+            if (lastChunk) {
+                slotStart[slot] = claimLightList(count);
+                slotLast[slot] = count;  // entry 0
+                lightGrid[tileIndex * SLICE_COUNT + slice] = slotStart[slot];
+            }
+        }
+        uint start = slotStart[slot];
+        if (!writing || start >= PUNCTUAL_LIGHT_LIST_OVERFLOW) continue;
+        uint entry = slotWritten[slot];
+        uint last = slotLast[slot];
+        for (uint word = 0u; word < chunkWords; ++word) {
+            for (uint bits = sliceMasks[slice * kChunkWords + word]; bits != 0u; bits &= bits - 1u) {
+                uint light = lightGridFirstLight(chunkFirstWord + word) + uint(findLSB(bits));
+                writeLightListEntry(start, ++entry, last, light, slotCount[slot]);
+                last = light;
+            }
+        }
+        slotWritten[slot] = entry;
+        slotLast[slot] = last;
+    }
+}
+
 void main() {
     uint thread = gl_LocalInvocationIndex;
     uint lightCount = frame.spotCount + frame.pointCount;
@@ -522,26 +574,35 @@ void main() {
         wholeTile = tileVolume;
     }
 
-    for (chunkFirstWord = 0u; chunkFirstWord < GRID_WORDS; chunkFirstWord += kChunkWords) {
-        chunkWords = min(kChunkWords, GRID_WORDS - chunkFirstWord);
-        if (chunkFirstWord > 0u) {  // (the first chunk's state was cleared, its candidates listed, with the depths)
-            barrier();  // the last chunk's masks written out
-            clearChunkState(thread);
-            barrier();
-            if (COARSE_TILES > 0u) {
-                listCandidates(tile, thread, lightCount);
+    // Index lists over several chunks: a counting pass, then a writing pass (see the top).
+    uint listPasses = INDEX_LISTS && GRID_WORDS > kChunkWords ? 2u : 1u;
+    for (uint listPass = 0u; listPass < listPasses; ++listPass) {
+        for (chunkFirstWord = 0u; chunkFirstWord < GRID_WORDS; chunkFirstWord += kChunkWords) {
+            chunkWords = min(kChunkWords, GRID_WORDS - chunkFirstWord);
+            if (chunkFirstWord > 0u || listPass > 0u) {  // (the first chunk's state was cleared, its candidates listed, with the depths)
+                barrier();  // the last chunk's masks written out
+                clearChunkState(thread);
                 barrier();
+                if (COARSE_TILES > 0u) {
+                    listCandidates(tile, thread, lightCount);
+                    barrier();
+                }
+            }
+            // 3. The chunk's lights: against the whole tile, then (clustered) against each occupied slice.
+            if (occupied) testCandidates(thread, lightCount, wholeTile, maskNear, maskScale);
+            if (SLICE_COUNT > 1u) {
+                barrier();
+                testSlices(thread);
+            }
+            barrier();
+
+            // 4. The tile's cells out (the chunk's words).
+            if (INDEX_LISTS) {
+                writeTileLists(tile, thread, listPass == 0u, chunkFirstWord + kChunkWords >= GRID_WORDS,
+                               listPass + 1u == listPasses);
+            } else {
+                writeTileCells(tile, thread);
             }
         }
-        // 3. The chunk's lights: against the whole tile, then (clustered) against each occupied slice.
-        if (occupied) testCandidates(thread, lightCount, wholeTile, maskNear, maskScale);
-        if (SLICE_COUNT > 1u) {
-            barrier();
-            testSlices(thread);
-        }
-        barrier();
-
-        // 4. The tile's cells out (the chunk's words).
-        writeTileCells(tile, thread);
     }
 }

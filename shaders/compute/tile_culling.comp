@@ -15,7 +15,8 @@
 //     then visit the occupied cells nearest first: each gets its frustum segment (cut to its
 //     blocks' rectangle, combined over the workgroup) and each lane keeps those of its lights
 //     whose depth cells include it and whose shapes meet its segment (until none is left to keep);
-//  4. combine the masks with subgroupOr; lanes 0-2 write them.
+//  4. combine the masks with subgroupOr; lanes 0-2 write them (index lists: gather them, and
+//     after the last triple the first subgroup writes the tile's list, writeCellList).
 // The masks are those of light_culling.comp's one-slice case bit for bit: the same lights are
 // tested against the same segments, whose distances come from the same extreme depths, with the
 // same cells and rectangles.
@@ -58,6 +59,7 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly b
 };
 
 #include "depth_blocks.glsl"
+#include "light_lists.glsl"
 #include "subgroup_tiles.glsl"
 
 // ---- the steps (main below). Functions cost nothing here: drivers inline them, and none takes an
@@ -198,7 +200,8 @@ void main() {
         segment = makeTileVolume(ndcMin, ndcMax, distances.x, distances.y, frame.ndcToView);
     }
 
-    uint cellBase = (tile.y * frame.lightGrid.y + tile.x) * GRID_WORDS;
+    uint tileIndex = tile.y * frame.lightGrid.y + tile.x;
+    uint cellBase = tileIndex * GRID_WORDS;
     if (GRID_WORDS <= 3u) {
         // Up to the design notes' 96 lights: one triple, with no loop around it (measured on
         // lavapipe: the one-trip loop cost tiled-2.5d's pass 20%, 12.1 -> 14.7 ms at 1280x720).
@@ -206,4 +209,5 @@ void main() {
     } else {
         for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) PUNCTUAL_CULL_WORD_TRIPLE(triple)  // (uniform)
     }
+    if (INDEX_LISTS) writeCellList(tileIndex);  // (uniform)
 }

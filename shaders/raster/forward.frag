@@ -41,6 +41,8 @@ layout(constant_id = PUNCTUAL_SPEC_LIGHT_SOURCE) const uint LIGHT_SOURCE = PUNCT
 layout(constant_id = PUNCTUAL_SPEC_TILE_SIZE) const uint TILE_SIZE = 16u;
 layout(constant_id = PUNCTUAL_SPEC_SLICE_COUNT) const uint SLICE_COUNT = 1u;
 layout(constant_id = PUNCTUAL_SPEC_GRID_WORDS) const uint GRID_WORDS = 3u;  // words a light-grid cell
+// How a cell holds its lights (culling.h): GRID_WORDS mask words, or a header word and an index list.
+layout(constant_id = PUNCTUAL_SPEC_LIGHT_LIST_FORM) const uint LIGHT_LIST_FORM = PUNCTUAL_LIGHT_LIST_MASKS;
 // Debug variant for statistics and heat maps: also counts, per pixel, the lights that really
 // reach it and the brute-force radiance, into lightStats. Never used for timing.
 layout(constant_id = PUNCTUAL_SPEC_WRITE_LIGHT_STATS) const bool WRITE_LIGHT_STATS = false;
@@ -71,7 +73,14 @@ layout(set = 1, binding = 1) uniform sampler2D emissiveTexture;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_GRID) readonly buffer GridBlock { uint lightGrid[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer DepthRangeBlock { GpuDepthRange depthRange; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_OBJECT_LIGHTS) readonly buffer ObjectLightBlock { uint objectLights[]; };
-layout(std430, set = 0, binding = PUNCTUAL_BINDING_ZBINS) readonly buffer ZBinBlock { GpuZBins zBins; uint zBinMasks[]; };
+// After the bins' ranges, each bin's mask (GRID_WORDS words a bin) or, with index lists, each
+// light's 16-bit rank in depth order (lights/z_bins.h).
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_ZBINS) readonly buffer ZBinBlock { GpuZBins zBins; uint zBinWords[]; };
+// Index lists: the words the culling kernels used, then the cells' lists (culling.h).
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_INDICES) readonly buffer LightIndexBlock {
+    uint lightIndexWordsUsed;
+    uint lightIndexWords[];
+};
 // Four words per pixel for the opaque surface, then four per pixel for its transparent fragments
 // (gpu_types.h): several of those may land on one pixel, so they add up atomically.
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_STATS) buffer LightStatsBlock { uint lightStatWords[]; };
@@ -211,10 +220,11 @@ void discardWhatThePrepassDropped(GpuMaterial material, bool frontFacing, float 
 // (lights/z_bins.h), found by the stored-start search the CPU binned with. The walk reads them
 // three words at a time (a triple; words past GRID_WORDS read as 0). (Clustered: walking the
 // tile's union of its clusters instead, testing membership per pixel, keeps SIMD lanes uniform but
-// measured 10% slower on lavapipe; see bench/RESULTS.md.)
+// measured 10% slower on lavapipe; see bench/RESULTS.md.) With index lists the cell is one header
+// word and the walk reads its list (PUNCTUAL_WALK_INDEX_LIST).
 struct CellWords {
-    uint cellBase;  // the pixel's cell's first word in lightGrid
-    uint binBase;   // GRID_ZBINS: its z-bin's first word in zBinMasks
+    uint cellBase;  // the pixel's cell's first word in lightGrid (index lists: its header)
+    uint bin;       // GRID_ZBINS: its z-bin
 };
 
 CellWords pixelCellWords() {
@@ -222,13 +232,23 @@ CellWords pixelCellWords() {
     if (LIGHT_SOURCE == PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS) {
         PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(bin, gl_FragCoord.z, zBins.binStartDepth, PUNCTUAL_ZBIN_COUNT);
     }
-    return CellWords(pixelGridCell() * GRID_WORDS, bin * GRID_WORDS);
+    uint cellWords = LIGHT_LIST_FORM == PUNCTUAL_LIGHT_LIST_INDICES ? 1u : GRID_WORDS;
+    return CellWords(pixelGridCell() * cellWords, bin);
 }
 
 uint cellWord(CellWords cell, uint word) {
     if (word >= GRID_WORDS) return 0u;
     uint bits = lightGrid[cell.cellBase + word];
-    return LIGHT_SOURCE == PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS ? bits & zBinMasks[cell.binBase + word] : bits;
+    return LIGHT_SOURCE == PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS ? bits & zBinWords[cell.bin * GRID_WORDS + word] : bits;
+}
+
+// Index lists: whether light `light` of the cell's list is in the pixel's z-bin (GRID_ZBINS): its
+// rank in depth order within the bin's range of ranks, the test its mask bit stands for.
+bool zBinHolds(CellWords cell, uint light) {
+    if (LIGHT_SOURCE != PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS) return true;
+    uint rank = lightListEntry(zBinWords[light / 2u], light);
+    uint range = zBins.binRange[cell.bin];
+    return rank >= (range & 0xFFFFu) && rank <= (range >> 16u);
 }
 
 uvec3 cellWordTriple(CellWords cell, uint triple) {
@@ -250,6 +270,24 @@ uvec3 cellWordTriple(CellWords cell, uint triple) {
             radiance += shadeLight(surface, lights[light]);                                                     \
             ++tested;                                                                                           \
         }                                                                                                       \
+    }
+
+// The walk of the cell's index list (culling.h), entries 1 .. count in order, adding each light of
+// the pixel's z-bin (zBinHolds) to main's `radiance` as the mask walk does (a macro for the same
+// reason). A list that did not fit the index array (never, once the renderer has sized it) shades
+// magenta, as an unknown variant does.
+#define PUNCTUAL_WALK_INDEX_LIST()                                                              \
+    {                                                                                           \
+        uint start = lightGrid[cell.cellBase];                                                  \
+        if (start == PUNCTUAL_LIGHT_LIST_OVERFLOW) unknownVariant = true;                       \
+        uint count = start < PUNCTUAL_LIGHT_LIST_OVERFLOW ? lightListEntry(lightIndexWords[start], 0u) : 0u; \
+        for (uint entry = 1u; entry <= count; ++entry) {                                        \
+            uint light = lightListEntry(lightIndexWords[start + entry / 2u], entry);            \
+            if (zBinHolds(cell, light)) {                                                       \
+                radiance += shadeLight(surface, lights[light]);                                 \
+                ++tested;                                                                       \
+            }                                                                                   \
+        }                                                                                       \
     }
 
 // Validation variant: this pixel's surface (position, normal, the sun's cascade) and the shadow
@@ -383,12 +421,22 @@ void main() {
     // as SIMD lanes run under masks.)
     if (walkGridWords) {
         CellWords cell = pixelCellWords();
-        if (GRID_WORDS <= 3u) {
-            // Up to the design notes' 96 lights: one triple, with no loop around it (measured on
-            // lavapipe: the one-trip loop cost the default scene's forward pass 6%).
-            PUNCTUAL_WALK_WORD_TRIPLE(0u)
-        } else {
-            for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) PUNCTUAL_WALK_WORD_TRIPLE(triple)
+        switch (LIGHT_LIST_FORM) {
+            case PUNCTUAL_LIGHT_LIST_MASKS:
+                if (GRID_WORDS <= 3u) {
+                    // Up to the design notes' 96 lights: one triple, with no loop around it
+                    // (measured on lavapipe: the one-trip loop cost the default scene's forward pass 6%).
+                    PUNCTUAL_WALK_WORD_TRIPLE(0u)
+                } else {
+                    for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) PUNCTUAL_WALK_WORD_TRIPLE(triple)
+                }
+                break;
+            case PUNCTUAL_LIGHT_LIST_INDICES:
+                PUNCTUAL_WALK_INDEX_LIST()
+                break;
+            default:
+                unknownVariant = true;
+                break;
         }
     }
     // Emission last, after every light, in the reference's order. It lights nothing else.

@@ -113,6 +113,28 @@ PUNCTUAL_FN uint allLightsWord(uint word, uint lightCount) {
     return lightCount >= first + 32u ? 0xFFFFFFFFu : (lightCount > first ? (1u << (lightCount - first)) - 1u : 0u);
 }
 
+// Index lists (--light-lists indices; Olsson et al. 2012 and Harada et al. 2012 keep per cell an
+// offset and a count into one compacted array of light indices). A cell's grid entry is then one
+// header word, the start of its list in the index words (PUNCTUAL_BINDING_LIGHT_INDICES, after the
+// words-used counter): entry 0 is the list's count n, entries 1 .. n its lights in ascending
+// packed order (the masks' walk order), 16 bits each, two a word, entry e in the low half of word
+// e / 2 when e is even and the high half when odd. A list takes lightListWords(n) words, so its
+// memory is its entries, 2 bytes each, plus the header and the count: at the 80 lights a cell of
+// 8,192 holds, 4% over the 16-bit floor, where a mask is 1 KiB. The culling kernels take each list's
+// words with one atomic add on the counter; a list that would pass the end of the array is not
+// written and its header says so (the renderer sizes the array from a counting frame, so this only
+// guards against a bug, and the forward pass shades such a cell magenta).
+#define PUNCTUAL_LIGHT_LIST_NONE 0xFFFFFFFFu      // header: no lights (an empty or never-written cell)
+#define PUNCTUAL_LIGHT_LIST_OVERFLOW 0xFFFFFFFEu  // header: the list did not fit the index array
+
+PUNCTUAL_FN uint lightListWords(uint count) { return (count + 2u) / 2u; }
+
+// Entry `entry` of a list, from its word (word entry / 2 of the list).
+PUNCTUAL_FN uint lightListEntry(uint word, uint entry) { return (entry & 1u) != 0u ? word >> 16u : word & 0xFFFFu; }
+
+// The word holding entries `low` (even) and `high`.
+PUNCTUAL_FN uint lightListPair(uint low, uint high) { return low | (high << 16u); }
+
 // The part of a screen tile between two view distances: a frustum segment. Culling tests a light
 // against three bounding shapes of it and culls when any test says the light misses:
 //   the four side planes through the eye (tight sideways),

@@ -32,7 +32,7 @@
 #define PUNCTUAL_BINDING_OBJECTS 2
 #define PUNCTUAL_BINDING_MATERIALS 3
 #define PUNCTUAL_BINDING_DEPTH 5          // depth prepass result, read by the culling passes
-#define PUNCTUAL_BINDING_LIGHT_GRID 6     // per tile (or cluster): GRID_WORDS words, one bit per light (culling.h)
+#define PUNCTUAL_BINDING_LIGHT_GRID 6     // per tile (or cluster): GRID_WORDS mask words, or one index-list header (culling.h)
 #define PUNCTUAL_BINDING_DEPTH_RANGE 7    // GpuDepthRange, then each slice's lights (GRID_WORDS words a slice)
 #define PUNCTUAL_BINDING_OBJECT_LIGHTS 8  // per object: PUNCTUAL_MAX_LIGHTS_PER_OBJECT packed-light indices
 // Debug: per pixel uvec4 (tested, affecting | covered bit, luminances) of the opaque surface; then
@@ -51,6 +51,9 @@
 #define PUNCTUAL_BINDING_TRANSPARENT_DEPTH 16
 #define PUNCTUAL_BINDING_ZBINS 17             // GpuZBins, then each bin's mask (GRID_WORDS words a bin; lights/z_bins.h)
 #define PUNCTUAL_BINDING_COARSE_GRID 18       // per coarse tile: GRID_WORDS mask words, as the light grid's (coarse_culling.comp)
+// Index lists (--light-lists indices): the words used, then the cells' lists of 16-bit light
+// indices, two a word (culling.h, "Index lists"); one word with masks.
+#define PUNCTUAL_BINDING_LIGHT_INDICES 19
 
 // Shadow validation buffer (forward shader's WRITE_SHADOW_FACTORS variant), in 32-bit words:
 // per pixel PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS words (world position xyz, 1 if covered, shading
@@ -106,6 +109,12 @@
 #define PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS 3u  // those AND its z-bin's range (zbin, zbin-2d)
 #define PUNCTUAL_LIGHT_SOURCE_COUNT 4u
 
+// How a light-grid cell holds its lights (PUNCTUAL_SPEC_LIGHT_LIST_FORM), each list form's `gpu`
+// in its table row (src/render/light_list_form.h); culling.h describes both.
+#define PUNCTUAL_LIGHT_LIST_MASKS 0u    // GRID_WORDS words, one bit per light
+#define PUNCTUAL_LIGHT_LIST_INDICES 1u  // a header word: where its list of 16-bit indices starts
+#define PUNCTUAL_LIGHT_LIST_FORM_COUNT 2u
+
 // Specialization constant ids.
 #define PUNCTUAL_SPEC_LIGHT_SOURCE 1
 #define PUNCTUAL_SPEC_TILE_SIZE 2
@@ -124,6 +133,7 @@
 #define PUNCTUAL_SPEC_COARSE_TILES 15  // culling: fine tiles a side of a coarse tile (0: no coarse pass)
 #define PUNCTUAL_SPEC_TILE_THREADS 16  // tile_culling.comp: invocations per tile (the device's subgroup size)
 #define PUNCTUAL_SPEC_GRID_WORDS 17  // words per light-grid cell (gridWordsOf the frame's lights)
+#define PUNCTUAL_SPEC_LIGHT_LIST_FORM 18  // culling kernels and forward: PUNCTUAL_LIGHT_LIST_MASKS or _INDICES
 // tile_culling.comp's workgroups: at most this many invocations (a power of two, at least the 32 or
 // 64 of GPU subgroups; one lane per 2x2 block of a 16-pixel tile).
 #define PUNCTUAL_MAX_TILE_THREADS 64u

@@ -1,9 +1,9 @@
 // What the one-subgroup-a-tile culling kernels (tile_culling.comp, cluster_culling.comp) share:
 // combining a workgroup's values with subgroup operations, spreading a tile's candidate lights over
 // the lanes, reading a pixel's depth span and testing a set of lights against a frustum segment.
-// GLSL only; include after culling.h and the declarations of `frame` (GpuFrame), `depthImage`,
-// `transparentDepth`, `frameCullLights` and `GRID_WORDS` (the words a light-grid cell), with
-// GL_KHR_shader_subgroup_arithmetic enabled.
+// GLSL only; include after culling.h, light_lists.glsl and the declarations of `frame` (GpuFrame),
+// `depthImage`, `transparentDepth`, `frameCullLights` and `GRID_WORDS` (the words a light-grid
+// cell's masks), with GL_KHR_shader_subgroup_arithmetic enabled.
 //
 // Light masks travel three words at a time (a triple: words 3 triple .. 3 triple + 2; words past
 // GRID_WORDS are 0): the kernels loop over a cell's triples, one at the design notes' 96 lights.
@@ -111,11 +111,63 @@ uvec3 lightsMeetingSegment(uvec3 lights, uint triple, TileVolume segment) {
     return lightsMeetingDepthCell(lights, triple, segment, kAnyDepthCell, 0.0, 0.0);
 }
 
-// Writes triple `triple` of a cell's masks, at `cellBase` of lightGrid (lanes 0-2, the words
-// before GRID_WORDS).
+// Index lists: the cell's mask words, gathered triple by triple for writeCellList (at most 4 KiB,
+// at 16,384 + 16,384 lights).
+shared uint cellListWords[INDEX_LISTS ? GRID_WORDS : 1u];
+
+// Writes triple `triple` of a cell's masks (lanes 0-2, the words before GRID_WORDS): at `cellBase`
+// of lightGrid, or with index lists into cellListWords.
 void writeCellTriple(uint cellBase, uint triple, uvec3 masks, uint lane) {
     uint word = 3u * triple + lane;
-    if (lane < 3u && word < GRID_WORDS) lightGrid[cellBase + word] = lane == 0u ? masks.x : (lane == 1u ? masks.y : masks.z);
+    if (lane < 3u && word < GRID_WORDS) {
+        uint bits = lane == 0u ? masks.x : (lane == 1u ? masks.y : masks.z);
+        if (INDEX_LISTS) {
+            cellListWords[word] = bits;
+        } else {
+            lightGrid[cellBase + word] = bits;
+        }
+    }
+}
+
+// Index lists: cell `cell`'s list (light_lists.glsl) from its words in cellListWords. The first
+// subgroup writes it, each lane every `lanes`-th word of the masks: a sum over the lanes gives the
+// count, one lane claims the list's words, and per round of words an exclusive sum gives each
+// word's first entry, so the lanes write disjoint words of the list. A word of the list holds two
+// entries: a lane whose first light is an odd entry pairs it with the entry before, the last light
+// of the nearest earlier word with any (an exclusive max over the lanes, since lights ascend with
+// the words), or the count for the list's first light. Called in uniform control flow: the
+// barriers make the words visible, and keep the next cell from overwriting them before they are read.
+void writeCellList(uint cell) {
+    memoryBarrierShared();
+    barrier();
+    if (gl_SubgroupID == 0u) {
+        uint lanes = subgroupAdd(1u);
+        uint lane = subgroupExclusiveAdd(1u);
+        uint count = 0u;
+        for (uint word = lane; word < GRID_WORDS; word += lanes) count += bitCount(cellListWords[word]);
+        count = subgroupAdd(count);
+        uint start = subgroupMax(subgroupElect() ? claimLightList(count) : 0u);
+        if (subgroupElect()) lightGrid[cell] = start;
+        uint before = count;  // the entry before the next round's first
+        uint written = 0u;    // entries 1 .. written are placed
+        for (uint first = 0u; start < PUNCTUAL_LIGHT_LIST_OVERFLOW && first < GRID_WORDS; first += lanes) {  // (uniform)
+            uint word = first + lane;
+            uint bits = word < GRID_WORDS ? cellListWords[word] : 0u;
+            uint lastPlusOne = bits != 0u ? lightGridFirstLight(word) + uint(findMSB(bits)) + 1u : 0u;
+            uint entry = written + subgroupExclusiveAdd(bitCount(bits));  // the entry before this word's first
+            uint earlier = subgroupExclusiveMax(lastPlusOne);
+            uint previous = earlier != 0u ? earlier - 1u : before;
+            written += subgroupAdd(bitCount(bits));
+            uint roundLast = subgroupMax(lastPlusOne);
+            if (roundLast != 0u) before = roundLast - 1u;
+            for (; bits != 0u; bits &= bits - 1u) {
+                uint light = lightGridFirstLight(word) + uint(findLSB(bits));
+                writeLightListEntry(start, ++entry, previous, light, count);
+                previous = light;
+            }
+        }
+    }
+    barrier();
 }
 
 // The geometry a pixel shades, as a depth span (nearest, farthest): a pixel under transparent

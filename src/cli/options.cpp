@@ -145,6 +145,7 @@ render::RenderSettings renderSettingsFrom(const RenderOptions& options) {
     settings.height = options.height;
     settings.exposure = options.exposure;
     settings.method = options.culling;
+    settings.lightLists = options.lightLists;
     settings.tileSize = options.tileSize;
     settings.clusterSlices = options.slices;
     settings.coarseTiles = options.coarseTiles;

@@ -30,6 +30,7 @@ struct RenderOptions {
     float exposure = 1.0f;                 // --exposure X
     uint32_t frames = 1;                   // --frames N (timed; the median is reported)
     render::LightListMethod culling = render::LightListMethod::Tiled;  // --culling
+    render::LightListForm lightLists = render::LightListForm::Masks;  // --light-lists
     uint32_t tileSize = 16;                // --tile-size N
     uint32_t slices = 16;                  // --slices N (clustered)
     bool coarseTiles = true;               // --coarse-tiles on|off (the grid methods)

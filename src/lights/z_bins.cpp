@@ -73,6 +73,11 @@ ZBins buildZBins(const std::vector<gpu::CullLight>& cullLights, glm::vec2 depthT
             last[b] = std::max(last[b], i);
         }
     }
+    bins.rankWords.assign(std::max<size_t>((count + 1) / 2, 1), 0u);
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t light = bins.sortedLights[i];
+        bins.rankWords[light / 2] |= i << (16 * (light % 2));
+    }
     for (uint32_t b = 0; b < PUNCTUAL_ZBIN_COUNT; ++b) {
         uint32_t* words = &bins.binMasks[size_t(b) * bins.gridWords];
         if (first[b] <= last[b]) {

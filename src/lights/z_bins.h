@@ -30,10 +30,18 @@ struct ZBins {
     uint32_t gridWords = 1;              // words a bin's mask: gpu::gridWordsOf(the lights)
     std::vector<uint32_t> binMasks;      // PUNCTUAL_ZBIN_COUNT x gridWords: bin b's mask at b x gridWords
     std::vector<uint32_t> sortedLights;  // packed indices in depth order (nearest extent first)
+    // Each packed light's place in sortedLights, 16 bits each, two a word (light L in the low half
+    // of word L / 2 when L is even: zBinRankOf): with index lists, the forward pass keeps a light of
+    // its cell's list where its rank lies in its bin's range, as Drobot's bins are read, instead of
+    // ANDing a mask.
+    std::vector<uint32_t> rankWords;
 
     const uint32_t* binMask(uint32_t bin) const { return &binMasks[size_t(bin) * gridWords]; }
-    // The GPU buffer (PUNCTUAL_BINDING_ZBINS): the header `gpu`, then binMasks.
-    uint64_t bytes() const { return sizeof(gpu::GpuZBins) + binMasks.size() * sizeof(uint32_t); }
+    // The GPU buffer (PUNCTUAL_BINDING_ZBINS): the header `gpu`, then binMasks (or, for
+    // `indexLists`, rankWords).
+    uint64_t bytes(bool indexLists = false) const {
+        return sizeof(gpu::GpuZBins) + (indexLists ? rankWords.size() : binMasks.size()) * sizeof(uint32_t);
+    }
 };
 
 // `cullLights` in packed order, `depthToView` the camera's (a, b) of viewDistanceFromDepth.

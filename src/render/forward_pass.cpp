@@ -68,14 +68,15 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
         uint32_t cascadeBlend;
         VkBool32 transparent;
         uint32_t gridWords;
+        uint32_t listForm;
     };
     const Constants constants{variant.lightSource, variant.tileSize, variant.slices,
                               variant.writeLightStats ? VK_TRUE : VK_FALSE, variant.shadows ? VK_TRUE : VK_FALSE,
                               variant.shadowKernel, variant.shadowFilterSize, variant.shadowSamples, variant.pointShadowLayout,
                               variant.writeShadowFactors ? VK_TRUE : VK_FALSE,
                               variant.shadowReceiverPlane ? VK_TRUE : VK_FALSE, variant.cascadeBlend,
-                              variant.transparent ? VK_TRUE : VK_FALSE, variant.gridWords};
-    const std::array<VkSpecializationMapEntry, 14> entries = {{
+                              variant.transparent ? VK_TRUE : VK_FALSE, variant.gridWords, variant.listForm};
+    const std::array<VkSpecializationMapEntry, 15> entries = {{
         {PUNCTUAL_SPEC_LIGHT_SOURCE, offsetof(Constants, lightSource), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_TILE_SIZE, offsetof(Constants, tileSize), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, offsetof(Constants, slices), sizeof(uint32_t)},
@@ -90,6 +91,7 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
         {PUNCTUAL_SPEC_CASCADE_BLEND, offsetof(Constants, cascadeBlend), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_TRANSPARENT, offsetof(Constants, transparent), sizeof(VkBool32)},
         {PUNCTUAL_SPEC_GRID_WORDS, offsetof(Constants, gridWords), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_LIGHT_LIST_FORM, offsetof(Constants, listForm), sizeof(uint32_t)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(constants), &constants};
 

@@ -23,6 +23,7 @@ struct ForwardVariant {
     uint32_t tileSize = 16;
     uint32_t slices = 1;
     uint32_t gridWords = 3;  // words a light-grid cell (LightGridLayout::gridWords)
+    uint32_t listForm = 0;   // PUNCTUAL_LIGHT_LIST_*: how a cell holds its lights (LightListFormInfo)
     bool writeLightStats = false;  // debug variant: per-pixel light statistics
     bool shadows = false;
     uint32_t shadowKernel = 0;     // PUNCTUAL_SHADOW_KERNEL_*: the filter's kernel (ShadowFilterInfo)

@@ -72,6 +72,7 @@ FramePlan planFrame(const vk::Context& context, const Scene& scene, const Render
     // One bit per light the frame keeps (not per light it could keep): a frame under its capacity
     // holds and walks no empty words.
     plan.gridLayout.gridWords = gpu::gridWordsOf(plan.lights.spotCount + plan.lights.pointCount);
+    plan.gridLayout.indexLists = method.usesLightGrid() && settings.lightLists == LightListForm::Indices;
     if (method.zBins()) {
         plan.zBins = buildZBins(viewCullLights(plan.lights, plan.view), glm::vec2(plan.projection[3][2], plan.projection[2][2]));
     }

@@ -4,6 +4,7 @@
 #include <array>
 #include <span>
 
+#include "core/check.h"
 #include "gpu_types.h"
 #include "render/frame_bindings.h"
 #include "render/render_settings.h"
@@ -49,9 +50,11 @@ LightCullingPass::LightCullingPass(vk::Context& context, const LightGridLayout& 
       culled_(culled),
       width_(width),
       height_(height),
-      grid_(context, VkDeviceSize(culled ? layout.gridWordCount() : 1) * sizeof(uint32_t),
+      grid_(context, VkDeviceSize(culled ? layout.gridBufferWords() : 1) * sizeof(uint32_t),
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
             vk::MemoryUse::DeviceLocal, "light grid"),
+      // The counter and one word: the counting frame's lists all overflow (sizeIndexLists).
+      lightIndices_(indexListBuffer(context, culled && layout.indexLists ? 1 : 0)),
       depthRange_(context, sizeof(gpu::GpuDepthRange) + sizeof(uint32_t) * PUNCTUAL_MAX_CLUSTER_SLICES * layout.gridWords,
                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -59,7 +62,7 @@ LightCullingPass::LightCullingPass(vk::Context& context, const LightGridLayout& 
       // Sized to the lights this frame really uses; one slot when there are none.
       cullLights_(context, std::max<size_t>(cullLights.size(), 1) * sizeof(gpu::CullLight),
                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "cull lights"),
-      zBins_(context, zBins ? zBins->bytes() : sizeof(uint32_t),
+      zBins_(context, zBins ? zBins->bytes(layout.indexLists) : sizeof(uint32_t),
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload, "z-bins"),
       coarseGrid_(context,
                   VkDeviceSize(culled && layout.coarseTiles ? layout.coarseTilesX() * layout.coarseTilesY() * layout.gridWords
@@ -70,13 +73,30 @@ LightCullingPass::LightCullingPass(vk::Context& context, const LightGridLayout& 
     if (!cullLights.empty()) cullLights_.write(cullLights.data(), cullLights.size() * sizeof(gpu::CullLight));
     if (zBins) {
         zBins_.write(&zBins->gpu, sizeof(gpu::GpuZBins));
-        zBins_.write(zBins->binMasks.data(), zBins->binMasks.size() * sizeof(uint32_t), sizeof(gpu::GpuZBins));
+        // Masks: each bin's mask, ANDed with the cell's; index lists: each light's rank in depth
+        // order, tested against the bin's range (lights/z_bins.h).
+        const std::vector<uint32_t>& words = layout.indexLists ? zBins->rankWords : zBins->binMasks;
+        zBins_.write(words.data(), words.size() * sizeof(uint32_t), sizeof(gpu::GpuZBins));
     }
     // Cells no pixel occupies are never written, and no pixel the frame shades reads one. Zeroed
     // once all the same, so that a study that breaks that rule on purpose (culling by the opaque
     // depth alone, RenderSettings::opaqueCullingDepth) reads "no lights", the same every run,
     // rather than whatever the allocation held.
-    context.submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, grid_.handle(), 0, VK_WHOLE_SIZE, 0u); });
+    // (Index lists: every header "no lights".)
+    const uint32_t empty = layout.indexLists ? PUNCTUAL_LIGHT_LIST_NONE : 0u;
+    context.submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, grid_.handle(), 0, VK_WHOLE_SIZE, empty); });
+}
+
+vk::Buffer LightCullingPass::indexListBuffer(vk::Context& context, uint64_t words) {
+    return vk::Buffer(context, VkDeviceSize(1 + std::max<uint64_t>(words, 1)) * sizeof(uint32_t),
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                          VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      vk::MemoryUse::DeviceLocal, "light indices");
+}
+
+void LightCullingPass::sizeIndexLists(vk::Context& context, uint64_t words) {
+    PUNCTUAL_CHECK(layout_.indexLists, "index lists sized for a grid of masks");
+    lightIndices_ = indexListBuffer(context, words);
 }
 
 void LightCullingPass::addBindings(BindingTable& table) const {
@@ -87,10 +107,12 @@ void LightCullingPass::addBindings(BindingTable& table) const {
     table.addBuffer(PUNCTUAL_BINDING_ZBINS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages, zBins_);
     table.addBuffer(PUNCTUAL_BINDING_COARSE_GRID, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT,
                     coarseGrid_);
+    table.addBuffer(PUNCTUAL_BINDING_LIGHT_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kAllStages, lightIndices_);
 }
 
 uint64_t LightCullingPass::memoryBytes() const {
-    return grid_.size() + depthRange_.size() + cullLights_.size() + zBins_.size() + coarseGrid_.size();
+    return grid_.size() + lightIndices_.size() + depthRange_.size() + cullLights_.size() + zBins_.size() +
+           coarseGrid_.size();
 }
 
 void LightCullingPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
@@ -98,15 +120,17 @@ void LightCullingPass::createPipelines(const vk::Context& context, const FrameBi
     // One map for every kernel: an entry whose constant a shader lacks does not affect it (the
     // Vulkan specification), and tile_culling.comp lacks SLICE_COUNT, cluster_culling.comp
     // CULL_FLAGS (it implements none).
-    const std::array<uint32_t, 6> values = {layout_.tileSize,    layout_.slices,      layout_.cullFlags,
-                                            layout_.coarseTiles, layout_.tileThreads, layout_.gridWords};
-    const std::array<VkSpecializationMapEntry, 6> entries = {{
+    const std::array<uint32_t, 7> values = {layout_.tileSize,    layout_.slices,      layout_.cullFlags,
+                                            layout_.coarseTiles, layout_.tileThreads, layout_.gridWords,
+                                            layout_.listForm()};
+    const std::array<VkSpecializationMapEntry, 7> entries = {{
         {PUNCTUAL_SPEC_TILE_SIZE, 0, sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, sizeof(uint32_t), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_CULL_FLAGS, 2 * sizeof(uint32_t), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_COARSE_TILES, 3 * sizeof(uint32_t), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_TILE_THREADS, 4 * sizeof(uint32_t), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_GRID_WORDS, 5 * sizeof(uint32_t), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_LIGHT_LIST_FORM, 6 * sizeof(uint32_t), sizeof(uint32_t)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(values), values.data()};
     const std::span<const uint32_t> kernel = !layout_.subgroupKernel ? std::span<const uint32_t>(compute_light_culling_comp_spv)
@@ -150,6 +174,8 @@ void LightCullingPass::record(const FrameContext& frame) const {
     // defined.
     vkCmdFillBuffer(cmd, depthRange_.handle(), 0, sizeof(uint32_t), 0xFFFFFFFFu);
     vkCmdFillBuffer(cmd, depthRange_.handle(), sizeof(uint32_t), 3 * sizeof(uint32_t), 0u);
+    // Index lists: no word used yet.
+    if (layout_.indexLists) vkCmdFillBuffer(cmd, lightIndices_.handle(), 0, sizeof(uint32_t), 0u);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     // The depth range (with the slices its last subgroup cuts) and the coarse pass read nothing of

@@ -33,6 +33,9 @@ struct LightGridLayout {
     uint32_t tilesY = 0;
     uint32_t slices = 1;  // 1: tiled
     uint32_t gridWords = 3;  // words a cell: gpu::gridWordsOf(the frame's lights); the kernels' GRID_WORDS
+    // --light-lists indices: a cell is one header word, its lights a list in the index array
+    // (culling.h, "Index lists"); otherwise gridWords mask words.
+    bool indexLists = false;
     uint32_t cullFlags = 0;  // the method's PUNCTUAL_CULL_* flags (culling.h): tiled-2.5d's depth mask, ...
     bool zBins = false;      // zbin, zbin-2d: the forward pass ANDs the tile's mask with its z-bin's
     uint32_t coarseTiles = 0;  // fine tiles a side of a coarse tile; 0: no coarse pass
@@ -46,7 +49,9 @@ struct LightGridLayout {
     // shared memory.
     bool subgroupKernel = false;
     uint32_t cellCount() const { return tilesX * tilesY * slices; }
-    uint64_t gridWordCount() const { return uint64_t(cellCount()) * gridWords; }
+    uint64_t gridWordCount() const { return uint64_t(cellCount()) * gridWords; }  // the masks' words
+    uint64_t gridBufferWords() const { return indexLists ? cellCount() : gridWordCount(); }  // masks or headers
+    uint32_t listForm() const { return indexLists ? PUNCTUAL_LIGHT_LIST_INDICES : PUNCTUAL_LIGHT_LIST_MASKS; }
     bool hasCullFlag(uint32_t flag) const { return (cullFlags & flag) != 0; }
     uint32_t coarseTilesX() const { return coarseTiles ? (tilesX + coarseTiles - 1) / coarseTiles : 0; }
     uint32_t coarseTilesY() const { return coarseTiles ? (tilesY + coarseTiles - 1) / coarseTiles : 0; }
@@ -83,17 +88,28 @@ public:
     // The kernels sample the prepass's depth.
     VkShaderStageFlags boundImageStages() const override { return culled_ ? VK_SHADER_STAGE_COMPUTE_BIT : 0; }
 
-    const vk::Buffer& grid() const { return grid_; }              // gridWordCount() words
+    const vk::Buffer& grid() const { return grid_; }              // gridBufferWords() words
+    // Index lists: the words used (the kernels' counter), then the lists (culling.h).
+    const vk::Buffer& lightIndices() const { return lightIndices_; }
+    // Index lists: makes the index array `words` words long (the lists a counting frame used), for
+    // the next frames; the caller rebuilds the frame's bindings, which hold the old buffer.
+    void sizeIndexLists(vk::Context& context, uint64_t words);
+    // The light lists' own memory: the grid (masks, or headers) and the index array.
+    uint64_t listBytes() const { return grid_.size() + (layout_.indexLists ? lightIndices_.size() : 0); }
     // gpu::GpuDepthRange, then PUNCTUAL_MAX_CLUSTER_SLICES x gridWords words: each slice's lights
     const vk::Buffer& depthRange() const { return depthRange_; }
     const vk::Buffer& coarseGrid() const { return coarseGrid_; }  // the coarse pass's masks
 
 private:
+    // The index array: the words-used counter, then `words` words (at least one).
+    static vk::Buffer indexListBuffer(vk::Context& context, uint64_t words);
+
     LightGridLayout layout_;
     bool culled_ = false;
     uint32_t width_ = 0;
     uint32_t height_ = 0;
     vk::Buffer grid_;
+    vk::Buffer lightIndices_;  // index lists: the words-used counter and the lists; one word with masks
     vk::Buffer depthRange_;
     vk::Buffer cullLights_;
     vk::Buffer zBins_;  // gpu::GpuZBins and the bins' masks, or one word for the methods without bins

@@ -7,6 +7,7 @@
 
 #include "lights/light_setup.h"
 #include "lights/shadow_setup.h"
+#include "render/light_list_form.h"
 #include "render/light_list_method.h"
 #include "scene/scene.h"
 
@@ -25,6 +26,7 @@ struct RenderSettings {
     uint32_t height = 720;
     float exposure = 1.0f;  // linear multiplier before tone mapping
     LightListMethod method = LightListMethod::Tiled;
+    LightListForm lightLists = LightListForm::Masks;  // how the grid methods' cells hold their lights
     uint32_t tileSize = 16;       // pixels, tiled and clustered
     uint32_t clusterSlices = 16;  // depth slices, clustered only
     // The coarse pass (--coarse-tiles): big tiles of about kCoarseTilePixels a side cull the

@@ -15,6 +15,7 @@
 #include "lights/shadow_sizing.h"
 #include "lights/view_objects.h"
 #include "metrics/debug_buffers.h"
+#include "metrics/index_lists.h"
 #include "render/depth_prepass.h"
 #include "render/frame_plan.h"
 #include "render/forward_pass.h"
@@ -97,6 +98,7 @@ struct Renderer::Resources {
         variant.tileSize = grid.tileSize;
         variant.slices = grid.slices;
         variant.gridWords = grid.gridWords;
+        variant.listForm = grid.indexLists ? PUNCTUAL_LIGHT_LIST_INDICES : PUNCTUAL_LIGHT_LIST_MASKS;
         variant.writeLightStats = stats;
         variant.shadows = settings.shadows.enabled;
         const ShadowFilterInfo& filter = shadowFilterInfo(settings.shadows.filter);
@@ -297,24 +299,43 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     vk::check(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence), "vkCreateFence");
     r.fence = vk::Handle<VkFence>(context.device(), fence, vkDestroyFence);
 
+    recordFrames();
+    if (plan_.gridLayout.indexLists) sizeIndexLists();
+}
+
+void Renderer::recordFrames() {
+    Resources& r = *resources_;
     // The frame, then the debug frames: the passes before the opaque forward pass, then the debug
     // variant in its place (no tone mapping: the variants' outputs are buffers the caller reads
     // back). Each is checked to find every image in the layout each pass declares it expects.
     const std::vector<const Pass*> frameOrder = r.passes.frame();
     const ImageLayouts resting = restingLayouts(frameOrder, r.boundImages);
-    r.commandBuffer = vk::CommandBuffer(context.device(), context.commandPool());
+    r.commandBuffer = vk::CommandBuffer(context_.device(), context_.commandPool());
     recordFrame(r.commandBuffer, frameOrder, resting, /*timed=*/true);
     if (r.lightStatsPass) {
-        r.lightStatsCommands = vk::CommandBuffer(context.device(), context.commandPool());
+        r.lightStatsCommands = vk::CommandBuffer(context_.device(), context_.commandPool());
         // The transparent variant adds the transparent fragments' counts.
         const std::array<const Pass*, 2> variants = {r.lightStatsPass.get(), r.transparentStatsPass.get()};
         recordFrame(r.lightStatsCommands, r.passes.frameReplacing(*r.forward, variants), resting, /*timed=*/false);
     }
     if (r.shadowFactorsPass) {
-        r.shadowFactorsCommands = vk::CommandBuffer(context.device(), context.commandPool());
+        r.shadowFactorsCommands = vk::CommandBuffer(context_.device(), context_.commandPool());
         const std::array<const Pass*, 1> variants = {r.shadowFactorsPass.get()};
         recordFrame(r.shadowFactorsCommands, r.passes.frameReplacing(*r.forward, variants), resting, /*timed=*/false);
     }
+}
+
+void Renderer::sizeIndexLists() {
+    // The counting frame: its index array holds one word, so every list overflows, but the kernels
+    // count the words each takes. Every frame of this renderer culls the same lights against the
+    // same depths, so the next ones take exactly as many: the array is made that long (the lists'
+    // order in it may differ from frame to frame, as the atomics fall, but not their contents).
+    Resources& r = *resources_;
+    submitAndWait(r.commandBuffer);
+    const uint32_t used = readWords(r.culling->lightIndices()).front();
+    r.culling->sizeIndexLists(context_, used);
+    r.bindPasses(context_);  // the frame's set 0 points at the new array
+    recordFrames();
 }
 
 Renderer::~Renderer() {
@@ -395,7 +416,20 @@ std::vector<uint32_t> Renderer::readWords(const vk::Buffer& buffer) {
 
 std::vector<uint32_t> Renderer::readLightGrid() {
     if (!usesLightGrid(settings_.method)) return {};
-    return readWords(resources_->culling->grid());
+    const std::vector<uint32_t> grid = readWords(resources_->culling->grid());
+    if (!plan_.gridLayout.indexLists) return grid;
+    const std::vector<uint32_t> indices = readWords(resources_->culling->lightIndices());
+    return masksFromIndexLists(grid, std::span<const uint32_t>(indices).subspan(1), plan_.gridLayout.gridWords,
+                               plan_.lights.spotCount + plan_.lights.pointCount);
+}
+
+uint32_t Renderer::readLightIndexWordsUsed() {
+    if (!plan_.gridLayout.indexLists) return 0;
+    return readWords(resources_->culling->lightIndices()).front();
+}
+
+uint64_t Renderer::lightListBytes() const {
+    return usesLightGrid(settings_.method) ? resources_->culling->listBytes() : 0;
 }
 
 std::vector<uint32_t> Renderer::readCoarseGrid() {

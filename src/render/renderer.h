@@ -87,9 +87,14 @@ public:
 
     // Depth buffer of the last frame, row-major top to bottom, in [0, 1] (1 = background).
     std::vector<float> readDepth();
-    // The light grid of the last frame: gridLayout().gridWordCount() words
-    // (tiled and clustered only). Clustered also reports the frame's geometry depth range.
+    // The light grid of the last frame as masks: gridLayout().gridWordCount() words (the grid
+    // methods only; index lists are read back as the masks they stand for, metrics/index_lists.h).
     std::vector<uint32_t> readLightGrid();
+    // Index lists: the words of the index array the last frame's lists took (0 with masks).
+    uint32_t readLightIndexWordsUsed();
+    // The light lists' own memory: the grid's masks, or its headers and the index array (the grid
+    // methods only; the culling shapes, the coarse grid and the slices' masks are apart).
+    uint64_t lightListBytes() const;
     // The coarse pass's masks of the last frame: coarseTilesX() * coarseTilesY() * gridWords
     // words (gridLayout()); empty without the coarse pass.
     std::vector<uint32_t> readCoarseGrid();
@@ -128,6 +133,10 @@ private:
     void recordFrame(VkCommandBuffer cmd, const std::vector<const Pass*>& passes, const ImageLayouts& resting,
                      bool timed);
     void submitAndWait(VkCommandBuffer cmd);
+    // Records the frame and its debug variants (their command buffers made anew).
+    void recordFrames();
+    // Index lists: sizes the index array from a counting frame and records the frames again.
+    void sizeIndexLists();
     std::vector<uint8_t> readBuffer(const vk::Buffer& buffer);
     std::vector<uint32_t> readWords(const vk::Buffer& buffer);  // readBuffer as 32-bit words
 
