@@ -60,8 +60,10 @@ void printFrameSummary(const Scene& scene, const vk::Context& context, const ren
     const FrameLights& lights = renderer.lights();
     std::printf("scene: %s (%zu triangles, %zu objects)\n", scene.source.c_str(), scene.triangleCount(),
                 scene.objects.size());
-    std::printf("device: %s, %ux%u, %s culling, %u frame(s), median GPU times\n", context.deviceName().c_str(),
-                settings.width, settings.height, render::methodName(settings.method), frames);
+    // The grid methods' list form, where it is not the default masks.
+    const std::string lists = renderer.gridLayout().indexLists ? " (index lists)" : "";
+    std::printf("device: %s, %ux%u, %s culling%s, %u frame(s), median GPU times\n", context.deviceName().c_str(),
+                settings.width, settings.height, render::methodName(settings.method), lists.c_str(), frames);
     std::printf("%s\n", frameLightsLine(lights, settings.maxLights).c_str());
     const ShadowPlan& shadows = renderer.shadowPlan();
     if (settings.shadows.enabled) {

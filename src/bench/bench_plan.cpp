@@ -27,6 +27,17 @@ std::vector<render::LightListMethod> heavyBenchMethods(bool quick) {
     return benchMethods(false);
 }
 
+// The list forms a grid method is measured with, in table order (--quick: those marked for it);
+// the methods without a grid have none to vary, and are measured once (with the default).
+std::vector<render::LightListForm> benchListForms(render::LightListMethod method, bool quick) {
+    if (!render::usesLightGrid(method)) return {render::LightListForm::Masks};
+    std::vector<render::LightListForm> forms;
+    for (const render::LightListFormInfo& form : render::kLightListForms) {
+        if (!quick || form.quickBench) forms.push_back(form.value);
+    }
+    return forms;
+}
+
 ShadowSettings shadowsOff() {
     ShadowSettings off;
     off.enabled = false;
@@ -67,15 +78,18 @@ void addScaleSeries(std::vector<BenchConfig>& configs, bool quick) {
         if (quick && !constantDensity) continue;
         for (uint32_t count : counts) {
             for (render::LightListMethod method : benchMethods(quick)) {
-                BenchConfig config;
-                config.series = constantDensity ? "scale" : "scale-fixed";
-                config.method = method;
-                config.spot = count / 2;
-                config.point = count / 2;
-                config.ownLights = true;
-                config.constantDensity = constantDensity;
-                config.shadows = shadowsOff();
-                configs.push_back(config);
+                for (render::LightListForm form : benchListForms(method, quick)) {
+                    BenchConfig config;
+                    config.series = constantDensity ? "scale" : "scale-fixed";
+                    config.method = method;
+                    config.lightLists = form;
+                    config.spot = count / 2;
+                    config.point = count / 2;
+                    config.ownLights = true;
+                    config.constantDensity = constantDensity;
+                    config.shadows = shadowsOff();
+                    configs.push_back(config);
+                }
             }
         }
     }
@@ -227,19 +241,22 @@ void addTriangleSeries(std::vector<BenchConfig>& configs, bool quick) {
 // --quick: the quick methods at the run's size, coarse pass on.
 void addMethodSeries(std::vector<BenchConfig>& configs, bool quick) {
     for (render::LightListMethod method : benchMethods(quick)) {
-        for (bool coarse : {true, false}) {
-            if (!coarse && (quick || !render::usesLightGrid(method))) continue;
-            BenchConfig config;
-            config.series = "methods";
-            config.scene = &kDefaultBuiltinScene;
-            config.method = method;
-            config.shadows = shadowsOff();
-            config.coarseTiles = coarse;
-            if (!quick) {
-                config.width = 1280;
-                config.height = 720;
+        for (render::LightListForm form : benchListForms(method, quick)) {
+            for (bool coarse : {true, false}) {
+                if (!coarse && (quick || !render::usesLightGrid(method))) continue;
+                BenchConfig config;
+                config.series = "methods";
+                config.scene = &kDefaultBuiltinScene;
+                config.method = method;
+                config.lightLists = form;
+                config.shadows = shadowsOff();
+                config.coarseTiles = coarse;
+                if (!quick) {
+                    config.width = 1280;
+                    config.height = 720;
+                }
+                configs.push_back(config);
             }
-            configs.push_back(config);
         }
     }
 }
@@ -252,9 +269,9 @@ const std::vector<BenchSeries>& benchSeries() {
                     joinNames(render::methodNames(), ", ") + " (shadows off)"},
         {"spot-only", "spot lights 8-64 alone, as mix"},
         {"point-only", "point lights 4-32 alone, as mix"},
-        {"scale", "lights 16-8192, half spots, at constant density (--light-range auto), x every method "
-                  "(shadows off)"},
-        {"scale-fixed", "lights 16-8192, half spots, at the fixed range, x every method (shadows off)"},
+        {"scale", "lights 16-8192, half spots, at constant density (--light-range auto), x every method and "
+                  "list form (" + joinNames(render::lightListFormNames()) + ", shadows off)"},
+        {"scale-fixed", "lights 16-8192, half spots, at the fixed range, x every method and list form (shadows off)"},
         {"range", "64 + 32 lights at ranges 0.1-0.7 x the scene's diagonal (overlap alone), x every method"},
         {"pixels", "64 + 32 lights at 320x180 to 2560x1440 (pixels alone), x every method"},
         {"shadows", "64 + 32 lights, shadows off and on, per method"},
@@ -264,8 +281,8 @@ const std::vector<BenchSeries>& benchSeries() {
                                " at auto resolution, validated against Embree"},
         {"cascades", "the outdoor scene's sun: 1-4 cascades x 512, 1024, 2048 x the texel filters, validated"},
         {"triangles", "the rooms scene at 10^4..10^7 triangles x every method, with peak memory"},
-        {"methods", "the default scene's own lights at 1280x720, shadows off, x every method, the grid methods also "
-                    "without their coarse pass"},
+        {"methods", "the default scene's own lights at 1280x720, shadows off, x every method and list form, the "
+                    "grid methods also without their coarse pass"},
         {"failures", "the failure study (failures.csv)"},
     };
     return series;
@@ -305,6 +322,7 @@ std::string benchConfigName(const BenchConfig& c) {
     }
     if (c.width) s << "-" << c.width << "x" << c.height;
     if (!c.coarseTiles) s << "-no-coarse";
+    if (c.lightLists != render::LightListForm::Masks) s << "-" << render::lightListFormName(c.lightLists);
     if (c.shadows.enabled) {
         s << "-shadows-" << shadowResolutionName(c.shadows) << "-" << shadowFormatName(c.shadows.format) << "-"
           << shadowFilterName(c.shadows.filter) << "-" << pointShadowLayoutName(c.shadows.pointLayout);

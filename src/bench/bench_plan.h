@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lights/shadow_setup.h"
+#include "render/light_list_form.h"
 #include "render/light_list_method.h"
 #include "scene/builtin_scenes.h"
 
@@ -46,6 +47,7 @@ struct BenchConfig {
     ShadowSettings shadows;
     bool validateShadows = false;
     bool coarseTiles = true;  // the grid methods' coarse pass (--coarse-tiles)
+    render::LightListForm lightLists = render::LightListForm::Masks;  // the grid methods' (--light-lists)
 };
 
 struct BenchSeries {

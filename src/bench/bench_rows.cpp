@@ -37,6 +37,7 @@ std::vector<std::string> benchColumns(const std::vector<std::string>& passes) {
                                         "shadows",       "shadow_res",      "shadow_budget_mib", "shadow_format",
                                         "shadow_filter", "point_layout",    "cascades",       "shadowed_spots",
                                         "shadowed_points", "coarse_tiles",  "tile_kernel",    "tile_threads",
+                                        "light_lists",
                                         "rounds",        "best_of"};
     std::vector<std::string> timed = passes;
     timed.emplace_back("total");
@@ -48,7 +49,7 @@ std::vector<std::string> benchColumns(const std::vector<std::string>& passes) {
           "filter_taps_per_pixel", "shadow_views", "shadow_texels_rendered", "shadow_filter_taps", "objects_in_view",
           "camera_triangles", "depth_triangles", "forward_triangles", "transparent_triangles", "shadow_triangles",
           "depth_draws", "forward_draws", "transparent_draws", "shadow_draws", "shadow_draws_max",
-          "shadow_memory_bytes", "light_grid_bytes", "light_grid_floor_bytes", "scene_bytes", "frame_bytes", "device_bytes", "peak_rss_bytes",
+          "shadow_memory_bytes", "light_grid_bytes", "light_list_bytes", "light_grid_floor_bytes", "scene_bytes", "frame_bytes", "device_bytes", "peak_rss_bytes",
           "efficiency", "floor_efficiency", "missed_energy", "image_error", "pixels_off", "shadow_reduced_views", "shadow_misclassified",
           "shadow_misclassified_all", "shadow_misclassified_1px", "shadow_false_shadow", "shadow_false_lit",
           "sun_misclassified", "sun_misclassified_1px"}) {
@@ -73,6 +74,7 @@ void addConfiguration(BenchRow& row, const BenchConfig& config, const Scene& sce
     if (render::usesLightGrid(config.method)) {
         row["tile_kernel"] = renderer.gridLayout().subgroupKernel ? "subgroup" : "shared-memory";
         row["tile_threads"] = std::to_string(renderer.gridLayout().tileThreads);
+        row["light_lists"] = render::lightListFormName(settings.lightLists);
     }
     row["spot"] = std::to_string(lightsOfType(scene, LightType::Spot));
     row["point"] = std::to_string(lightsOfType(scene, LightType::Point));
@@ -168,6 +170,7 @@ void addCounters(BenchRow& row, render::Renderer& renderer, const LightStatsImag
     const render::DeviceMemory memory = renderer.deviceMemory();
     row["shadow_memory_bytes"] = std::to_string(memory.shadows);
     row["light_grid_bytes"] = std::to_string(memory.lightGrid);
+    row["light_list_bytes"] = std::to_string(renderer.lightListBytes());
     row["light_grid_floor_bytes"] = std::to_string(report::lightGridFloorBytes(renderer));
     row["scene_bytes"] = std::to_string(memory.scene);
     row["frame_bytes"] = std::to_string(memory.frame);

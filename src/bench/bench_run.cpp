@@ -81,6 +81,7 @@ BenchRun::Measurement BenchRun::prepare(const BenchConfig& config) {
     }
     settings.method = config.method;
     settings.coarseTiles = config.coarseTiles;
+    settings.lightLists = config.lightLists;
     // Every light the configuration has (at least the design notes' 64 + 32).
     settings.maxLights = {std::max<uint32_t>(settings.maxLights.spots, config.spot),
                           std::max<uint32_t>(settings.maxLights.points, config.point)};

@@ -58,6 +58,8 @@ nlohmann::json frameStatsJson(const render::FrameResult& result, const render::R
                        {"scene_bytes", memory.scene},
                        {"shadow_bytes", memory.shadows},
                        {"light_grid_bytes", memory.lightGrid},
+                       // The lists alone (masks, or headers and indices), beside the floor.
+                       {"light_list_bytes", renderer.lightListBytes()},
                        {"frame_bytes", memory.frame}};
     return stats;
 }
@@ -72,6 +74,7 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
     const render::RenderSettings& settings = renderer.settings();
     nlohmann::json json = {
         {"method", render::methodName(settings.method)},
+        {"light_lists", render::usesLightGrid(settings.method) ? render::lightListFormName(settings.lightLists) : ""},
         {"tested_per_pixel", stats.testedPerPixel},
         {"affecting_per_pixel", stats.affectingPerPixel},
         // The shadow work of the method's lights: filtered reads and the taps they issued.

@@ -32,6 +32,18 @@ render::RenderSettings settingsFor(LightListMethod method, uint32_t width = 256,
     return settings;
 }
 
+// The index-array words the lists of a grid's cells take (culling.h, lightListWords), from its
+// masks: what the counting frame must have sized the array to.
+uint64_t indexListWords(const std::vector<uint32_t>& masks, uint32_t gridWords) {
+    uint64_t words = 0;
+    for (size_t cell = 0; cell < masks.size() / gridWords; ++cell) {
+        uint32_t count = 0;
+        for (uint32_t w = 0; w < gridWords; ++w) count += uint32_t(std::popcount(masks[cell * gridWords + w]));
+        if (count > 0) words += gpu::lightListWords(count);
+    }
+    return words;
+}
+
 ImageRgba8 renderImage(vk::Context& context, const Scene& scene, const render::RenderSettings& settings) {
     render::Renderer renderer(context, scene, settings);
     return renderer.render(1, 0).image;
@@ -371,6 +383,9 @@ TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
     // (foreground before background in one tile) and on the outdoor street (sky between objects).
     // Sanitized: the default scene at 16 with the coarse pass, 13 without and 64 invocations.
     // (Renderers are costly to make on lavapipe: the cases are few.)
+    // Every kernel also writes index lists (--light-lists indices): read back as masks they must be
+    // these masks word for word, their image the masks' image, and the index array exactly as long
+    // as the lists (the counting frame's size: no word claimed twice or left over).
     auto context = testing::makeValidatedContext();
     const bool subgroupArithmetic = context->computeSubgroupArithmetic();
     struct Case {
@@ -392,6 +407,7 @@ TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
     };
     size_t comparedWords = 0;
     size_t setWords = 0;
+    size_t indexListsCompared = 0;
     std::set<LightListMethod> subgroupMethods;
     for (const auto& [named, cases] : runs) {
         for (LightListMethod method : render::gridMethods()) {
@@ -402,28 +418,39 @@ TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
                 settings.subgroupTiles = false;
                 settings.tileThreads = 64;
                 render::Renderer reference(*context, named.scene, settings);
-                reference.render(1, 0);
+                const ImageRgba8 expectedImage = reference.render(1, 0).image;
                 const std::vector<uint32_t> expected = reference.readLightGrid();
                 for (size_t i = 0; i < expected.size(); ++i) setWords += expected[i] != 0 ? 1 : 0;
-                // The default kernel, and also the shared-memory one at the subgroup size.
+                // The default kernel, and also the shared-memory one at the subgroup size, each
+                // writing both list forms.
                 for (bool subgroupTiles : {true, false}) {
-                    settings.subgroupTiles = subgroupTiles;
-                    settings.tileThreads = c.threads;
-                    render::Renderer renderer(*context, named.scene, settings);
-                    const render::LightGridLayout& layout = renderer.gridLayout();
-                    if (c.threads == 64 && !layout.subgroupKernel) break;  // that is the reference
-                    SCOPED_TRACE(named.name + " / " + render::methodName(method) + " tile " + std::to_string(c.tileSize) +
-                                 (c.coarse ? "" : ", no coarse pass") + ", " + std::to_string(layout.tileThreads) +
-                                 " invocations" + (layout.subgroupKernel ? ", subgroup kernel" : ""));
-                    EXPECT_EQ(layout.tileThreads, c.threads ? c.threads : std::clamp(context->subgroupSize(), 4u, 64u));
-                    if (layout.subgroupKernel) subgroupMethods.insert(method);
-                    renderer.render(1, 0);
-                    const std::vector<uint32_t> actual = renderer.readLightGrid();
-                    ASSERT_EQ(actual.size(), expected.size());
-                    size_t differing = 0;
-                    for (size_t i = 0; i < actual.size(); ++i) differing += actual[i] != expected[i] ? 1 : 0;
-                    EXPECT_EQ(differing, 0u);
-                    comparedWords += actual.size();
+                    for (const render::LightListFormInfo& form : render::kLightListForms) {
+                        settings.subgroupTiles = subgroupTiles;
+                        settings.tileThreads = c.threads;
+                        settings.lightLists = form.value;
+                        render::Renderer renderer(*context, named.scene, settings);
+                        const render::LightGridLayout& layout = renderer.gridLayout();
+                        if (c.threads == 64 && !layout.subgroupKernel) break;  // that is the reference
+                        SCOPED_TRACE(named.name + " / " + render::methodName(method) + " tile " + std::to_string(c.tileSize) +
+                                     (c.coarse ? "" : ", no coarse pass") + ", " + std::to_string(layout.tileThreads) +
+                                     " invocations" + (layout.subgroupKernel ? ", subgroup kernel" : "") + ", " + form.name);
+                        EXPECT_EQ(layout.tileThreads, c.threads ? c.threads : std::clamp(context->subgroupSize(), 4u, 64u));
+                        if (layout.subgroupKernel) subgroupMethods.insert(method);
+                        const ImageRgba8 image = renderer.render(1, 0).image;
+                        const std::vector<uint32_t> actual = renderer.readLightGrid();
+                        ASSERT_EQ(actual.size(), expected.size());
+                        size_t differing = 0;
+                        for (size_t i = 0; i < actual.size(); ++i) differing += actual[i] != expected[i] ? 1 : 0;
+                        EXPECT_EQ(differing, 0u);
+                        comparedWords += actual.size();
+                        if (layout.indexLists) {
+                            EXPECT_TRUE(image.pixels == expectedImage.pixels);
+                            EXPECT_EQ(renderer.readLightIndexWordsUsed(), indexListWords(expected, layout.gridWords));
+                            EXPECT_EQ(renderer.lightListBytes(),
+                                      4 * (uint64_t(layout.cellCount()) + 1 + std::max<uint64_t>(indexListWords(expected, layout.gridWords), 1)));
+                            ++indexListsCompared;
+                        }
+                    }
                 }
             }
         }
@@ -431,6 +458,7 @@ TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
     // Not vacuous: grids with lights were compared, and where the device has subgroup arithmetic
     // every grid method ran a subgroup kernel.
     EXPECT_GT(setWords, comparedWords / 20);
+    EXPECT_GT(indexListsCompared, 2 * render::gridMethods().size());
     // every grid method whose culling flags a one-subgroup kernel implements ran one.
     if (subgroupArithmetic) {
         std::set<LightListMethod> expected;

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "lights/shadow_filters.h"
 #include "lights/shadow_setup.h"
+#include "render/light_list_form.h"
 #include "render/light_list_method.h"
 
 namespace punctual {
@@ -80,6 +81,18 @@ TEST(VariantTables, PointShadowLayoutNamesRoundTrip) {
     EXPECT_STREQ(pointShadowLayoutName(PointShadowLayout(PUNCTUAL_POINT_SHADOW_LAYOUT_COUNT)), "unknown");
 }
 
+TEST(VariantTables, LightListFormNamesRoundTrip) {
+    EXPECT_EQ(render::lightListFormNames(), tableNames(render::kLightListForms));
+    expectPlainUniqueNames(render::kLightListForms);
+    for (const render::LightListFormInfo& form : render::kLightListForms) {
+        EXPECT_EQ(render::parseLightListForm(form.name), form.value);
+        EXPECT_STREQ(render::lightListFormName(form.value), form.name);
+    }
+    EXPECT_STREQ(render::lightListFormName(render::LightListForm(render::kLightListForms.size())), "unknown");
+    EXPECT_EQ(problemOf([](const std::string& n) { render::parseLightListForm(n); }, "bits"),
+              "--light-lists: expected " + joinNames(tableNames(render::kLightListForms)) + ", got 'bits'");
+}
+
 TEST(VariantTables, UnknownNamesFailWithOneLineListingEveryName) {
     // "a, b or c": every name of the table, in its order.
     EXPECT_EQ(joinNames({"a", "b", "c"}), "a, b or c");
@@ -127,6 +140,7 @@ TEST(VariantTables, HelpListsEveryEntryAndTheDefault) {
     expectHelpListsEveryEntry(kShadowFilters, defaults.filter);
     expectHelpListsEveryEntry(kPointShadowLayouts, defaults.pointLayout);
     expectHelpListsEveryEntry(kCascadeBlends, defaults.cascades.blend);
+    expectHelpListsEveryEntry(render::kLightListForms, cli::RenderOptions{}.lightLists);
     // The descriptions line up in one column after the longest name.
     EXPECT_EQ(variantHelp(kPointShadowLayouts, PointShadowLayout::Cube, 2).substr(0, 10), "  cube    ");
 }
@@ -288,6 +302,11 @@ TEST(VariantTables, EveryShadowKernelHasItsShaderCases) {
         }
         EXPECT_TRUE(std::regex_search(body, std::regex("default:\\s*unknownVariant = true;"))) << body;
     }
+}
+
+TEST(VariantTables, EveryLightListFormHasItsForwardShaderCase) {
+    expectEveryConstantHasItsCase(constantsOf(render::kLightListForms, &render::LightListFormInfo::gpu),
+                                  "raster/forward.frag", "LIGHT_LIST_FORM", 1);
 }
 
 TEST(VariantTables, EveryPointShadowLayoutHasItsShaderCase) {

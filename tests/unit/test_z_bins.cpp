@@ -44,6 +44,23 @@ TEST(ZBins, LightsAreSortedByTheirNearestExtent) {
     EXPECT_EQ(bins.sortedLights, (std::vector<uint32_t>{1, 2, 0}));
 }
 
+TEST(ZBins, EachLightsRankIsItsPlaceInDepthOrder) {
+    // Sorted 1, 2, 0 (as above): ranks 2, 0, 1 for packed 0, 1, 2, two 16-bit ranks a word:
+    // word 0 = rank(0) | rank(1) << 16 = 0x00000002, word 1 = rank(2) = 1.
+    const ZBins bins = buildZBins({lightAt(12.0f, 2.0f), lightAt(3.0f, 1.0f), lightAt(7.0f, 2.0f)}, kDepthToView);
+    EXPECT_EQ(bins.rankWords, (std::vector<uint32_t>{0x00000002u, 0x00000001u}));
+    // A light is in a bin's mask exactly where its rank is in the bin's range: the index lists'
+    // test stands for the mask's bit.
+    for (uint32_t b = 0; b < PUNCTUAL_ZBIN_COUNT; ++b) {
+        for (uint32_t light = 0; light < 3; ++light) {
+            const uint32_t rank = gpu::lightListEntry(bins.rankWords[light / 2], light);
+            const bool inRange = rank >= (bins.gpu.binRange[b] & 0xFFFFu) && rank <= (bins.gpu.binRange[b] >> 16);
+            EXPECT_EQ(inRange, (bins.binMask(b)[0] >> light & 1u) != 0u) << "bin " << b << " light " << light;
+        }
+    }
+    EXPECT_EQ(bins.bytes(true), sizeof(gpu::GpuZBins) + 2 * sizeof(uint32_t));
+}
+
 TEST(ZBins, StartsRunFromTheNearPlaneThroughTheLightsExtentLogarithmically) {
     // Extents 2..4 and 8..32 (nearest 2, farthest 32): bin s >= 1 starts at 2 x 16^(s / 64), so bin
     // 16 starts at 2 x 16^(1/4) = 4, bin 32 at 8 and bin 48 at 16.
