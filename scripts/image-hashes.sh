@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Renders every light-list method, shadow filter and point-shadow layout on the default scene,
+# Renders every light-list method (in every list form), shadow filter and point-shadow layout on the default scene,
 # the shipped small room and (where ../shared is present) the Cornell box, and prints one line
 # per image: "<scene> <variant> <sha256>". Run it before and after a change that must not change
 # behaviour and diff the two outputs: every line must match (images are bit-identical run to run).
@@ -21,6 +21,7 @@ variants() {  # OPTION: the names --help lists under it
 }
 methods=($(variants --culling))
 filters=($(variants --shadow-filter))
+forms=($(variants --light-lists))
 [ ${#methods[@]} -gt 1 ] && [ ${#filters[@]} -gt 1 ] || { echo "image-hashes: no variants in render --help" >&2; exit 1; }
 
 scenes=("default:" "small-room:$root/data/small-room.gltf")
@@ -47,6 +48,11 @@ for entry in "${scenes[@]}"; do
     hash_render "$scene_name $method shadows-off" "$scene_path" --culling "$method" --shadows off \
       --heatmap "$work/heat.png"
     hash_render "$scene_name $method shadows-auto" "$scene_path" --culling "$method"
+    # The list forms past the first (the default, hashed above); the same image by design.
+    for form in "${forms[@]:1}"; do
+      hash_render "$scene_name $method lists-$form shadows-off" "$scene_path" --culling "$method" \
+        --light-lists "$form" --shadows off --heatmap "$work/heat.png"
+    done
   done
   # Point shadows in a cube array need one fixed resolution for every face; slices take auto too.
   for filter in "${filters[@]}"; do
