@@ -108,6 +108,10 @@ def read_names(path, header, rows, document=None):
             fell_back.append(key)
     if document and fell_back:
         notes.append(f"results.json lacks {', '.join(fell_back)}; taken from results.csv, sorted.")
+    # The grid methods' list forms, the default first (runs before them had none: no note).
+    forms = document.get("light_lists")
+    names["light_lists"] = (list(forms) if isinstance(forms, list) and all(isinstance(n, str) for n in forms)
+                            else sorted({r.get("light_lists", "") for r in rows} - {""}))
     return names, notes
 
 
@@ -216,9 +220,9 @@ def is_wide(values):
 
 
 def varying_label(row, rows, fields):
-    """A label made of those `fields` whose values differ between `rows`."""
+    """A label made of those `fields` whose values differ between `rows` (empty values left out)."""
     varying = [f for f in fields if len({r.get(f, "") for r in rows}) > 1] or fields[:1]
-    return " ".join(row.get(f, "") for f in varying)
+    return " ".join(row.get(f, "") for f in varying if row.get(f, ""))
 
 
 def pareto_front(points):

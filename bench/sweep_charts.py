@@ -29,7 +29,7 @@ SWEEPS = [
     ("shadow-budget", "shadow budget, MiB", "budget", lambda r: number(r, "shadow_budget_mib")),
 ]
 # Settings besides the method that may vary inside a series: a line per combination.
-LINE_FIELDS = ["method", "shadows", "shadow_res", "shadow_format", "shadow_filter",
+LINE_FIELDS = ["method", "light_lists", "shadows", "shadow_res", "shadow_format", "shadow_filter",
                "point_layout", "cascades"]
 LINE_STYLES = ["-", "--", ":", "-."]
 LIGHT_PANELS = [("mix", "mix (spot:point = 2:1)"), ("spot-only", "spot lights only"),
@@ -79,10 +79,10 @@ def law_text(what, variable, slope):
     return f"{what} ∝ {variable}^{slope:.2f}"
 
 
-def lines_of(rows, methods):
+def lines_of(rows, methods, light_lists=()):
     """[(label, method, rows, variant)]: a line per method and per combination of the other
     settings that vary inside `rows` (`variant` numbers the combination), methods in
-    results.json's order."""
+    results.json's order; a method's list forms in `light_lists`' order (the default first)."""
     fields = [f for f in LINE_FIELDS if len({r.get(f, "") for r in rows}) > 1] or ["method"]
     if "method" not in fields:
         fields = ["method"] + fields
@@ -90,9 +90,14 @@ def lines_of(rows, methods):
     for r in rows:
         keys.setdefault(tuple(r.get(f, "") for f in fields), []).append(r)
     order = method_order(rows, methods)
-    variants = sorted({k[1:] for k in keys})
+    forms = list(light_lists)
+
+    def variant_order(variant):
+        return tuple((forms.index(v) if v in forms else len(forms), v) if f == "light_lists" else (0, v)
+                     for f, v in zip(fields[1:], variant))
+    variants = sorted({k[1:] for k in keys}, key=variant_order)
     result = []
-    for key in sorted(keys, key=lambda k: (order.index(k[0]), k[1:])):
+    for key in sorted(keys, key=lambda k: (order.index(k[0]), variants.index(k[1:]))):
         label = varying_label(keys[key][0], rows, fields) if len(fields) > 1 else key[0]
         result.append((label, key[0], keys[key], variants.index(key[1:])))
     return result
@@ -147,7 +152,7 @@ def chart_sweep(rows, names, series, axis_label, variable, x_of, laws=None, cros
     for ax, column in zip(axes, columns):
         what = column[:-len("_ms")] if column != "total_ms" else "frame"
         values = []
-        lines = lines_of(rs, names["methods"])
+        lines = lines_of(rs, names["methods"], names.get("light_lists", ()))
         for label, method, own, variant in lines:
             slope = fit_slope([(x_of(r), number(r, column)) for r in own if not is_flagged(r)])
             colour, marker = method_style(method, names["methods"])
@@ -178,22 +183,27 @@ def chart_sweep(rows, names, series, axis_label, variable, x_of, laws=None, cros
 
 
 def mark_crossings(ax, lines, x_of, column, series, variable, what, crossovers):
-    """Marks and lists where the lines of two methods (lines_of's, the first of each method)
-    cross in `column`."""
+    """Marks and lists where the lines of two methods (lines_of's, the first of each method: its
+    default list form) cross in `column`, and where a method's list forms cross each other."""
     firsts = {}
     for label, method, own, variant in lines:
-        firsts.setdefault(method, (label, own))
-    methods = list(firsts)
-    for i, a in enumerate(methods):
-        for b in methods[i + 1:]:
-            points = [[(x_of(r), number(r, column)) for r in firsts[m][1] if not is_flagged(r)] for m in (a, b)]
-            for x, y, faster in crossings(*points):
-                below, above = (a, b) if faster == "a" else (b, a)
-                ax.plot([x], [y], marker="x", color="black", markersize=7, linestyle="none")
-                crossovers.append({"series": series, "x": variable, "pass": what, "at": round(x, 4),
-                                   "faster_below": below, "faster_above": above,
-                                   "text": f"{what}: {below} faster below {variable} ≈ {short(x)}, "
-                                           f"{above} above"})
+        firsts.setdefault(method, own)
+    pairs = [(a, b, firsts[a], firsts[b]) for i, a in enumerate(firsts) for b in list(firsts)[i + 1:]]
+    forms = {}
+    for label, method, own, variant in lines:
+        if own[0].get("light_lists", ""):
+            forms.setdefault(method, []).append((f"{method} {own[0]['light_lists']}", own))
+    for method_forms in forms.values():
+        pairs += [(a, b, ra, rb) for i, (a, ra) in enumerate(method_forms) for b, rb in method_forms[i + 1:]]
+    for a, b, rows_a, rows_b in pairs:
+        points = [[(x_of(r), number(r, column)) for r in own if not is_flagged(r)] for own in (rows_a, rows_b)]
+        for x, y, faster in crossings(*points):
+            below, above = (a, b) if faster == "a" else (b, a)
+            ax.plot([x], [y], marker="x", color="black", markersize=7, linestyle="none")
+            crossovers.append({"series": series, "x": variable, "pass": what, "at": round(x, 4),
+                               "faster_below": below, "faster_above": above,
+                               "text": f"{what}: {below} faster below {variable} ≈ {short(x)}, "
+                                       f"{above} above"})
 
 
 def chart_lights_reaching(rows, names):

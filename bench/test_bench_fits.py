@@ -74,6 +74,36 @@ class SlopeTest(unittest.TestCase):
         # 16 x (4^(1/0.9)) lights: brute n/16 meets 4 (n/16)^0.1 at (n/16)^0.9 = 4.
         self.assertAlmostEqual(forward[0]["at"], 16.0 * 4.0 ** (1 / 0.9), places=2)
 
+    def test_list_forms_are_lines_of_their_own_and_cross_within_their_method(self):
+        # Tiled in two list forms (masks, the default, first) beside brute force, which has none:
+        # a line each, labelled by method and form; the forms' laws apart; the crossing of
+        # tiled's own forms listed under their names, and the crossings between methods taken
+        # from the default form. Indices: 2 (n/16)^0.1 + n/1024; masks: 4 (n/16)^0.1.
+        def forward(m, form, n):
+            if m == "brute":
+                return n / 16.0
+            return 4.0 * (n / 16.0) ** 0.1 if form == "masks" else 3.0 * (n / 16.0) ** 0.1 + n / 1024.0
+        rows = [synthetic.row(f"s-{m}-{form}-{n}", "scale", m, n // 2, n // 2, light_lists=form,
+                              forward_ms=forward(m, form, n))
+                for n in (16, 64, 256, 1024, 4096) for m, form in (("brute", ""), ("tiled", "indices"), ("tiled", "masks"))]
+        names = dict(NAMES, light_lists=["masks", "indices"])
+        lines = sweep_charts.lines_of(strings(rows), names["methods"], names["light_lists"])
+        self.assertEqual([label for label, *_ in lines], ["brute", "tiled masks", "tiled indices"])
+        laws, crossed = [], []
+        _, _, function, args = next(c for c in synthetic.plot_results.CHARTS if c[0] == "sweep_scale")
+        function(strings(rows), names, *args, laws=laws, crossovers=crossed)
+        forward_laws = {law["line"]: law["slope"] for law in laws if law["pass"] == "forward"}
+        self.assertAlmostEqual(forward_laws["tiled masks"], 0.1, places=3)
+        self.assertGreater(forward_laws["tiled indices"], 0.1)
+        forward = [c for c in crossed if c["pass"] == "forward"]
+        within = [c for c in forward if c["faster_below"].startswith("tiled ")]
+        self.assertEqual(len(within), 1)
+        self.assertEqual((within[0]["faster_below"], within[0]["faster_above"]), ("tiled indices", "tiled masks"))
+        # Between methods: brute force against tiled's masks line (n / 16 = 4 (n / 16)^0.1).
+        between = [c for c in forward if c["faster_below"] == "brute"]
+        self.assertEqual(len(between), 1)
+        self.assertAlmostEqual(between[0]["at"], 16.0 * 4.0 ** (1 / 0.9), places=2)
+
     def test_pixels_sweep_reports_slope_one(self):
         laws = []
         _, _, function, args = next(c for c in synthetic.plot_results.CHARTS

@@ -476,8 +476,9 @@ class NamesFromResultsJsonTest(unittest.TestCase):
         for r in old_rows:
             r["forward_spread_ms"], r["total_spread_ms"] = r["forward_iqr_ms"], r["total_iqr_ms"]
         write_csv(self.dir, old_rows, columns=OLD_COLUMNS)
+        # (No list forms: an older bench had none, and says nothing of them.)
         expected = {"methods": sorted(METHODS), "shadow_filters": sorted(FILTERS),
-                    "passes": ["culling", "depth", "forward", "shadows"]}
+                    "passes": ["culling", "depth", "forward", "shadows"], "light_lists": []}
         header, rows = plot_results.read_results(os.path.join(self.dir, "results.csv"))
         json_path = os.path.join(self.dir, "results.json")
         # No results.json at all: no note about it.

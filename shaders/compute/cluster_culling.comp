@@ -186,14 +186,16 @@ void main() {
         // Only the lights whose depth extent meets the slice's (depth_range.comp) can pass; the
         // masks go three words at a time (subgroup_tiles.glsl).
         uint cellBase = (tileIndex * SLICE_COUNT + slice) * GRID_WORDS;
+        uvec3 cellTriple;  // the last triple of the cell's masks (index lists of one triple: all of them)
         for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) {  // (uniform)
             uint word = slice * GRID_WORDS + 3u * triple;
             uvec3 lights = laneCandidates(tile, COARSE_TILES, lane, threads, triple) &
                            uvec3(sliceLights[word], 3u * triple + 1u < GRID_WORDS ? sliceLights[word + 1u] : 0u,
                                  3u * triple + 2u < GRID_WORDS ? sliceLights[word + 2u] : 0u);
-            writeCellTriple(cellBase, triple, workgroupMasks(lightsMeetingSegment(lights, triple, segment)), lane);
+            cellTriple = workgroupMasks(lightsMeetingSegment(lights, triple, segment));
+            writeCellTriple(cellBase, triple, cellTriple, lane);
         }
-        if (INDEX_LISTS) writeCellList(tileIndex * SLICE_COUNT + slice);  // (uniform)
+        if (INDEX_LISTS) writeCellList(tileIndex * SLICE_COUNT + slice, cellTriple);  // (uniform)
         float beyond = workgroupMax(part.beyond);
         if (beyond == 0.0) break;  // (uniform)
         PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, beyond, depthRange.sliceStartDepth, SLICE_COUNT);

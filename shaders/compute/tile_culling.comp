@@ -169,7 +169,8 @@ uvec3 lightsMeetingOccupiedCells(uvec3 masks, uint triple, uvec2 tile, uvec2 til
                                                ndcMin, ndcMax, pixelToNdc);                                             \
         }                                                                                                               \
         /* 4. The tile's cell, always written (an empty tile's masks are zero). */                                      \
-        writeCellTriple(cellBase, triple, workgroupMasks(masks), lane);                                                 \
+        cellTriple = workgroupMasks(masks);                                                                             \
+        writeCellTriple(cellBase, triple, cellTriple, lane);                                                            \
     }
 
 void main() {
@@ -202,6 +203,7 @@ void main() {
 
     uint tileIndex = tile.y * frame.lightGrid.y + tile.x;
     uint cellBase = tileIndex * GRID_WORDS;
+    uvec3 cellTriple;  // the last triple of the tile's masks (index lists of one triple: all of them)
     if (GRID_WORDS <= 3u) {
         // Up to the design notes' 96 lights: one triple, with no loop around it (measured on
         // lavapipe: the one-trip loop cost tiled-2.5d's pass 20%, 12.1 -> 14.7 ms at 1280x720).
@@ -209,5 +211,5 @@ void main() {
     } else {
         for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) PUNCTUAL_CULL_WORD_TRIPLE(triple)  // (uniform)
     }
-    if (INDEX_LISTS) writeCellList(tileIndex);  // (uniform)
+    if (INDEX_LISTS) writeCellList(tileIndex, cellTriple);  // (uniform)
 }

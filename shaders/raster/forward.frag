@@ -225,6 +225,7 @@ void discardWhatThePrepassDropped(GpuMaterial material, bool frontFacing, float 
 struct CellWords {
     uint cellBase;  // the pixel's cell's first word in lightGrid (index lists: its header)
     uint bin;       // GRID_ZBINS: its z-bin
+    uint binBase;   // GRID_ZBINS with masks: its z-bin's first word in zBinWords
 };
 
 CellWords pixelCellWords() {
@@ -233,13 +234,13 @@ CellWords pixelCellWords() {
         PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(bin, gl_FragCoord.z, zBins.binStartDepth, PUNCTUAL_ZBIN_COUNT);
     }
     uint cellWords = LIGHT_LIST_FORM == PUNCTUAL_LIGHT_LIST_INDICES ? 1u : GRID_WORDS;
-    return CellWords(pixelGridCell() * cellWords, bin);
+    return CellWords(pixelGridCell() * cellWords, bin, bin * GRID_WORDS);
 }
 
 uint cellWord(CellWords cell, uint word) {
     if (word >= GRID_WORDS) return 0u;
     uint bits = lightGrid[cell.cellBase + word];
-    return LIGHT_SOURCE == PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS ? bits & zBinWords[cell.bin * GRID_WORDS + word] : bits;
+    return LIGHT_SOURCE == PUNCTUAL_LIGHT_SOURCE_GRID_ZBINS ? bits & zBinWords[cell.binBase + word] : bits;
 }
 
 // Index lists: whether light `light` of the cell's list is in the pixel's z-bin (GRID_ZBINS): its

@@ -49,7 +49,7 @@
 // width x height) depth of the alphaMode BLEND surfaces in front of the opaque ones; 0 and
 // 0xFFFFFFFF where there are none. Written by transparent_depth.frag, read by the culling kernels.
 #define PUNCTUAL_BINDING_TRANSPARENT_DEPTH 16
-#define PUNCTUAL_BINDING_ZBINS 17             // GpuZBins, then each bin's mask (GRID_WORDS words a bin; lights/z_bins.h)
+#define PUNCTUAL_BINDING_ZBINS 17             // GpuZBins, then each bin's mask or each light's rank (lights/z_bins.h)
 #define PUNCTUAL_BINDING_COARSE_GRID 18       // per coarse tile: GRID_WORDS mask words, as the light grid's (coarse_culling.comp)
 // Index lists (--light-lists indices): the words used, then the cells' lists of 16-bit light
 // indices, two a word (culling.h, "Index lists"); one word with masks.
@@ -285,7 +285,8 @@ struct GpuDepthRange {
 // put a depth in the same bin. binRange[b]: the bin's range of depth-sorted light indices, first |
 // last << 16 (16-bit indices, as Drobot's; first > last: an empty bin). The buffer goes on, after
 // this header, with each bin's range expanded into a packed-order mask (GRID_WORDS words a bin;
-// lightGridWord), which the forward pass ANDs with its tile's.
+// lightGridWord), which the forward pass ANDs with its tile's; or, with index lists, with each
+// light's 16-bit rank in depth order (two a word), which it tests against the bin's range.
 #define PUNCTUAL_ZBIN_COUNT 64u
 struct GpuZBins {
     float binStartDepth[PUNCTUAL_ZBIN_COUNT];

@@ -111,40 +111,63 @@ uvec3 lightsMeetingSegment(uvec3 lights, uint triple, TileVolume segment) {
     return lightsMeetingDepthCell(lights, triple, segment, kAnyDepthCell, 0.0, 0.0);
 }
 
-// Index lists: the cell's mask words, gathered triple by triple for writeCellList (at most 4 KiB,
-// at 16,384 + 16,384 lights).
-shared uint cellListWords[INDEX_LISTS ? GRID_WORDS : 1u];
+// Index lists past one triple: the cell's mask words, gathered triple by triple for writeCellList
+// (at most 4 KiB, at 16,384 + 16,384 lights). One triple (up to the design notes' 96 lights) stays
+// in every lane's registers, as workgroupMasks leaves it: no shared memory, no barrier.
+const bool kCellListShared = INDEX_LISTS && GRID_WORDS > 3u;
+shared uint cellListWords[kCellListShared ? GRID_WORDS : 1u];
 
 // Writes triple `triple` of a cell's masks (lanes 0-2, the words before GRID_WORDS): at `cellBase`
-// of lightGrid, or with index lists into cellListWords.
+// of lightGrid, or with index lists past one triple into cellListWords.
 void writeCellTriple(uint cellBase, uint triple, uvec3 masks, uint lane) {
     uint word = 3u * triple + lane;
     if (lane < 3u && word < GRID_WORDS) {
         uint bits = lane == 0u ? masks.x : (lane == 1u ? masks.y : masks.z);
-        if (INDEX_LISTS) {
-            cellListWords[word] = bits;
-        } else {
+        if (!INDEX_LISTS) {
             lightGrid[cellBase + word] = bits;
+        } else if (kCellListShared) {
+            cellListWords[word] = bits;
         }
     }
 }
 
-// Index lists: cell `cell`'s list (light_lists.glsl) from its words in cellListWords. The first
+// Word `word` of the cell's masks, for writeCellList: from cellListWords, or from `onlyTriple`,
+// the cell's one triple.
+uint cellListWord(uvec3 onlyTriple, uint word) {
+    if (word >= GRID_WORDS) return 0u;
+    if (!kCellListShared) return word == 0u ? onlyTriple.x : (word == 1u ? onlyTriple.y : onlyTriple.z);
+    return cellListWords[word];
+}
+
+// Makes cellListWords' writes visible to the workgroup, and keeps them from being overwritten
+// before they are read: a subgroup barrier where the workgroup is one subgroup (lavapipe runs a
+// workgroup barrier as a coroutine switch), else a workgroup barrier. (Uniform control flow.)
+void cellListBarrier() {
+    if (!kCellListShared) return;
+    if (gl_NumSubgroups == 1u) {
+        subgroupMemoryBarrierShared();
+        subgroupBarrier();
+    } else {
+        memoryBarrierShared();
+        barrier();
+    }
+}
+
+// Index lists: cell `cell`'s list (light_lists.glsl) from its mask words (cellListWord). The first
 // subgroup writes it, each lane every `lanes`-th word of the masks: a sum over the lanes gives the
 // count, one lane claims the list's words, and per round of words an exclusive sum gives each
 // word's first entry, so the lanes write disjoint words of the list. A word of the list holds two
 // entries: a lane whose first light is an odd entry pairs it with the entry before, the last light
 // of the nearest earlier word with any (an exclusive max over the lanes, since lights ascend with
-// the words), or the count for the list's first light. Called in uniform control flow: the
-// barriers make the words visible, and keep the next cell from overwriting them before they are read.
-void writeCellList(uint cell) {
-    memoryBarrierShared();
-    barrier();
+// the words), or the count for the list's first light. `onlyTriple`: the cell's masks where they
+// are one triple (cellListWord). Called in uniform control flow (cellListBarrier).
+void writeCellList(uint cell, uvec3 onlyTriple) {
+    cellListBarrier();
     if (gl_SubgroupID == 0u) {
         uint lanes = subgroupAdd(1u);
         uint lane = subgroupExclusiveAdd(1u);
         uint count = 0u;
-        for (uint word = lane; word < GRID_WORDS; word += lanes) count += bitCount(cellListWords[word]);
+        for (uint word = lane; word < GRID_WORDS; word += lanes) count += bitCount(cellListWord(onlyTriple, word));
         count = subgroupAdd(count);
         uint start = subgroupMax(subgroupElect() ? claimLightList(count) : 0u);
         if (subgroupElect()) lightGrid[cell] = start;
@@ -152,7 +175,7 @@ void writeCellList(uint cell) {
         uint written = 0u;    // entries 1 .. written are placed
         for (uint first = 0u; start < PUNCTUAL_LIGHT_LIST_OVERFLOW && first < GRID_WORDS; first += lanes) {  // (uniform)
             uint word = first + lane;
-            uint bits = word < GRID_WORDS ? cellListWords[word] : 0u;
+            uint bits = cellListWord(onlyTriple, word);
             uint lastPlusOne = bits != 0u ? lightGridFirstLight(word) + uint(findMSB(bits)) + 1u : 0u;
             uint entry = written + subgroupExclusiveAdd(bitCount(bits));  // the entry before this word's first
             uint earlier = subgroupExclusiveMax(lastPlusOne);
@@ -167,7 +190,7 @@ void writeCellList(uint cell) {
             }
         }
     }
-    barrier();
+    cellListBarrier();
 }
 
 // The geometry a pixel shades, as a depth span (nearest, farthest): a pixel under transparent

@@ -199,6 +199,7 @@ nlohmann::json resultsDocument(const vk::Context& context, const Scene& scene, c
             {"size", {{"width", options.width}, {"height", options.height}}},
             {"quick", bench.quick},
             {"methods", render::methodNames()},
+            {"light_lists", render::lightListFormNames()},
             {"shadow_filters", shadowFilterNames()},
             {"point_layouts", pointShadowLayoutNames()},
             {"passes", record.passes},

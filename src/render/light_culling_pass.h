@@ -11,8 +11,9 @@
 // (and lists each slice's lights by depth); then cluster_culling.comp (one subgroup a tile, where
 // the device allows; else light_culling.comp) culls each tile's occupied slices. The range and
 // coarse passes run side by side, behind one barrier. The light grid holds gridWords words per cell
-// (one bit per light the frame keeps) and is sized to the frame's real tile count (times the
-// slices for clustered).
+// (one bit per light the frame keeps), or with index lists one header word per cell and an index
+// array as long as the frame's lists (culling.h), and is sized to the frame's real tile count
+// (times the slices for clustered).
 #include <cstdint>
 #include <vector>
 
