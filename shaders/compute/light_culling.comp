@@ -517,6 +517,43 @@ void writeTileLists(uvec2 tile, uint thread, bool counting, bool lastChunk, bool
     }
 }
 
+// Steps 3-4 over the lights, a chunk at a time; with index lists over several chunks, a counting
+// pass, then a writing pass (see the top). The first chunk's state was cleared, and its candidates
+// listed, with the depths. Called in uniform control flow (barriers).
+void cullChunks(uvec2 tile, uint thread, uint lightCount, bool occupied, TileVolume wholeTile, float maskNear,
+                float maskScale) {
+    uint listPasses = INDEX_LISTS && GRID_WORDS > kChunkWords ? 2u : 1u;
+    for (uint listPass = 0u; listPass < listPasses; ++listPass) {
+        for (chunkFirstWord = 0u; chunkFirstWord < GRID_WORDS; chunkFirstWord += kChunkWords) {
+            chunkWords = min(kChunkWords, GRID_WORDS - chunkFirstWord);
+            if (chunkFirstWord > 0u || listPass > 0u) {
+                barrier();  // the last chunk's masks written out
+                clearChunkState(thread);
+                barrier();
+                if (COARSE_TILES > 0u) {
+                    listCandidates(tile, thread, lightCount);
+                    barrier();
+                }
+            }
+            // 3. The chunk's lights: against the whole tile, then (clustered) against each occupied slice.
+            if (occupied) testCandidates(thread, lightCount, wholeTile, maskNear, maskScale);
+            if (SLICE_COUNT > 1u) {
+                barrier();
+                testSlices(thread);
+            }
+            barrier();
+
+            // 4. The tile's cells out (the chunk's words).
+            if (INDEX_LISTS) {
+                writeTileLists(tile, thread, listPass == 0u, chunkFirstWord + kChunkWords >= GRID_WORDS,
+                               listPass + 1u == listPasses);
+            } else {
+                writeTileCells(tile, thread);
+            }
+        }
+    }
+}
+
 void main() {
     uint thread = gl_LocalInvocationIndex;
     uint lightCount = frame.spotCount + frame.pointCount;
@@ -574,35 +611,5 @@ void main() {
         wholeTile = tileVolume;
     }
 
-    // Index lists over several chunks: a counting pass, then a writing pass (see the top).
-    uint listPasses = INDEX_LISTS && GRID_WORDS > kChunkWords ? 2u : 1u;
-    for (uint listPass = 0u; listPass < listPasses; ++listPass) {
-        for (chunkFirstWord = 0u; chunkFirstWord < GRID_WORDS; chunkFirstWord += kChunkWords) {
-            chunkWords = min(kChunkWords, GRID_WORDS - chunkFirstWord);
-            if (chunkFirstWord > 0u || listPass > 0u) {  // (the first chunk's state was cleared, its candidates listed, with the depths)
-                barrier();  // the last chunk's masks written out
-                clearChunkState(thread);
-                barrier();
-                if (COARSE_TILES > 0u) {
-                    listCandidates(tile, thread, lightCount);
-                    barrier();
-                }
-            }
-            // 3. The chunk's lights: against the whole tile, then (clustered) against each occupied slice.
-            if (occupied) testCandidates(thread, lightCount, wholeTile, maskNear, maskScale);
-            if (SLICE_COUNT > 1u) {
-                barrier();
-                testSlices(thread);
-            }
-            barrier();
-
-            // 4. The tile's cells out (the chunk's words).
-            if (INDEX_LISTS) {
-                writeTileLists(tile, thread, listPass == 0u, chunkFirstWord + kChunkWords >= GRID_WORDS,
-                               listPass + 1u == listPasses);
-            } else {
-                writeTileCells(tile, thread);
-            }
-        }
-    }
+    cullChunks(tile, thread, lightCount, occupied, wholeTile, maskNear, maskScale);
 }

@@ -44,6 +44,40 @@ uint64_t indexListWords(const std::vector<uint32_t>& masks, uint32_t gridWords) 
     return words;
 }
 
+// One kernel's run against the reference grid: its grid read back as masks must be `expected` word
+// for word; with index lists also its image `expectedImage`, and its index array exactly as long
+// as the lists (indexListWords).
+struct KernelRun {
+    bool subgroupKernel = false;
+    uint32_t tileThreads = 0;
+    bool indexLists = false;
+    size_t comparedWords = 0;
+};
+
+KernelRun compareKernelGrid(vk::Context& context, const Scene& scene, const render::RenderSettings& settings,
+                            const std::string& trace, const std::vector<uint32_t>& expected, const ImageRgba8& expectedImage) {
+    render::Renderer renderer(context, scene, settings);
+    const render::LightGridLayout& layout = renderer.gridLayout();
+    const KernelRun run{layout.subgroupKernel, layout.tileThreads, layout.indexLists, expected.size()};
+    // The 64-invocation reference's own settings: nothing to compare.
+    if (settings.tileThreads == 64 && !layout.subgroupKernel) return run;
+    SCOPED_TRACE(trace + ", " + std::to_string(layout.tileThreads) + " invocations" +
+                 (layout.subgroupKernel ? ", subgroup kernel" : ""));
+    const ImageRgba8 image = renderer.render(1, 0).image;
+    const std::vector<uint32_t> actual = renderer.readLightGrid();
+    EXPECT_EQ(actual.size(), expected.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < std::min(actual.size(), expected.size()); ++i) differing += actual[i] != expected[i] ? 1 : 0;
+    EXPECT_EQ(differing, 0u);
+    if (layout.indexLists) {
+        EXPECT_TRUE(image.pixels == expectedImage.pixels);
+        const uint64_t words = indexListWords(expected, layout.gridWords);
+        EXPECT_EQ(renderer.readLightIndexWordsUsed(), words);
+        EXPECT_EQ(renderer.lightListBytes(), 4 * (uint64_t(layout.cellCount()) + 1 + std::max<uint64_t>(words, 1)));
+    }
+    return run;
+}
+
 ImageRgba8 renderImage(vk::Context& context, const Scene& scene, const render::RenderSettings& settings) {
     render::Renderer renderer(context, scene, settings);
     return renderer.render(1, 0).image;
@@ -428,28 +462,15 @@ TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
                         settings.subgroupTiles = subgroupTiles;
                         settings.tileThreads = c.threads;
                         settings.lightLists = form.value;
-                        render::Renderer renderer(*context, named.scene, settings);
-                        const render::LightGridLayout& layout = renderer.gridLayout();
-                        if (c.threads == 64 && !layout.subgroupKernel) break;  // that is the reference
-                        SCOPED_TRACE(named.name + " / " + render::methodName(method) + " tile " + std::to_string(c.tileSize) +
-                                     (c.coarse ? "" : ", no coarse pass") + ", " + std::to_string(layout.tileThreads) +
-                                     " invocations" + (layout.subgroupKernel ? ", subgroup kernel" : "") + ", " + form.name);
-                        EXPECT_EQ(layout.tileThreads, c.threads ? c.threads : std::clamp(context->subgroupSize(), 4u, 64u));
-                        if (layout.subgroupKernel) subgroupMethods.insert(method);
-                        const ImageRgba8 image = renderer.render(1, 0).image;
-                        const std::vector<uint32_t> actual = renderer.readLightGrid();
-                        ASSERT_EQ(actual.size(), expected.size());
-                        size_t differing = 0;
-                        for (size_t i = 0; i < actual.size(); ++i) differing += actual[i] != expected[i] ? 1 : 0;
-                        EXPECT_EQ(differing, 0u);
-                        comparedWords += actual.size();
-                        if (layout.indexLists) {
-                            EXPECT_TRUE(image.pixels == expectedImage.pixels);
-                            EXPECT_EQ(renderer.readLightIndexWordsUsed(), indexListWords(expected, layout.gridWords));
-                            EXPECT_EQ(renderer.lightListBytes(),
-                                      4 * (uint64_t(layout.cellCount()) + 1 + std::max<uint64_t>(indexListWords(expected, layout.gridWords), 1)));
-                            ++indexListsCompared;
-                        }
+                        const std::string trace = named.name + " / " + render::methodName(method) + " tile " +
+                                                  std::to_string(c.tileSize) + (c.coarse ? "" : ", no coarse pass") +
+                                                  ", " + form.name;
+                        const KernelRun run = compareKernelGrid(*context, named.scene, settings, trace, expected, expectedImage);
+                        if (c.threads == 64 && !run.subgroupKernel) break;  // that is the reference
+                        EXPECT_EQ(run.tileThreads, c.threads ? c.threads : std::clamp(context->subgroupSize(), 4u, 64u));
+                        if (run.subgroupKernel) subgroupMethods.insert(method);
+                        comparedWords += run.comparedWords;
+                        indexListsCompared += run.indexLists ? 1 : 0;
                     }
                 }
             }
