@@ -98,7 +98,7 @@ struct Renderer::Resources {
         variant.tileSize = grid.tileSize;
         variant.slices = grid.slices;
         variant.gridWords = grid.gridWords;
-        variant.listForm = grid.indexLists ? PUNCTUAL_LIGHT_LIST_INDICES : PUNCTUAL_LIGHT_LIST_MASKS;
+        variant.listForm = grid.listForm();
         variant.writeLightStats = stats;
         variant.shadows = settings.shadows.enabled;
         const ShadowFilterInfo& filter = shadowFilterInfo(settings.shadows.filter);
