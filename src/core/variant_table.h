@@ -82,6 +82,13 @@ constexpr const Entry* findVariant(const std::array<Entry, N>& table, decltype(E
     return nullptr;
 }
 
+// The name of `value`'s entry; "unknown" for a value outside the table (a cast from a bad integer).
+template <typename Entry, size_t N>
+constexpr const char* variantName(const std::array<Entry, N>& table, decltype(Entry::value) value) {
+    const Entry* entry = findVariant(table, value);
+    return entry ? entry->name : "unknown";
+}
+
 // Every name, in table order.
 template <typename Entry, size_t N>
 std::vector<std::string> variantNames(const std::array<Entry, N>& table) {

@@ -38,8 +38,7 @@ static_assert(gpuValuesAreIndices(kCascadeBlends), "entry i is the blend of GPU 
 static_assert(namesAreUnique(kCascadeBlends));
 
 inline const char* cascadeBlendName(CascadeBlend blend) {
-    const CascadeBlendInfo* info = findVariant(kCascadeBlends, blend);
-    return info ? info->name : "unknown";
+    return variantName(kCascadeBlends, blend);
 }
 // Throws Error("--cascade-blend", "expected hard, soft or dither, got 'x'").
 inline CascadeBlend parseCascadeBlend(const std::string& name) {

@@ -94,8 +94,7 @@ inline const ShadowFilterInfo& shadowFilterInfo(ShadowFilter filter) {
 
 // "hw", "tent3", ...; "unknown" for a value outside the table.
 inline const char* shadowFilterName(ShadowFilter filter) {
-    const ShadowFilterInfo* info = findVariant(kShadowFilters, filter);
-    return info ? info->name : "unknown";
+    return variantName(kShadowFilters, filter);
 }
 inline std::vector<std::string> shadowFilterNames() { return variantNames(kShadowFilters); }
 // Throws Error("--shadow-filter", "expected hw, ... or disk, got 'x'").
@@ -105,8 +104,7 @@ inline ShadowFilter parseShadowFilter(const std::string& name) {
 
 // "cube", "slices"; "unknown" for a value outside the table.
 inline const char* pointShadowLayoutName(PointShadowLayout layout) {
-    const PointShadowLayoutInfo* info = findVariant(kPointShadowLayouts, layout);
-    return info ? info->name : "unknown";
+    return variantName(kPointShadowLayouts, layout);
 }
 inline std::vector<std::string> pointShadowLayoutNames() { return variantNames(kPointShadowLayouts); }
 // Throws Error("--point-shadow-layout", "expected cube or slices, got 'x'").

@@ -33,8 +33,7 @@ inline constexpr std::array<TransparentShadowsInfo, 4> kTransparentShadowModes =
 static_assert(namesAreUnique(kTransparentShadowModes));
 
 inline const char* transparentShadowsName(TransparentShadows mode) {
-    const TransparentShadowsInfo* info = findVariant(kTransparentShadowModes, mode);
-    return info ? info->name : "unknown";
+    return variantName(kTransparentShadowModes, mode);
 }
 
 // Throws Error("--transparent-shadows", "expected on, clip, dither or off, got 'x'").

@@ -43,8 +43,7 @@ static_assert(namesAreUnique(kLightListForms));
 
 // "masks", "indices"; "unknown" for a value outside the table.
 inline const char* lightListFormName(LightListForm form) {
-    const LightListFormInfo* info = findVariant(kLightListForms, form);
-    return info ? info->name : "unknown";
+    return variantName(kLightListForms, form);
 }
 inline std::vector<std::string> lightListFormNames() { return variantNames(kLightListForms); }
 // Throws Error("--light-lists", "expected masks or indices, got 'x'").

@@ -87,8 +87,7 @@ static_assert(kLightListMethods[0].isReference, "compare and the bench render th
 
 // "brute", "per-object", ...; "unknown" for a value outside the table.
 inline const char* methodName(LightListMethod method) {
-    const LightListMethodInfo* info = findVariant(kLightListMethods, method);
-    return info ? info->name : "unknown";
+    return variantName(kLightListMethods, method);
 }
 
 // Every method's name, in table order.
