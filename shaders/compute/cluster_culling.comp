@@ -11,7 +11,9 @@
 //     over the workgroup. The slice gets its frustum segment (cut to that rectangle of the tile);
 //     each lane tests its candidates whose depth extent meets the slice's (sliceLights, listed by
 //     depth_range.comp) against it, and the masks are combined with subgroupOr and written (index
-//     lists: gathered, then written as the cell's list, writeCellList).
+//     lists: gathered, then written as the cell's list, writeCellList). Past the design notes' 96
+//     lights, from candidate lists instead (candidate_lists.glsl): the slice's candidates
+//     compacted, tested every lane-th, their bits set in shared memory and written.
 // A light is kept in a cluster where its shapes meet the cluster's segment (culling.h,
 // lightMayTouchTile). There is no whole-tile test first: on the default scene it changed no list
 // (the coarse pass and the slices' depth lists already keep the tests to lights near the tile), and
@@ -57,6 +59,10 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_DEPTH_RANGE) readonly buffer 
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
     uint transparentDepth[];
 };
+
+// Past the design notes' 96 lights a cluster's candidates are compacted and tested as a list
+// (subgroup_tiles.glsl, "Candidate lists").
+const bool CANDIDATE_LISTS = GRID_WORDS > 3u;
 
 #include "depth_blocks.glsl"
 #include "light_lists.glsl"
@@ -186,8 +192,19 @@ void main() {
         // Only the lights whose depth extent meets the slice's (depth_range.comp) can pass; the
         // masks go three words at a time (subgroup_tiles.glsl).
         uint cellBase = (tileIndex * SLICE_COUNT + slice) * GRID_WORDS;
+        if (CANDIDATE_LISTS) {
+            clearCellWords(lane, threads);
+            uint fill = 0u;
+            for (uint first = 0u; first < GRID_WORDS; first += threads) {  // (uniform)
+                uint word = first + lane;
+                uint bits = word < GRID_WORDS ? candidateWord(tile, COARSE_TILES, word) & sliceLights[slice * GRID_WORDS + word] : 0u;
+                fill = addCandidateWord(fill, word, bits, segment, lane, threads);
+            }
+            testCandidates(fill, segment, lane, threads);
+            writeCellFromWords(tileIndex * SLICE_COUNT + slice, cellBase, lane, threads);
+        }
         uvec3 cellTriple;  // the last triple of the cell's masks (index lists of one triple: all of them)
-        for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) {  // (uniform)
+        for (uint triple = 0u; !CANDIDATE_LISTS && triple < (GRID_WORDS + 2u) / 3u; ++triple) {  // (uniform)
             uint word = slice * GRID_WORDS + 3u * triple;
             uvec3 lights = laneCandidates(tile, COARSE_TILES, lane, threads, triple) &
                            uvec3(sliceLights[word], 3u * triple + 1u < GRID_WORDS ? sliceLights[word + 1u] : 0u,
@@ -195,7 +212,7 @@ void main() {
             cellTriple = workgroupMasks(lightsMeetingSegment(lights, triple, segment));
             writeCellTriple(cellBase, triple, cellTriple, lane);
         }
-        if (INDEX_LISTS) writeCellList(tileIndex * SLICE_COUNT + slice, cellTriple);  // (uniform)
+        if (INDEX_LISTS && !CANDIDATE_LISTS) writeCellList(tileIndex * SLICE_COUNT + slice, cellTriple);  // (uniform)
         float beyond = workgroupMax(part.beyond);
         if (beyond == 0.0) break;  // (uniform)
         PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, beyond, depthRange.sliceStartDepth, SLICE_COUNT);

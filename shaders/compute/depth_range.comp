@@ -98,12 +98,16 @@ void cutSlices(uint minDepthBits, uint maxDepthBits) {
         depthRange.sliceStartDepth[slice] = start;
         // The slice's distances: from its start's to the next slice's start's (view distance
         // falls monotonically with depth, also as rounded, so every segment culling makes in the
-        // slice lies within), the first slice from 0 and the last to infinity. Widened by 1e-5 of
-        // themselves, so that a light whose extent comes out an ulp apart here and in the culling
-        // kernel is kept: the kernel's own test (lightMayTouchTile) decides.
-        float sliceNear = slice == 0u ? 0.0 : viewDistanceFromDepth(start, frame.depthToView.xy) * (1.0 - 1e-5);
+        // slice lies within), the first slice from 0 and the last to infinity. Widened as the
+        // segments are (makeTileVolume: by the culling margin), and by 1e-5 more, so that a light
+        // whose extent comes out an ulp apart here and in the culling kernel is kept: the kernel's
+        // own test (lightMayTouchTile) decides. (With the margin left out, a light ending within
+        // it before the slice was dropped here and kept by light_culling.comp's test, which reads
+        // no slice lists: 2,500 lights, tests/gpu/test_culling.cpp.)
+        const float kWider = 1.0 + PUNCTUAL_CULL_RELATIVE_MARGIN;
+        float sliceNear = slice == 0u ? 0.0 : viewDistanceFromDepth(start, frame.depthToView.xy) * ((2.0 - kWider) * (1.0 - 1e-5));
         float sliceFar = slice + 1u < SLICE_COUNT
-                             ? viewDistanceFromDepth(sliceStart(slice + 1u, nearDistance, farDistance), frame.depthToView.xy) * (1.0 + 1e-5)
+                             ? viewDistanceFromDepth(sliceStart(slice + 1u, nearDistance, farDistance), frame.depthToView.xy) * (kWider * (1.0 + 1e-5))
                              : 3.4e38;
         sliceDistances[slice] = vec2(sliceNear, sliceFar);
     }

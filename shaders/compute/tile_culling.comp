@@ -17,6 +17,9 @@
 //     whose depth cells include it and whose shapes meet its segment (until none is left to keep);
 //  4. combine the masks with subgroupOr; lanes 0-2 write them (index lists: gather them, and
 //     after the last triple the first subgroup writes the tile's list, writeCellList).
+// Past the design notes' 96 lights (more than one triple), all but tiled-2.5d do steps 3-4 from
+// candidate lists instead (candidate_lists.glsl): the lanes compact the candidates' indices, test
+// them every lane-th and set the kept ones' bits in shared memory, which is then written.
 // The masks are those of light_culling.comp's one-slice case bit for bit: the same lights are
 // tested against the same segments, whose distances come from the same extreme depths, with the
 // same cells and rectangles.
@@ -57,6 +60,10 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_COARSE_GRID) readonly buffer 
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly buffer TransparentDepthBlock {
     uint transparentDepth[];
 };
+
+// Past the design notes' 96 lights a tile's candidates are compacted and tested as a list
+// (subgroup_tiles.glsl, "Candidate lists"); tiled-2.5d's per-cell tests keep the triples.
+const bool CANDIDATE_LISTS = GRID_WORDS > 3u && !DEPTH_MASK;
 
 #include "depth_blocks.glsl"
 #include "light_lists.glsl"
@@ -203,6 +210,18 @@ void main() {
 
     uint tileIndex = tile.y * frame.lightGrid.y + tile.x;
     uint cellBase = tileIndex * GRID_WORDS;
+    if (CANDIDATE_LISTS) {
+        // 3-4. The candidates, compacted and tested as a list; the tile's cell from their bits.
+        clearCellWords(lane, threads);
+        uint fill = 0u;
+        for (uint first = 0u; occupied && first < GRID_WORDS; first += threads) {  // (uniform)
+            uint word = first + lane;
+            fill = addCandidateWord(fill, word, candidateWord(tile, COARSE_TILES, word), segment, lane, threads);
+        }
+        testCandidates(fill, segment, lane, threads);
+        writeCellFromWords(tileIndex, cellBase, lane, threads);
+        return;
+    }
     uvec3 cellTriple;  // the last triple of the tile's masks (index lists of one triple: all of them)
     if (GRID_WORDS <= 3u) {
         // Up to the design notes' 96 lights: one triple, with no loop around it (measured on

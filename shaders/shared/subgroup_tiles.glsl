@@ -7,6 +7,8 @@
 //
 // Light masks travel three words at a time (a triple: words 3 triple .. 3 triple + 2; words past
 // GRID_WORDS are 0): the kernels loop over a cell's triples, one at the design notes' 96 lights.
+// Past one triple they cull from candidate lists instead (candidate_lists.glsl, which this
+// includes), tiled-2.5d excepted: its per-cell tests take the triples' masks.
 //
 // A workgroup is one subgroup on the devices these kernels are sized for (LightGridLayout::
 // tileThreads is the device's subgroup size), and then needs no shared memory and no barrier. A
@@ -14,8 +16,7 @@
 // gets the right answers: the subgroups then combine through shared memory, behind barriers,
 // which is why every function here that combines must be called in uniform control flow.
 
-// One slot per subgroup, for workgroups of several subgroups only.
-shared uvec4 subgroupResults[PUNCTUAL_MAX_TILE_THREADS];
+#include "candidate_lists.glsl"
 
 // (nearest, farthest) depth over the workgroup: the largest x and the smallest y.
 vec2 workgroupExtent(vec2 extent) {
@@ -63,20 +64,19 @@ uint laneBitsOfWord(uint word, uint lane, uint threads) {
     return (0xFFFFFFFFu / ((1u << threads) - 1u)) << lane;
 }
 
-// Triple `triple` of the mask words (culling.h, lightGridWord) of the tile's candidate lights that
-// lane `lane` of `threads` tests: with the coarse pass (coarseTiles > 0), those its big tile kept;
-// else all of the frame's lights.
-uint laneCandidateWord(uvec2 tile, uint coarseTiles, uint lane, uint threads, uint word) {
+// Word `word` of the masks (culling.h, lightGridWord) of the tile's candidate lights: with the
+// coarse pass (coarseTiles > 0), those its big tile kept; else all of the frame's lights. Then
+// (laneCandidates) the part of triple `triple` that lane `lane` of `threads` tests.
+uint candidateWord(uvec2 tile, uint coarseTiles, uint word) {
     if (word >= GRID_WORDS) return 0u;
-    uint candidates;
-    if (coarseTiles > 0u) {
-        uvec2 coarseTile = tile / coarseTiles;
-        uint coarseTilesAcross = (frame.lightGrid.y + coarseTiles - 1u) / coarseTiles;
-        candidates = coarseGrid[(coarseTile.y * coarseTilesAcross + coarseTile.x) * GRID_WORDS + word];
-    } else {
-        candidates = allLightsWord(word, frame.spotCount + frame.pointCount);
-    }
-    return candidates & laneBitsOfWord(word, lane, threads);
+    if (coarseTiles == 0u) return allLightsWord(word, frame.spotCount + frame.pointCount);
+    uvec2 coarseTile = tile / coarseTiles;
+    uint coarseTilesAcross = (frame.lightGrid.y + coarseTiles - 1u) / coarseTiles;
+    return coarseGrid[(coarseTile.y * coarseTilesAcross + coarseTile.x) * GRID_WORDS + word];
+}
+
+uint laneCandidateWord(uvec2 tile, uint coarseTiles, uint lane, uint threads, uint word) {
+    return candidateWord(tile, coarseTiles, word) & laneBitsOfWord(word, lane, threads);
 }
 
 uvec3 laneCandidates(uvec2 tile, uint coarseTiles, uint lane, uint threads, uint triple) {
@@ -111,12 +111,6 @@ uvec3 lightsMeetingSegment(uvec3 lights, uint triple, TileVolume segment) {
     return lightsMeetingDepthCell(lights, triple, segment, kAnyDepthCell, 0.0, 0.0);
 }
 
-// Index lists past one triple: the cell's mask words, gathered triple by triple for writeCellList
-// (at most 4 KiB, at 16,384 + 16,384 lights). One triple (up to the design notes' 96 lights) stays
-// in every lane's registers, as workgroupMasks leaves it: no shared memory, no barrier.
-const bool kCellListShared = INDEX_LISTS && GRID_WORDS > 3u;
-shared uint cellListWords[kCellListShared ? GRID_WORDS : 1u];
-
 // Writes triple `triple` of a cell's masks (lanes 0-2, the words before GRID_WORDS): at `cellBase`
 // of lightGrid, or with index lists past one triple into cellListWords.
 void writeCellTriple(uint cellBase, uint triple, uvec3 masks, uint lane) {
@@ -137,20 +131,6 @@ uint cellListWord(uvec3 onlyTriple, uint word) {
     if (word >= GRID_WORDS) return 0u;
     if (!kCellListShared) return word == 0u ? onlyTriple.x : (word == 1u ? onlyTriple.y : onlyTriple.z);
     return cellListWords[word];
-}
-
-// Makes cellListWords' writes visible to the workgroup, and keeps them from being overwritten
-// before they are read: a subgroup barrier where the workgroup is one subgroup (lavapipe runs a
-// workgroup barrier as a coroutine switch), else a workgroup barrier. (Uniform control flow.)
-void cellListBarrier() {
-    if (!kCellListShared) return;
-    if (gl_NumSubgroups == 1u) {
-        subgroupMemoryBarrierShared();
-        subgroupBarrier();
-    } else {
-        memoryBarrierShared();
-        barrier();
-    }
 }
 
 // Index lists: cell `cell`'s list (light_lists.glsl) from its mask words (cellListWord). The first
@@ -191,6 +171,16 @@ void writeCellList(uint cell, uvec3 onlyTriple) {
         }
     }
     cellListBarrier();
+}
+
+// Writes the cell's words (cellListWords, after testCandidates): its masks at `cellBase` of
+// lightGrid, or (index lists) cell `cell`'s list. (Uniform control flow.)
+void writeCellFromWords(uint cell, uint cellBase, uint lane, uint threads) {
+    if (INDEX_LISTS) {
+        writeCellList(cell, uvec3(0u));
+    } else {
+        for (uint word = lane; word < GRID_WORDS; word += threads) lightGrid[cellBase + word] = cellListWords[word];
+    }
 }
 
 // The geometry a pixel shades, as a depth span (nearest, farthest): a pixel under transparent

@@ -438,6 +438,10 @@ TEST(Culling, EveryKernelAndWorkgroupSizeWritesTheSameGrids) {
         // Past the design notes' 96: cells of 32 words, the subgroup kernels' eleven triples
         // against the shared-memory kernel's four chunks.
         {{"1,000 lights", testing::manyLightsScene(600, 400)}, {{16u, true, 0u}, {13u, false, 0u}}},
+        // Candidate lists (subgroup_tiles.glsl) past their buffer's 2,048: with no coarse pass every
+        // light is a candidate, so a tile's candidates are tested in several fills, at the subgroup
+        // size and at 64 invocations (several subgroups' sums on most devices).
+        {{"2,500 lights", testing::manyLightsScene(1500, 1000)}, {{16u, false, 0u}, {16u, false, 64u}}},
     };
     size_t comparedWords = 0;
     size_t setWords = 0;
