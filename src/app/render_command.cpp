@@ -12,6 +12,7 @@
 #include "core/log.h"
 #include "core/output_files.h"
 #include "lights/shadow_sizing.h"
+#include "lights/virtual_pages.h"
 #include "metrics/heatmap.h"
 #include "metrics/shadow_density.h"
 #include "render/renderer.h"
@@ -136,6 +137,13 @@ int runRenderCommand(const std::vector<std::string>& args) {
             nlohmann::json stats = frameStatsJson(result, renderer, scene, context.deviceName(), options.frames);
             stats["culling"] = cullingStatsJson(culling, renderer);
             stats["shadows"] = shadowStatsJson(renderer);
+            if (settings.shadows.enabled) {
+                const std::vector<VirtualPageLayout> layouts = virtualPageLayoutsToCompare();
+                stats["shadows"]["virtual_estimate"] = virtualPageEstimateJson(
+                    estimateVirtualPages(scene, renderer.lights(), renderer.shadowPlan(), settings.width, settings.height,
+                                         settings.shadows.texelsPerPixel, layouts),
+                    renderer);
+            }
             stats["memory"]["light_grid_floor_bytes"] = lightGridFloorBytes(renderer);
             outputs.add(*options.statsPath, stats.dump(2) + "\n");
         }

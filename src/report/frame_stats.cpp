@@ -211,6 +211,34 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
     return json;
 }
 
+nlohmann::json virtualPageEstimateJson(const VirtualPageEstimate& estimate, const render::Renderer& renderer) {
+    const uint32_t texelBytes = renderer.settings().shadows.texelBytes();
+    const uint64_t floorBytes = estimate.floorBytes(texelBytes);
+    // The whole views' atlas of this frame (spot views and point slices; cascades apart).
+    const ShadowPlan& plan = renderer.shadowPlan();
+    const uint64_t atlasBytes = uint64_t(plan.atlas.width) * plan.atlas.height * texelBytes;
+    nlohmann::json layouts = nlohmann::json::array();
+    for (const VirtualPageDemand& demand : estimate.layouts) {
+        const uint64_t bytes = demand.physicalBytes(texelBytes) + demand.usedLevelsPageTableBytes();
+        layouts.push_back({{"virtual_size", demand.layout.virtualSize},
+                           {"page_size", demand.layout.pageSize},
+                           {"levels", demand.layout.levels()},
+                           {"pages_marked", demand.markedPages()},
+                           {"pages_per_level", demand.markedPerLevel},
+                           {"views_with_pages", demand.viewsWithPages},
+                           {"physical_bytes", demand.physicalBytes(texelBytes)},
+                           {"page_table_bytes", demand.pageTableBytes()},
+                           {"used_levels_page_table_bytes", demand.usedLevelsPageTableBytes()},
+                           {"over_floor", floorBytes ? double(bytes) / double(floorBytes) : 0.0},
+                           {"over_atlas", atlasBytes ? double(bytes) / double(atlasBytes) : 0.0},
+                           {"pairs_coarser_than_asked", demand.pairsCoarserThanAsked}});
+    }
+    return {{"shaded_pairs", estimate.shadedPairs},
+            {"floor_bytes", floorBytes},
+            {"atlas_bytes", atlasBytes},
+            {"layouts", layouts}};
+}
+
 std::string timingTable(const render::PassTimings& ms) {
     std::string table = "pass        GPU ms\n";
     auto row = [&](const char* name, double value) {

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lights/virtual_pages.h"
 #include "render/renderer.h"
 
 namespace punctual::report {
@@ -29,6 +30,14 @@ nlohmann::json cullingStatsJson(const CullingStats& stats, const render::Rendere
 //  "shadowed_spots", "shadowed_points", "dropped_by_cap", "views_rendered", "views_skipped",
 //  "faces_rendered", "faces_skipped" (the same counts), "memory_bytes"}
 nlohmann::json shadowStatsJson(const render::Renderer& renderer);
+
+// What virtual shadow pages would cost on this frame (lights/virtual_pages.h), at the texel format's
+// bytes: {"shaded_pairs", "floor_bytes", "atlas_bytes" (this frame's whole views: spots and point
+// slices), "layouts": [{"virtual_size", "page_size", "levels", "pages_marked", "pages_per_level",
+// "views_with_pages", "physical_bytes", "page_table_bytes" (every level's, per view with pages),
+// "used_levels_page_table_bytes" (the levels with pages only), "over_floor" ((physical + the used
+// levels' table) / floor), "over_atlas", "pairs_coarser_than_asked"}]}
+nlohmann::json virtualPageEstimateJson(const VirtualPageEstimate& estimate, const render::Renderer& renderer);
 
 // {"triangles" (in the scene's buffers), "triangles_instanced" (each object's mesh once), "objects",
 //  "objects_in_view", "camera_triangles", "camera_draws": {"depth", "forward", "transparent"},

@@ -90,6 +90,25 @@ TEST(Cli, RenderWritesImageAndStats) {
     EXPECT_EQ(stats["lights"]["spot"].get<int>(), 64);
     EXPECT_EQ(stats["lights"]["point"].get<int>(), 32);
     EXPECT_EQ(stats["lights"]["directional"].get<int>(), 0);
+    // The virtual pages' estimate: its shaded pairs (CPU rays) are the shadow lookups the forward
+    // pass counted (the default scene has no sun, whose cascades the estimate leaves out), and
+    // each layout's bytes follow from its pages.
+    const nlohmann::json& estimate = shadows["virtual_estimate"];
+    const double pairs = estimate["shaded_pairs"].get<double>();
+    const double lookups = stats["culling"]["shadow_lookups_per_pixel"].get<double>() *
+                           stats["culling"]["covered_pixels"].get<double>();
+    EXPECT_NEAR(pairs, lookups, 0.03 * lookups);
+    EXPECT_EQ(estimate["floor_bytes"].get<uint64_t>(), 2 * estimate["shaded_pairs"].get<uint64_t>());
+    ASSERT_EQ(estimate["layouts"].size(), 12u);
+    for (const auto& layout : estimate["layouts"]) {
+        const uint64_t page = layout["page_size"].get<uint64_t>();
+        uint64_t marked = 0;
+        for (const auto& count : layout["pages_per_level"]) marked += count.get<uint64_t>();
+        EXPECT_EQ(layout["pages_marked"].get<uint64_t>(), marked);
+        EXPECT_GT(marked, 0u);
+        EXPECT_EQ(layout["physical_bytes"].get<uint64_t>(), marked * page * page * 2);
+        EXPECT_EQ(layout["pages_per_level"].size(), layout["levels"].get<size_t>());
+    }
 }
 
 TEST(Cli, HeatmapShowsTheFrameAndALegend) {
@@ -122,6 +141,7 @@ TEST(Cli, ShadowsOffRunsNoShadowPassAndAllocatesPlaceholdersOnly) {
     EXPECT_EQ(stats["gpu_ms"]["shadows"].get<double>(), 0.0);
     EXPECT_EQ(stats["shadows"]["views_rendered"].get<int>(), 0);
     EXPECT_LT(stats["shadows"]["memory_bytes"].get<double>(), 65536.0);  // three 1x1 placeholders
+    EXPECT_FALSE(stats["shadows"].contains("virtual_estimate"));
 }
 
 TEST(Cli, GeneratedLightsReplaceTheScenes) {

@@ -62,6 +62,15 @@ Scene emptyFloorScene() {
     return scene;
 }
 
+Scene floorSeenFromAbove() {
+    Scene scene = emptyFloorScene();
+    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 10.0f, 0.0f), glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
+    scene.camera.yfov = glm::radians(90.0f);
+    scene.camera.znear = 0.05f;
+    scene.camera.zfar = 100.0f;
+    return scene;
+}
+
 Scene grazingFloorScene(bool spot) {
     Scene scene = emptyFloorScene();
     scene.source = spot ? "grazing spot over an empty floor" : "grazing point over an empty floor";

@@ -4,6 +4,7 @@
 // counting a validation's verdicts. CPU only: the CPU tests plan shadows for these scenes, the
 // GPU tests (tests/gpu/shadow_test_runs.h) render them.
 #include <cstddef>
+#include <cstdint>
 
 #include <glm/glm.hpp>
 
@@ -24,6 +25,14 @@ float angleToLight(const glm::vec3& position, const glm::vec3& normal, const glm
 // A 40 x 40 m floor (a 0.2 m thick box, top at y = 0) and nothing else, seen from above. Lights
 // are added by the caller (call computeBounds() again after adding objects).
 Scene emptyFloorScene();
+
+// The empty floor seen straight down from 10 m with a 90-degree field of view: in a
+// kFloorFrame x kFloorFrame frame every visible floor point is 10 m deep along the camera's axis,
+// so one pixel there spans 10 x 2 tan 45 / 512 = 20 / 512 = 0.0390625 m (kFloorPixel), and pixel
+// (x, y) sees the floor point ((x + 0.5) kFloorPixel - 10, 0, (y + 0.5) kFloorPixel - 10).
+Scene floorSeenFromAbove();
+constexpr uint32_t kFloorFrame = 512;
+constexpr float kFloorPixel = 20.0f / 512.0f;
 
 // Acne: the empty floor lit by one light `height` metres above it (a point at the origin's
 // vertical, or a spot at the same place tilted so that its cone meets the floor at 15 to 85

@@ -26,20 +26,10 @@ namespace {
 
 // ---- the estimator ----------------------------------------------------------------------------
 
-// The test floor (top at y = 0, 40 m square) seen straight down from 10 m with a 90-degree field of
-// view, in a 512 x 512 frame: every visible floor point is 10 m deep along the camera's axis, so
-// one pixel there spans 10 x 2 tan 45 / 512 = 20 / 512 = 0.0390625 m.
-constexpr uint32_t kFrame = 512;
-constexpr float kPixel = 20.0f / 512.0f;
-
-Scene floorSeenFromAbove() {
-    Scene scene = testing::emptyFloorScene();
-    scene.camera.view = glm::lookAtRH(glm::vec3(0.0f, 10.0f, 0.0f), glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
-    scene.camera.yfov = glm::radians(90.0f);
-    scene.camera.znear = 0.05f;
-    scene.camera.zfar = 100.0f;
-    return scene;
-}
+// The test floor seen straight down (testing::floorSeenFromAbove): 512 x 512 pixels of 0.0390625 m.
+constexpr uint32_t kFrame = testing::kFloorFrame;
+constexpr float kPixel = testing::kFloorPixel;
+using testing::floorSeenFromAbove;
 
 struct Demand {
     ShadowPlan plan;

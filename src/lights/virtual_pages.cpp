@@ -1,0 +1,129 @@
+#include "lights/virtual_pages.h"
+
+#include <numeric>
+
+#include "lights/shadow_resolution.h"
+#include "shadow_pages.h"
+#include "shadows.h"
+
+namespace punctual {
+
+uint32_t VirtualPageLayout::levels() const { return gpu::virtualShadowLevels(virtualSize, pageSize); }
+
+uint32_t VirtualPageLayout::pagesAcross(uint32_t level) const {
+    return gpu::virtualShadowPagesAcross(level, virtualSize, pageSize);
+}
+
+uint32_t VirtualPageLayout::pagesPerView() const {
+    uint32_t pages = 0;
+    for (uint32_t level = 0; level < levels(); ++level) pages += pagesAcross(level) * pagesAcross(level);
+    return pages;
+}
+
+std::vector<VirtualPageLayout> virtualPageLayoutsToCompare() {
+    std::vector<VirtualPageLayout> layouts;
+    for (uint32_t virtualSize : {4096u, 8192u, 16384u}) {
+        for (uint32_t pageSize : {32u, 64u, 128u, 256u}) layouts.push_back({virtualSize, pageSize});
+    }
+    return layouts;
+}
+
+uint64_t VirtualPageDemand::markedPages() const {
+    return std::accumulate(markedPerLevel.begin(), markedPerLevel.end(), uint64_t(0));
+}
+
+uint64_t VirtualPageDemand::physicalBytes(uint32_t texelBytes) const {
+    return markedPages() * layout.pageSize * layout.pageSize * texelBytes;
+}
+
+uint64_t VirtualPageDemand::pageTableBytes() const { return viewsWithPages * layout.pagesPerView() * 4; }
+
+namespace {
+
+// The marked pages of one layout: a bit per page of every level, per view.
+struct PageMarks {
+    VirtualPageLayout layout;
+    std::vector<std::vector<uint64_t>> bits;  // per view (empty until a page of it is marked)
+    uint64_t pairsCoarserThanAsked = 0;
+
+    void mark(uint32_t view, glm::vec2 uv, float needed) {
+        const uint32_t levels = layout.levels();
+        const uint32_t level = gpu::virtualShadowLevel(needed, layout.virtualSize, levels);
+        if (level == 0 && needed > float(layout.virtualSize) * 1.41421356f) ++pairsCoarserThanAsked;
+        const glm::uvec2 page = gpu::virtualShadowPage(uv, level, layout.virtualSize, layout.pageSize);
+        const uint32_t index = gpu::virtualShadowPageIndex(page, level, layout.virtualSize, layout.pageSize);
+        std::vector<uint64_t>& viewBits = bits[view];
+        if (viewBits.empty()) viewBits.assign((layout.pagesPerView() + 63) / 64, 0);
+        viewBits[index / 64] |= uint64_t(1) << (index % 64);
+    }
+
+    VirtualPageDemand demand() const {
+        VirtualPageDemand result;
+        result.layout = layout;
+        result.pairsCoarserThanAsked = pairsCoarserThanAsked;
+        result.markedPerLevel.assign(layout.levels(), 0);
+        for (const std::vector<uint64_t>& viewBits : bits) {
+            if (viewBits.empty()) continue;
+            ++result.viewsWithPages;
+            uint32_t first = 0;  // the level's first page index
+            for (uint32_t level = 0; level < layout.levels(); ++level) {
+                const uint32_t count = layout.pagesAcross(level) * layout.pagesAcross(level);
+                uint64_t marked = 0;
+                for (uint32_t index = first; index < first + count; ++index) marked += (viewBits[index / 64] >> (index % 64)) & 1u;
+                result.markedPerLevel[level] += marked;
+                result.usedLevelEntries += marked > 0 ? count : 0;
+                first += count;
+            }
+        }
+        return result;
+    }
+};
+
+// View UV (0 .. 1 across) of a world point through a view's projection.
+glm::vec2 viewUv(const glm::mat4& viewProjection, const glm::vec3& position) {
+    const glm::vec4 clip = viewProjection * glm::vec4(position, 1.0f);
+    return glm::vec2(clip) / clip.w * 0.5f + 0.5f;
+}
+
+}  // namespace
+
+VirtualPageEstimate estimateVirtualPages(const Scene& scene, const FrameLights& lights, const ShadowPlan& plan,
+                                         uint32_t width, uint32_t height, float texelsPerPixel,
+                                         std::span<const VirtualPageLayout> layouts) {
+    VirtualPageEstimate estimate;
+    std::vector<PageMarks> marks;
+    for (const VirtualPageLayout& layout : layouts) marks.push_back({layout, std::vector<std::vector<uint64_t>>(plan.views.size()), 0});
+    // Each shadowed light's first view (a point light's six faces follow it), and each view's
+    // projection onto its own virtual map: a point face's unwidened one, as a cube face's.
+    std::vector<uint32_t> firstViews;
+    std::vector<glm::mat4> projections(plan.views.size());
+    for (uint32_t v = 0; v < plan.views.size(); ++v) {
+        const ShadowView& view = plan.views[v];
+        if (view.isCascade) continue;
+        if (!view.isPoint || view.face == 0) firstViews.push_back(v);
+        projections[v] = view.isPoint ? cubeFaceViewProjection(glm::vec3(lights.packed[view.packedLight].positionInvRangeSq),
+                                                               view.face, view.nearPlane, view.farPlane)
+                                      : view.gpu.viewProjection;
+    }
+    forEachVisibleReceiver(scene, width, height, 1, [&](uint32_t, uint32_t, const ReceiverSample& sample) {
+        for (uint32_t first : firstViews) {
+            const gpu::GpuPunctualLight& light = lights.packed[plan.views[first].packedLight];
+            const uint32_t view = plan.views[first].isPoint
+                                      ? first + gpu::cubeFaceOfDirection(sample.position - glm::vec3(light.positionInvRangeSq))
+                                      : first;
+            if (plan.views[view].casters.empty()) continue;  // no caster: always lit, no map
+            // A point face's virtual map spans the face alone (2 at unit depth), not the atlas
+            // slice's guard band (shadow_sizing.h), which resolutionNeededAt's span includes.
+            const float spanRatio = plan.views[view].isPoint ? 2.0f / plan.views[view].tanSpan : 1.0f;
+            const float needed = resolutionNeededAt(plan, view, light, sample) * spanRatio * texelsPerPixel;
+            if (!(needed > 0.0f)) continue;
+            ++estimate.shadedPairs;
+            const glm::vec2 uv = viewUv(projections[view], sample.position);
+            for (PageMarks& layoutMarks : marks) layoutMarks.mark(view, uv, needed);
+        }
+    });
+    for (const PageMarks& layoutMarks : marks) estimate.layouts.push_back(layoutMarks.demand());
+    return estimate;
+}
+
+}  // namespace punctual
