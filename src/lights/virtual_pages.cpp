@@ -69,7 +69,9 @@ struct PageMarks {
             for (uint32_t level = 0; level < layout.levels(); ++level) {
                 const uint32_t count = layout.pagesAcross(level) * layout.pagesAcross(level);
                 uint64_t marked = 0;
-                for (uint32_t index = first; index < first + count; ++index) marked += (viewBits[index / 64] >> (index % 64)) & 1u;
+                for (uint32_t index = first; index < first + count; ++index) {
+                    marked += (viewBits[index / 64] >> (index % 64)) & 1u;
+                }
                 result.markedPerLevel[level] += marked;
                 result.usedLevelEntries += marked > 0 ? count : 0;
                 first += count;
@@ -92,7 +94,9 @@ VirtualPageEstimate estimateVirtualPages(const Scene& scene, const FrameLights& 
                                          std::span<const VirtualPageLayout> layouts) {
     VirtualPageEstimate estimate;
     std::vector<PageMarks> marks;
-    for (const VirtualPageLayout& layout : layouts) marks.push_back({layout, std::vector<std::vector<uint64_t>>(plan.views.size()), 0});
+    for (const VirtualPageLayout& layout : layouts) {
+        marks.push_back({layout, std::vector<std::vector<uint64_t>>(plan.views.size()), 0});
+    }
     // Each shadowed light's first view (a point light's six faces follow it), and each view's
     // projection onto its own virtual map: a point face's unwidened one, as a cube face's.
     std::vector<uint32_t> firstViews;
