@@ -61,7 +61,7 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly b
 };
 
 // Past the design notes' 96 lights a cluster's candidates are compacted and tested as a list
-// (subgroup_tiles.glsl, "Candidate lists").
+// (candidate_lists.glsl).
 const bool CANDIDATE_LISTS = GRID_WORDS > 3u;
 
 #include "depth_blocks.glsl"
@@ -197,22 +197,24 @@ void main() {
             uint fill = 0u;
             for (uint first = 0u; first < GRID_WORDS; first += threads) {  // (uniform)
                 uint word = first + lane;
-                uint bits = word < GRID_WORDS ? candidateWord(tile, COARSE_TILES, word) & sliceLights[slice * GRID_WORDS + word] : 0u;
+                uint bits = word < GRID_WORDS ? candidateWord(tile, COARSE_TILES, word) & sliceLights[slice * GRID_WORDS + word]
+                                              : 0u;
                 fill = addCandidateWord(fill, word, bits, segment, lane, threads);
             }
             testCandidates(fill, segment, lane, threads);
             writeCellFromWords(tileIndex * SLICE_COUNT + slice, cellBase, lane, threads);
+        } else {
+            uvec3 cellTriple;  // the last triple of the cell's masks (index lists of one triple: all of them)
+            for (uint triple = 0u; triple < (GRID_WORDS + 2u) / 3u; ++triple) {  // (uniform)
+                uint word = slice * GRID_WORDS + 3u * triple;
+                uvec3 lights = laneCandidates(tile, COARSE_TILES, lane, threads, triple) &
+                               uvec3(sliceLights[word], 3u * triple + 1u < GRID_WORDS ? sliceLights[word + 1u] : 0u,
+                                     3u * triple + 2u < GRID_WORDS ? sliceLights[word + 2u] : 0u);
+                cellTriple = workgroupMasks(lightsMeetingSegment(lights, triple, segment));
+                writeCellTriple(cellBase, triple, cellTriple, lane);
+            }
+            if (INDEX_LISTS) writeCellList(tileIndex * SLICE_COUNT + slice, cellTriple);  // (uniform)
         }
-        uvec3 cellTriple;  // the last triple of the cell's masks (index lists of one triple: all of them)
-        for (uint triple = 0u; !CANDIDATE_LISTS && triple < (GRID_WORDS + 2u) / 3u; ++triple) {  // (uniform)
-            uint word = slice * GRID_WORDS + 3u * triple;
-            uvec3 lights = laneCandidates(tile, COARSE_TILES, lane, threads, triple) &
-                           uvec3(sliceLights[word], 3u * triple + 1u < GRID_WORDS ? sliceLights[word + 1u] : 0u,
-                                 3u * triple + 2u < GRID_WORDS ? sliceLights[word + 2u] : 0u);
-            cellTriple = workgroupMasks(lightsMeetingSegment(lights, triple, segment));
-            writeCellTriple(cellBase, triple, cellTriple, lane);
-        }
-        if (INDEX_LISTS && !CANDIDATE_LISTS) writeCellList(tileIndex * SLICE_COUNT + slice, cellTriple);  // (uniform)
         float beyond = workgroupMax(part.beyond);
         if (beyond == 0.0) break;  // (uniform)
         PUNCTUAL_CLUSTER_SLICE_OF_DEPTH(slice, beyond, depthRange.sliceStartDepth, SLICE_COUNT);

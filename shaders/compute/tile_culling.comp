@@ -62,7 +62,7 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_TRANSPARENT_DEPTH) readonly b
 };
 
 // Past the design notes' 96 lights a tile's candidates are compacted and tested as a list
-// (subgroup_tiles.glsl, "Candidate lists"); tiled-2.5d's per-cell tests keep the triples.
+// (candidate_lists.glsl); tiled-2.5d's per-cell tests keep the triples.
 const bool CANDIDATE_LISTS = GRID_WORDS > 3u && !DEPTH_MASK;
 
 #include "depth_blocks.glsl"
