@@ -48,6 +48,17 @@ PUNCTUAL_FN uvec2 virtualShadowPage(vec2 uv, uint level, uint virtualSize, uint 
     return min(uvec2(cell), uvec2(across - 1u));
 }
 
+// The pages a filter reading `reach` texels around view UV `uv` at level `level` needs, as
+// uvec4(first column, first row, last column, last row): the pages of the texels t - reach ..
+// t + reach on each axis, t = uv x the level's texels (uv clamped), clamped to the level. A
+// receiver near a page's border reads its neighbour's texels, so the neighbour must exist too.
+PUNCTUAL_FN uvec4 virtualShadowFootprintPages(vec2 uv, float reach, uint level, uint virtualSize, uint pageSize) {
+    vec2 texel = clamp(uv, vec2(0.0f), vec2(1.0f)) * float(virtualSize >> level);
+    vec2 last = vec2(float(virtualShadowPagesAcross(level, virtualSize, pageSize) - 1u));
+    vec2 first = clamp(floor((texel - reach) / float(pageSize)), vec2(0.0f), last);
+    return uvec4(uvec2(first), uvec2(clamp(floor((texel + reach) / float(pageSize)), vec2(0.0f), last)));
+}
+
 // A page's index among all the map's pages, level 0's first, row by row: level m starts after
 // the pages of the levels before it, sum over k < m of (pages across level k)^2.
 PUNCTUAL_FN uint virtualShadowPageIndex(uvec2 page, uint level, uint virtualSize, uint pageSize) {

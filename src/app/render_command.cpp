@@ -141,7 +141,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
                 const std::vector<VirtualPageLayout> layouts = virtualPageLayoutsToCompare();
                 stats["shadows"]["virtual_estimate"] = virtualPageEstimateJson(
                     estimateVirtualPages(scene, renderer.lights(), renderer.shadowPlan(), settings.width, settings.height,
-                                         settings.shadows.texelsPerPixel, layouts),
+                                         settings.shadows, layouts),
                     renderer);
             }
             stats["memory"]["light_grid_floor_bytes"] = lightGridFloorBytes(renderer);

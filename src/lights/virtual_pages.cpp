@@ -1,5 +1,6 @@
 #include "lights/virtual_pages.h"
 
+#include <bit>
 #include <numeric>
 
 #include "lights/shadow_resolution.h"
@@ -40,21 +41,35 @@ uint64_t VirtualPageDemand::pageTableBytes() const { return viewsWithPages * lay
 
 namespace {
 
-// The marked pages of one layout: a bit per page of every level, per view.
+// The marked pages of one layout: a bit per page of every level, per view; with the filters'
+// reach, and under the receivers alone.
 struct PageMarks {
     VirtualPageLayout layout;
-    std::vector<std::vector<uint64_t>> bits;  // per view (empty until a page of it is marked)
+    std::vector<std::vector<uint64_t>> bits;        // per view (empty until a page of it is marked)
+    std::vector<std::vector<uint64_t>> centreBits;  // the same, the pages under the receivers only
     uint64_t pairsCoarserThanAsked = 0;
 
-    void mark(uint32_t view, glm::vec2 uv, float needed) {
-        const uint32_t levels = layout.levels();
-        const uint32_t level = gpu::virtualShadowLevel(needed, layout.virtualSize, levels);
-        if (level == 0 && needed > float(layout.virtualSize) * 1.41421356f) ++pairsCoarserThanAsked;
-        const glm::uvec2 page = gpu::virtualShadowPage(uv, level, layout.virtualSize, layout.pageSize);
-        const uint32_t index = gpu::virtualShadowPageIndex(page, level, layout.virtualSize, layout.pageSize);
-        std::vector<uint64_t>& viewBits = bits[view];
-        if (viewBits.empty()) viewBits.assign((layout.pagesPerView() + 63) / 64, 0);
+    static void set(std::vector<uint64_t>& viewBits, uint32_t index, uint32_t pages) {
+        if (viewBits.empty()) viewBits.assign((pages + 63) / 64, 0);
         viewBits[index / 64] |= uint64_t(1) << (index % 64);
+    }
+
+    // Pair (view, uv) needing `needed` texels a side, read by a filter reaching `reach(level's
+    // resolution)` texels.
+    template <typename Reach>
+    void mark(uint32_t view, glm::vec2 uv, float needed, const Reach& reach) {
+        const uint32_t level = gpu::virtualShadowLevel(needed, layout.virtualSize, layout.levels());
+        if (level == 0 && needed > float(layout.virtualSize) * 1.41421356f) ++pairsCoarserThanAsked;
+        const uint32_t pages = layout.pagesPerView();
+        const glm::uvec2 page = gpu::virtualShadowPage(uv, level, layout.virtualSize, layout.pageSize);
+        set(centreBits[view], gpu::virtualShadowPageIndex(page, level, layout.virtualSize, layout.pageSize), pages);
+        const glm::uvec4 footprint = gpu::virtualShadowFootprintPages(uv, reach(layout.virtualSize >> level), level,
+                                                                      layout.virtualSize, layout.pageSize);
+        for (uint32_t y = footprint.y; y <= footprint.w; ++y) {
+            for (uint32_t x = footprint.x; x <= footprint.z; ++x) {
+                set(bits[view], gpu::virtualShadowPageIndex(glm::uvec2(x, y), level, layout.virtualSize, layout.pageSize), pages);
+            }
+        }
     }
 
     VirtualPageDemand demand() const {
@@ -62,6 +77,9 @@ struct PageMarks {
         result.layout = layout;
         result.pairsCoarserThanAsked = pairsCoarserThanAsked;
         result.markedPerLevel.assign(layout.levels(), 0);
+        for (const std::vector<uint64_t>& viewBits : centreBits) {
+            for (uint64_t word : viewBits) result.centrePages += uint64_t(std::popcount(word));
+        }
         for (const std::vector<uint64_t>& viewBits : bits) {
             if (viewBits.empty()) continue;
             ++result.viewsWithPages;
@@ -90,13 +108,16 @@ glm::vec2 viewUv(const glm::mat4& viewProjection, const glm::vec3& position) {
 }  // namespace
 
 VirtualPageEstimate estimateVirtualPages(const Scene& scene, const FrameLights& lights, const ShadowPlan& plan,
-                                         uint32_t width, uint32_t height, float texelsPerPixel,
+                                         uint32_t width, uint32_t height, const ShadowSettings& settings,
                                          std::span<const VirtualPageLayout> layouts) {
     VirtualPageEstimate estimate;
     std::vector<PageMarks> marks;
     for (const VirtualPageLayout& layout : layouts) {
-        marks.push_back({layout, std::vector<std::vector<uint64_t>>(plan.views.size()), 0});
+        const std::vector<std::vector<uint64_t>> none(plan.views.size());
+        marks.push_back({layout, none, none, 0});
     }
+    const auto reach = [&settings](uint32_t resolution) { return settings.penumbraTexels(resolution); };
+    const float texelsPerPixel = settings.texelsPerPixel;
     // Each shadowed light's first view (a point light's six faces follow it), and each view's
     // projection onto its own virtual map: a point face's unwidened one, as a cube face's.
     std::vector<uint32_t> firstViews;
@@ -123,7 +144,7 @@ VirtualPageEstimate estimateVirtualPages(const Scene& scene, const FrameLights& 
             if (!(needed > 0.0f)) continue;
             ++estimate.shadedPairs;
             const glm::vec2 uv = viewUv(projections[view], sample.position);
-            for (PageMarks& layoutMarks : marks) layoutMarks.mark(view, uv, needed);
+            for (PageMarks& layoutMarks : marks) layoutMarks.mark(view, uv, needed, reach);
         }
     });
     for (const PageMarks& layoutMarks : marks) estimate.layouts.push_back(layoutMarks.demand());

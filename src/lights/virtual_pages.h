@@ -7,12 +7,12 @@
 // shades the surface there (resolutionNeededAt > 0: in range, in the cone or on the face, facing
 // the light; the tests of --shadow-res auto and of --shadow-density) is one shaded pair. The pair
 // needs the resolution at which one texel spans 1 / texelsPerPixel pixels there, so the level
-// nearest it (virtualShadowLevel) and the page under the surface at that level. A page is marked
-// once, however many pairs need it.
+// nearest it (virtualShadowLevel) and the page under the surface at that level, and the pages
+// its filter's footprint reaches there (a receiver near a page's border reads its neighbour's
+// texels: virtualShadowFootprintPages, the filter's reach at the level's resolution). A page is
+// marked once, however many pairs need it; the pages under the receivers alone are counted too.
 //
 // What it leaves out, for the GPU pass to settle:
-//  - the filter's footprint: a receiver near a page's border reads texels of its neighbour (a
-//    tent5 reads 2 texels each way), which a page's guard band or a marked neighbour must hold;
 //  - pages whose frustum meets no caster (they need no memory, only a "lit" entry);
 //  - transparent receivers (the opaque surface only).
 // The floor is the design notes' one texel per shaded pair (DESIGN.md, "Shadows fitted to the
@@ -42,7 +42,8 @@ std::vector<VirtualPageLayout> virtualPageLayoutsToCompare();
 
 struct VirtualPageDemand {
     VirtualPageLayout layout;
-    std::vector<uint64_t> markedPerLevel;  // pages marked at each level, over every view
+    std::vector<uint64_t> markedPerLevel;  // pages marked at each level, over every view (with the filters' reach)
+    uint64_t centrePages = 0;              // pages under the receivers alone, without the filters' reach
     uint64_t viewsWithPages = 0;           // views with at least one marked page
     uint64_t usedLevelEntries = 0;         // pages of the levels where a view has a marked page, over the views
     uint64_t pairsCoarserThanAsked = 0;    // shaded pairs whose need passed level 0's (density < 1/sqrt 2)
@@ -64,10 +65,10 @@ struct VirtualPageEstimate {
 };
 
 // The pages each of `layouts` would mark for a width x height frame of `scene` lit by `lights`
-// with shadow views `plan` (cascades are left out: they stay whole), at `texelsPerPixel` texels
-// a pixel (--shadow-texels-per-pixel).
+// with shadow views `plan` (cascades are left out: they stay whole), at the settings' texels a
+// pixel (--shadow-texels-per-pixel) and with their filter's reach.
 VirtualPageEstimate estimateVirtualPages(const Scene& scene, const FrameLights& lights, const ShadowPlan& plan,
-                                         uint32_t width, uint32_t height, float texelsPerPixel,
+                                         uint32_t width, uint32_t height, const ShadowSettings& settings,
                                          std::span<const VirtualPageLayout> layouts);
 
 }  // namespace punctual

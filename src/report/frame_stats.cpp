@@ -224,6 +224,7 @@ nlohmann::json virtualPageEstimateJson(const VirtualPageEstimate& estimate, cons
                            {"page_size", demand.layout.pageSize},
                            {"levels", demand.layout.levels()},
                            {"pages_marked", demand.markedPages()},
+                           {"pages_under_receivers", demand.centrePages},
                            {"pages_per_level", demand.markedPerLevel},
                            {"views_with_pages", demand.viewsWithPages},
                            {"physical_bytes", demand.physicalBytes(texelBytes)},

@@ -33,7 +33,8 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer);
 
 // What virtual shadow pages would cost on this frame (lights/virtual_pages.h), at the texel format's
 // bytes: {"shaded_pairs", "floor_bytes", "atlas_bytes" (this frame's whole views: spots and point
-// slices), "layouts": [{"virtual_size", "page_size", "levels", "pages_marked", "pages_per_level",
+// slices), "layouts": [{"virtual_size", "page_size", "levels", "pages_marked" (with the filter's
+// reach), "pages_under_receivers" (without it), "pages_per_level",
 // "views_with_pages", "physical_bytes", "page_table_bytes" (every level's, per view with pages),
 // "used_levels_page_table_bytes" (the levels with pages only), "over_floor" ((physical + the used
 // levels' table) / floor), "over_atlas", "pairs_coarser_than_asked"}]}

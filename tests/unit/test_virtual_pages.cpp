@@ -50,15 +50,31 @@ TEST(VirtualPages, APageIsTheCellUnderTheUvAtItsLevel) {
     EXPECT_EQ(gpu::virtualShadowPageIndex(glm::uvec2(0, 0), 7, 16384, 128), 21844u);  // the last
 }
 
+TEST(VirtualPages, AFilterNearAPageBorderNeedsTheNeighbour) {
+    // Level 0 of 4096 / 32: 128 pages across. UV 0.25 is texel 1024, the border between pages 31
+    // and 32: a footprint of 2.5 texels reaches both; at texel 1040 (page 32's middle) only 32.
+    const float texel = 1.0f / 4096.0f;
+    EXPECT_EQ(gpu::virtualShadowFootprintPages(glm::vec2(0.25f, 1040.0f * texel), 2.5f, 0, 4096, 32),
+              glm::uvec4(31, 32, 32, 32));
+    EXPECT_EQ(gpu::virtualShadowFootprintPages(glm::vec2(1040.0f * texel), 2.5f, 0, 4096, 32), glm::uvec4(32, 32, 32, 32));
+    EXPECT_EQ(gpu::virtualShadowFootprintPages(glm::vec2(1040.0f * texel), 0.0f, 0, 4096, 32), glm::uvec4(32, 32, 32, 32));
+    // Clamped at the map's edges: the corner's footprint stays on the first and last pages.
+    EXPECT_EQ(gpu::virtualShadowFootprintPages(glm::vec2(0.0f, 1.0f), 2.5f, 0, 4096, 32), glm::uvec4(0, 127, 0, 127));
+    // At the coarsest level (one page) every footprint is that page.
+    EXPECT_EQ(gpu::virtualShadowFootprintPages(glm::vec2(0.5f), 100.0f, 7, 4096, 32), glm::uvec4(0, 0, 0, 0));
+}
+
 // The floor seen from above, lit by `lights`, planned (no sizing: the views' spans are their own).
 VirtualPageEstimate floorEstimate(const std::vector<Light>& extraLights, float texelsPerPixel,
                                   const std::vector<VirtualPageLayout>& layouts, ShadowPlan* planOut = nullptr) {
     Scene scene = testing::floorSeenFromAbove();
     for (const Light& light : extraLights) scene.lights.push_back(light);
     FrameLights lights = setupFrameLights(scene, scene.camera.view, scene.camera.projection(1.0f));
-    const ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), ShadowSettings{});
+    ShadowSettings settings;  // tent5: a reach of 2.5 texels
+    settings.texelsPerPixel = texelsPerPixel;
+    const ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), settings);
     if (planOut) *planOut = plan;
-    return estimateVirtualPages(scene, lights, plan, testing::kFloorFrame, testing::kFloorFrame, texelsPerPixel, layouts);
+    return estimateVirtualPages(scene, lights, plan, testing::kFloorFrame, testing::kFloorFrame, settings, layouts);
 }
 
 // Pixels of the floor frame inside a disk of `radius` around floor point (cx, 0, cz), and those
@@ -118,6 +134,10 @@ TEST(VirtualPages, SpotsStraightDownMarkTheLevelOfTheirHeightAndThePagesUnderThe
     EXPECT_EQ(fine.markedPerLevel[5], 16u);
     EXPECT_EQ(fine.markedPerLevel[4], 64u - 4u);
     EXPECT_EQ(fine.markedPages(), 76u);
+    // No receiver lies within the filter's 2.5 texels of an unmarked page (the nearest are 5 or
+    // more texels from the corner pages), so the footprints add none.
+    EXPECT_EQ(fine.centrePages, fine.markedPages());
+    EXPECT_EQ(big.centrePages, big.markedPages());
 
     // Two texels a pixel ask twice the resolution: a level finer each.
     const VirtualPageEstimate doubled = floorEstimate(spots, 2.0f, {{4096, 128}});
@@ -148,13 +168,17 @@ TEST(VirtualPages, SmallerPagesMarkMoreOfThemAndNeverMoreTexels) {
     FrameLights lights = setupFrameLights(scene, scene.camera.view, scene.camera.projection(320.0f / 180.0f));
     const ShadowPlan plan = planShadows(scene, lights, scene.camera.position(), ShadowSettings{});
     const std::vector<VirtualPageLayout> layouts = {{16384, 256}, {16384, 128}, {16384, 64}, {16384, 32}};
-    const VirtualPageEstimate estimate = estimateVirtualPages(scene, lights, plan, 320, 180, 1.0f, layouts);
+    const VirtualPageEstimate estimate = estimateVirtualPages(scene, lights, plan, 320, 180, ShadowSettings{}, layouts);
     EXPECT_GT(estimate.shadedPairs, 320u * 180u);  // several shadowed lights a pixel
     for (size_t i = 1; i < layouts.size(); ++i) {
         EXPECT_GT(estimate.layouts[i].markedPages(), estimate.layouts[i - 1].markedPages()) << layouts[i].pageSize;
         EXPECT_LE(estimate.layouts[i].physicalBytes(2), estimate.layouts[i - 1].physicalBytes(2)) << layouts[i].pageSize;
         EXPECT_EQ(estimate.layouts[i].viewsWithPages, estimate.layouts[0].viewsWithPages);
     }
+    // The filters' footprints never take pages away, and with 32-texel pages they add some (at
+    // this size most views need one page of 128 or 256 at their level, which holds every footprint).
+    for (const VirtualPageDemand& demand : estimate.layouts) EXPECT_GE(demand.markedPages(), demand.centrePages);
+    EXPECT_GT(estimate.layouts.back().markedPages(), estimate.layouts.back().centrePages);
 }
 
 }  // namespace
