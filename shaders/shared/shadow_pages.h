@@ -25,10 +25,11 @@ PUNCTUAL_FN uint virtualShadowLevels(uint virtualSize, uint pageSize) {
 // 1/sqrt(2) and sqrt(2) times the density it asks for, compared through the geometric midpoints so
 // that no log2 rounding decides a boundary. Past the finest level (needed > virtualSize sqrt(2))
 // it is level 0, coarser than asked; below the coarsest, the coarsest, finer than asked.
+#define PUNCTUAL_SQRT2 1.41421356f  // a level's resolution times this is the midpoint to the next finer
 PUNCTUAL_FN uint virtualShadowLevel(float needed, uint virtualSize, uint levels) {
     uint level = levels - 1u;
     float resolution = float(virtualSize >> level);
-    while (level > 0u && needed > resolution * 1.41421356f) {
+    while (level > 0u && needed > resolution * PUNCTUAL_SQRT2) {
         level -= 1u;
         resolution *= 2.0f;
     }
@@ -40,14 +41,6 @@ PUNCTUAL_FN uint virtualShadowPagesAcross(uint level, uint virtualSize, uint pag
     return max((virtualSize >> level) / pageSize, 1u);
 }
 
-// The page under view UV `uv` (0 .. 1 across the view, clamped) at level `level`: its column and
-// row among the level's pages.
-PUNCTUAL_FN uvec2 virtualShadowPage(vec2 uv, uint level, uint virtualSize, uint pageSize) {
-    uint across = virtualShadowPagesAcross(level, virtualSize, pageSize);
-    vec2 cell = floor(clamp(uv, vec2(0.0f), vec2(1.0f)) * float(across));
-    return min(uvec2(cell), uvec2(across - 1u));
-}
-
 // The pages a filter reading `reach` texels around view UV `uv` at level `level` needs, as
 // uvec4(first column, first row, last column, last row): the pages of the texels t - reach ..
 // t + reach on each axis, t = uv x the level's texels (uv clamped), clamped to the level. A
@@ -57,6 +50,12 @@ PUNCTUAL_FN uvec4 virtualShadowFootprintPages(vec2 uv, float reach, uint level, 
     vec2 last = vec2(float(virtualShadowPagesAcross(level, virtualSize, pageSize) - 1u));
     vec2 first = clamp(floor((texel - reach) / float(pageSize)), vec2(0.0f), last);
     return uvec4(uvec2(first), uvec2(clamp(floor((texel + reach) / float(pageSize)), vec2(0.0f), last)));
+}
+
+// The page under view UV `uv` (0 .. 1 across the view, clamped) at level `level`: its column and
+// row among the level's pages (the footprint of a filter that reaches no texel away).
+PUNCTUAL_FN uvec2 virtualShadowPage(vec2 uv, uint level, uint virtualSize, uint pageSize) {
+    return uvec2(virtualShadowFootprintPages(uv, 0.0f, level, virtualSize, pageSize));
 }
 
 // A page's index among all the map's pages, level 0's first, row by row: level m starts after

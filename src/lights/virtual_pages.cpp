@@ -59,7 +59,7 @@ struct PageMarks {
     template <typename Reach>
     void mark(uint32_t view, glm::vec2 uv, float needed, const Reach& reach) {
         const uint32_t level = gpu::virtualShadowLevel(needed, layout.virtualSize, layout.levels());
-        if (level == 0 && needed > float(layout.virtualSize) * 1.41421356f) ++pairsCoarserThanAsked;
+        if (level == 0 && needed > float(layout.virtualSize) * PUNCTUAL_SQRT2) ++pairsCoarserThanAsked;
         const uint32_t pages = layout.pagesPerView();
         const glm::uvec2 page = gpu::virtualShadowPage(uv, level, layout.virtualSize, layout.pageSize);
         set(centreBits[view], gpu::virtualShadowPageIndex(page, level, layout.virtualSize, layout.pageSize), pages);
