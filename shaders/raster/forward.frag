@@ -59,6 +59,9 @@ layout(constant_id = PUNCTUAL_SPEC_CASCADE_BLEND) const uint CASCADE_BLEND = PUN
 // The transparent pass: alphaMode BLEND surfaces, written with their base colour's alpha for the
 // pipeline's "over" blending; the opaque pass writes alpha 1.
 layout(constant_id = PUNCTUAL_SPEC_TRANSPARENT) const bool TRANSPARENT = false;
+// Spot and point shadows from each view's square of the atlas, or from virtual pages; or the
+// marking pass, which shades nothing and marks the pages its lookups will read (shadow_pages.glsl).
+layout(constant_id = PUNCTUAL_SPEC_SHADOW_PAGES) const uint SHADOW_PAGES = PUNCTUAL_SHADOW_PAGES_OFF;
 
 layout(set = 0, binding = PUNCTUAL_BINDING_FRAME) uniform FrameBlock { GpuFrame frame; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHTS) readonly buffer LightBlock { GpuPunctualLight lights[]; };
@@ -89,6 +92,9 @@ layout(set = 0, binding = PUNCTUAL_BINDING_SHADOW_ATLAS) uniform sampler2DShadow
 layout(set = 0, binding = PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH) uniform sampler2D shadowAtlasDepth;
 layout(set = 0, binding = PUNCTUAL_BINDING_POINT_SHADOWS) uniform samplerCubeArrayShadow pointShadows;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_DEBUG) writeonly buffer ShadowDebugBlock { uint shadowDebug[]; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_PAGE_VIEWS) readonly buffer PageViewBlock { GpuVirtualShadowView virtualViews[]; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_PAGE_TABLE) readonly buffer PageTableBlock { uint pageTable[]; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_PAGE_MARKS) buffer PageMarkBlock { uint pageMarks[]; };
 layout(push_constant) uniform DrawConstants { uint objectIndex; } draw;
 
 // Validation variant: the bytes of this pixel's shadow factors, all "not reached" to start.
@@ -142,6 +148,7 @@ void countShadowLookup(uint taps) {
     }
 }
 
+#include "shadow_pages.glsl"
 #include "shadow_sampling.glsl"
 #include "texture_sampling.glsl"
 
@@ -166,6 +173,10 @@ vec3 shadeLight(Surface surface, GpuPunctualLight light) {
     float shadow = 1.0;
     if (SHADOWS && arrival.attenuation > 0.0 && light.angleOffsetShadow.y >= 0.0 &&
         facesLight(surface, arrival.toLight)) {
+        if (SHADOW_PAGES == PUNCTUAL_SHADOW_PAGES_MARK) {
+            markShadowPages(light, arrival.toLight, surface.position, surface.normal);
+            return vec3(0.0);
+        }
         shadow = shadowVisibility(light, arrival.toLight, surface.position, surface.normal);
         if (WRITE_SHADOW_FACTORS) {
             recordShadowFactor(shadowSlot(uint(light.angleOffsetShadow.y), frame.shadowCounts.x), shadow);
@@ -177,6 +188,7 @@ vec3 shadeLight(Surface surface, GpuPunctualLight light) {
 // The sun, with its cascaded shadow where it has one; skipped, as for punctual lights, where the
 // surface faces away from it.
 vec3 shadeSun(Surface surface) {
+    if (SHADOW_PAGES == PUNCTUAL_SHADOW_PAGES_MARK) return vec3(0.0);  // the cascades stay whole: no pages
     float shadow = 1.0;
     if (SHADOWS && frame.sunShadow.y > 0u && facesLight(surface, frame.sun.directionToLight.xyz)) {
         uint cascade;

@@ -5,6 +5,7 @@
 #define PUNCTUAL_GPU_TYPES_H
 
 #include "glsl_cpp.h"
+#include "shadow_pages.h"
 
 // Light capacity. A frame keeps at most S spot and P point lights (--max-lights S,P), the most
 // important ones (lights/light_setup.h); the design notes' caps, 64 + 32, are the default. Any
@@ -54,6 +55,16 @@
 // Index lists (--light-lists indices): the words used, then the cells' lists of 16-bit light
 // indices, two a word (culling.h, "Index lists"); one word with masks.
 #define PUNCTUAL_BINDING_LIGHT_INDICES 19
+// Virtual shadow pages (--shadow-res virtual, shadow_pages.h): a GpuVirtualShadowView per plan
+// view; the page table (per level a view uses, its pages' rectangle of entries, each a page's slot
+// in the pool or PUNCTUAL_NO_SHADOW_PAGE); and the marking pass's bits, one per page of every
+// level, per view with casters (GpuVirtualShadowView::marks).
+#define PUNCTUAL_BINDING_SHADOW_PAGE_VIEWS 20
+#define PUNCTUAL_BINDING_SHADOW_PAGE_TABLE 21
+#define PUNCTUAL_BINDING_SHADOW_PAGE_MARKS 22
+// The shadow pass's instances: per instance, the page it draws (view, level, column | row << 16,
+// pool slot); read by shadow.vert and shadow_masked.vert (shadow_page_draw.glsl).
+#define PUNCTUAL_BINDING_SHADOW_PAGE_DRAWS 23
 
 // Shadow validation buffer (forward shader's WRITE_SHADOW_FACTORS variant), in 32-bit words:
 // per pixel PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS words (world position xyz, 1 if covered, shading
@@ -92,6 +103,11 @@
 #define PUNCTUAL_CASCADE_BLEND_DITHER 2u  // the outer share picks one of the two per pixel
 #define PUNCTUAL_CASCADE_BLEND_COUNT 3u
 #define PUNCTUAL_MAX_CASCADES 4
+// How the forward shader reads spot and point shadows (PUNCTUAL_SPEC_SHADOW_PAGES).
+#define PUNCTUAL_SHADOW_PAGES_OFF 0u     // each view's square of the atlas (fixed and auto resolution)
+#define PUNCTUAL_SHADOW_PAGES_LOOKUP 1u  // virtual maps: each receiver its level's pages, through the page table
+#define PUNCTUAL_SHADOW_PAGES_MARK 2u    // the marking pass: each receiver marks the pages it will read, shades nothing
+#define PUNCTUAL_SHADOW_PAGES_COUNT 3u
 
 // GpuMaterial::flags.
 #define PUNCTUAL_MATERIAL_ALPHA_MASK 1u    // glTF alphaMode MASK: dropped where alpha < cutoff
@@ -134,6 +150,7 @@
 #define PUNCTUAL_SPEC_TILE_THREADS 16  // tile_culling.comp: invocations per tile (the device's subgroup size)
 #define PUNCTUAL_SPEC_GRID_WORDS 17  // words per light-grid cell (gridWordsOf the frame's lights)
 #define PUNCTUAL_SPEC_LIGHT_LIST_FORM 18  // culling kernels and forward: PUNCTUAL_LIGHT_LIST_MASKS or _INDICES
+#define PUNCTUAL_SPEC_SHADOW_PAGES 19     // forward: PUNCTUAL_SHADOW_PAGES_*
 // tile_culling.comp's workgroups: at most this many invocations (a power of two, at least the 32 or
 // 64 of GPU subgroups; one lane per 2x2 block of a 16-pixel tile).
 #define PUNCTUAL_MAX_TILE_THREADS 64u
@@ -243,6 +260,12 @@ struct GpuFrame {
     vec4 sunShadowFade;   // x: 1 / shadow distance, y: 1 / distance fade share, z: cascadeFadeScale,
                           // w: the sun's shadow strength
     vec4 cascadeSpheres[PUNCTUAL_MAX_CASCADES];  // xyz: centre; w: the selection radius squared
+    // Virtual shadow pages (PUNCTUAL_SPEC_SHADOW_PAGES): x: the texels a screen pixel should span
+    // (--shadow-texels-per-pixel), y: a screen pixel's world size at unit view depth
+    // (screenPixelWorldSize, shadows.h); zw: unused.
+    vec4 shadowPageNeed;
+    uvec4 shadowPagePool;  // x: slots across the pool, y: the pool's first texel row in the atlas, z: the lit
+                           // page's slot (cleared, never drawn); w: unused
 };
 
 // One rendered shadow view: a spot light's frustum, or one face of a point light (+X -X +Y -Y +Z
@@ -257,6 +280,16 @@ struct GpuShadowView {
                      // cube layout: x is the light's cube in the cube array
     vec4 texel;      // x: resolution (texels a side), y: 1 / resolution, z: the bias's penumbra in
                      // texels (ShadowSettings::biasPenumbraTexels), w: unused
+};
+
+// A view's virtual map (--shadow-res virtual): where its marks are and, per level, its page table.
+struct GpuVirtualShadowView {
+    uvec4 marks;  // x: the view's first word of page marks (PUNCTUAL_NO_SHADOW_PAGE: no caster, no
+                  // marks); y: levels coarser than asked (the allocation's coarsening); zw: unused
+    // Per level: x: its first page-table entry (PUNCTUAL_NO_SHADOW_PAGE: no page at this level);
+    // y: the first column | first row << 16 of the rectangle of pages the table covers;
+    // z: its columns | rows << 16; w: unused.
+    uvec4 levels[PUNCTUAL_VIRTUAL_SHADOW_LEVELS];
 };
 
 // Written on the GPU each frame (clustered culling): depth-range pass, then slice-boundaries pass.

@@ -11,10 +11,32 @@
 
 #include "glsl_cpp.h"
 
+// The layout --shadow-res virtual renders (measured against 4096 .. 16384 and pages of 32 .. 256
+// by the estimate, bench/RESULTS.md "Virtual shadow pages, first part"): every spot view and point
+// slice a 16384-texel virtual map (no receiver of the measured scenes asked for more than 2k, so
+// the size costs nothing but the marks' bits) in pages of 32 texels (the page size is what decides
+// the memory: 32-texel pages need 2.3x the floor on the hall, 128-texel pages 4.8x), with
+// log2(16384 / 32) + 1 = 10 levels.
+#define PUNCTUAL_VIRTUAL_SHADOW_SIZE 16384u
+#define PUNCTUAL_VIRTUAL_SHADOW_PAGE 32u
+#define PUNCTUAL_VIRTUAL_SHADOW_LEVELS 10u
+// A page's slot in the pool: its 32 texels a side and the first column and row of its right and
+// lower neighbours (drawn with it), so that every 2 x 2 gather whose texels start in the page
+// reads one slot, and a filter's taps never branch on page borders: 33 x 33 texels, 6% more than
+// the page's own.
+#define PUNCTUAL_VIRTUAL_SHADOW_SLOT 33u
+// A page-table entry, or a level's first entry, with no page behind it.
+#define PUNCTUAL_NO_SHADOW_PAGE 0xFFFFFFFFu
+// Texels the marking pass adds to a filter's reach: the lookup reads the footprint it marks from
+// the same interpolated surface through the same functions, but the two are separate pipelines and
+// a compiler may round them differently; one texel of margin keeps every page the lookup reads
+// marked (it costs about 3% more pages on the hall).
+#define PUNCTUAL_VIRTUAL_SHADOW_MARK_MARGIN 1.0f
+
 PUNCTUAL_NAMESPACE_BEGIN
 
 // The levels of a virtual map: log2(virtualSize / pageSize) + 1, the last one page a side.
-PUNCTUAL_FN uint virtualShadowLevels(uint virtualSize, uint pageSize) {
+PUNCTUAL_CONSTEXPR_FN uint virtualShadowLevels(uint virtualSize, uint pageSize) {
     uint levels = 1u;
     for (uint side = virtualSize; side > pageSize; side >>= 1u) ++levels;
     return levels;
@@ -34,6 +56,14 @@ PUNCTUAL_FN uint virtualShadowLevel(float needed, uint virtualSize, uint levels)
         resolution *= 2.0f;
     }
     return level;
+}
+
+// The level a receiver reads: the nearest level to the resolution it needs (virtualShadowLevel, at
+// PUNCTUAL_VIRTUAL_SHADOW_SIZE), made `coarser` levels coarser (a view the pool was short for,
+// coarsened by the allocation), at most the coarsest.
+PUNCTUAL_FN uint virtualShadowReadLevel(float needed, uint coarser) {
+    uint level = virtualShadowLevel(needed, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_LEVELS);
+    return min(level + coarser, PUNCTUAL_VIRTUAL_SHADOW_LEVELS - 1u);
 }
 
 // Pages a side of level `level`.
@@ -58,14 +88,23 @@ PUNCTUAL_FN uvec2 virtualShadowPage(vec2 uv, uint level, uint virtualSize, uint 
     return uvec2(virtualShadowFootprintPages(uv, 0.0f, level, virtualSize, pageSize));
 }
 
+// The square a page's slot holds (PUNCTUAL_VIRTUAL_SHADOW_SLOT texels from the page's first) of
+// `level` in its view's NDC (the view's clip space over w): xy its centre, z its half side. The
+// level spans NDC [-1, 1] in r = (virtualSize >> level) texels, so s texels are 2 s / r wide, and
+// the slot's square starts at 2 page pageSize / r - 1. The shadow pass draws a page by mapping
+// this square onto the slot; the allocation culls casters against it.
+PUNCTUAL_FN vec3 virtualShadowPageNdc(uint level, uvec2 page) {
+    float texelNdc = 2.0f / float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> level);
+    float halfSide = 0.5f * float(PUNCTUAL_VIRTUAL_SHADOW_SLOT) * texelNdc;
+    return vec3(vec2(page) * (float(PUNCTUAL_VIRTUAL_SHADOW_PAGE) * texelNdc) - 1.0f + halfSide, halfSide);
+}
+
 // A page's index among all the map's pages, level 0's first, row by row: level m starts after
-// the pages of the levels before it, sum over k < m of (pages across level k)^2.
+// the pages of the levels before it. Level k is 2^(L - 1 - k) pages across (L levels, the last one
+// page), so the levels before m hold sum over k < m of 4^(L - 1 - k) = (4^L - 4^(L - m)) / 3 pages.
 PUNCTUAL_FN uint virtualShadowPageIndex(uvec2 page, uint level, uint virtualSize, uint pageSize) {
-    uint first = 0u;
-    for (uint k = 0u; k < level; ++k) {
-        uint across = virtualShadowPagesAcross(k, virtualSize, pageSize);
-        first += across * across;
-    }
+    uint levels = virtualShadowLevels(virtualSize, pageSize);
+    uint first = ((1u << (2u * levels)) - (1u << (2u * (levels - level)))) / 3u;
     return first + page.y * virtualShadowPagesAcross(level, virtualSize, pageSize) + page.x;
 }
 

@@ -54,22 +54,48 @@ float filterAngle(vec3 position) {
 // tent7; the 32-sample disk 540-610 ms against 283 ms for 33 samples). Kept rolled, the cost grows
 // with the taps. A GPU driver may unroll anyway; the attribute is only a hint to the compiler.
 
-// Filters the view's square of the atlas around `uv` (the view's own UV, 0..1 across its square).
+// Where a receiver reads a shadowed light's map: the view (a spot's, or the point face its biased
+// position falls on), its resolution there and, with virtual pages, the level, and the receiver
+// moved by the bias (applyShadowBias, at the texel size it reads).
+struct ShadowRead {
+    uint view;         // index into shadowViews (and virtualViews)
+    uint level;        // virtual pages: the level it reads; 0 otherwise
+    float resolution;  // texels a side of what it reads: the view's square, or the level
+    vec3 biased;
+    bool hasMap;       // false: the view has no map (no caster, or no storage): lit
+    bool paged;        // read through the page table (virtual pages; never a cascade), else the view's square
+};
+
+// Filters the view's square of the atlas around `uv` (the view's own UV, 0..1 across its square),
+// or with virtual pages its level, each tap a bilinear compare through the page table.
 // Samples are clamped half a texel inside the square, so a bilinear tap never reads a neighbour's
 // texels: near its edge a view filters as if its edge texels went on (clamp to edge). A receiver
 // outside the view is lit, as the spot's white border made it before the atlas.
-float filterAtlas(GpuShadowView view, vec2 uv, float reference, float angle) {
+float filterAtlas(ShadowRead read, GpuShadowView view, vec2 uv, float reference, float angle) {
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
-    float texelSize = view.texel.y;
+    float texelSize = 1.0 / read.resolution;
     vec2 lowest = vec2(0.5 * texelSize);
     vec2 highest = vec2(1.0 - 0.5 * texelSize);
     countShadowLookup(filterSampleCount());
+    // Virtual pages: the pages the taps reach (a bilinear tap reads a texel beyond its reach).
+    // (Tested through the specialization constant first: the other modes' pipelines then drop this
+    // code before the compiler inlines it, which measured 0.1 s of lavapipe's build per pipeline.)
+    bool paged = SHADOW_PAGES != PUNCTUAL_SHADOW_PAGES_OFF && read.paged;
+    PageBlock block;
+    if (paged) {
+        float reach = shadowKernelReachTexels(SHADOW_KERNEL, SHADOW_FILTER_SIZE, frame.diskRadius * read.resolution) + 1.0;
+        block = virtualPageBlock(read.view, read.level, uv * read.resolution, reach);
+    }
     float sum = 0.0;
     float weights = 0.0;
     [[dont_unroll]] for (uint i = 0u; i < filterSampleCount(); ++i) {
-        vec3 s = filterSample(i, angle, uv, view.texel.x);
-        vec2 atlasUv = view.atlasRect.xy + clamp(uv + s.xy, lowest, highest) * view.atlasRect.zw;
-        sum += s.z * texture(shadowAtlas, vec3(atlasUv, reference));
+        vec3 s = filterSample(i, angle, uv, read.resolution);
+        vec2 tap = clamp(uv + s.xy, lowest, highest);
+        if (paged) {
+            sum += s.z * virtualBilinearCompare(block, tap * read.resolution, reference);
+        } else {
+            sum += s.z * texture(shadowAtlas, vec3(view.atlasRect.xy + tap * view.atlasRect.zw, reference));
+        }
         weights += s.z;
     }
     return sum / weights;
@@ -95,15 +121,19 @@ float compareWithPlane(float casterDepth, float planeDepth) {
 // texels), and weighed by the tent's exact per-texel weights. Gathers are clamped inside the
 // view's square (clamp to edge, as filterAtlas); a clamped texel's plane depth is taken under the
 // texel actually read.
-float filterAtlasReceiverPlane(GpuShadowView view, vec2 uv, float depth, vec2 slopeUv) {
+float filterAtlasReceiverPlane(ShadowRead read, GpuShadowView view, vec2 uv, float depth, vec2 slopeUv) {
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
     uint n = filterFootprint();
-    float resolution = view.texel.x;
+    float resolution = read.resolution;
     vec2 position = uv * resolution;    // the sample point, in texels
     vec2 slope = slopeUv / resolution;  // the plane's depth per texel
     vec2 o = tentCornerOffset(position);
     uint perAxis = tentFetchesPerAxis(n);
     countShadowLookup(perAxis * perAxis);
+    // Virtual pages: the pages of the N + 1 texels a side around the sample point.
+    bool paged = SHADOW_PAGES != PUNCTUAL_SHADOW_PAGES_OFF && read.paged;  // (as in filterAtlas)
+    PageBlock block;
+    if (paged) block = virtualPageBlock(read.view, read.level, position, 0.5 * float(n) + 1.0);
     float sum = 0.0;
     [[dont_unroll]] for (uint i = 0u; i < perAxis * perAxis; ++i) {
         vec3 u = shadowKernelTexelPair(SHADOW_KERNEL, o.x, n, i % perAxis);
@@ -111,7 +141,8 @@ float filterAtlasReceiverPlane(GpuShadowView view, vec2 uv, float depth, vec2 sl
         vec2 gatherCorner = clamp(position + vec2(u.x, v.x) + 0.5, vec2(1.0), vec2(resolution - 1.0));
         vec2 low = gatherCorner - 0.5 - position;  // centres of the texels read, from the sample point
         vec2 high = low + 1.0;
-        vec4 casters = textureGather(shadowAtlasDepth, view.atlasRect.xy + gatherCorner / resolution * view.atlasRect.zw, 0);
+        vec4 casters = paged ? virtualGather(block, ivec2(round(gatherCorner)))
+                           : textureGather(shadowAtlasDepth, view.atlasRect.xy + gatherCorner / resolution * view.atlasRect.zw, 0);
         // textureGather's order: (u0, v1), (u1, v1), (u1, v0), (u0, v0).
         sum += u.y * v.z * compareWithPlane(casters.x, depth + dot(slope, vec2(low.x, high.y)));
         sum += u.z * v.z * compareWithPlane(casters.y, depth + dot(slope, high));
@@ -121,18 +152,18 @@ float filterAtlasReceiverPlane(GpuShadowView view, vec2 uv, float depth, vec2 sl
     return sum;  // the tent's weights sum to 1
 }
 
-// A spot view or point slice of the atlas, from the biased receiver and its normal: per-texel
-// receiver-plane compares where they apply (receiverPlaneCompares), the notes' per-tap compares
-// otherwise.
-float filterAtlasView(GpuShadowView view, vec3 biased, vec3 normal, float angle) {
-    vec4 clip = view.viewProjection * vec4(biased, 1.0);
+// A spot view or point slice of the atlas (or its virtual pages), from the biased receiver and its
+// normal: per-texel receiver-plane compares where they apply (receiverPlaneCompares), the notes'
+// per-tap compares otherwise.
+float filterAtlasView(ShadowRead read, GpuShadowView view, vec3 normal, float angle) {
+    vec4 clip = view.viewProjection * vec4(read.biased, 1.0);
     if (clip.w <= 0.0) return 1.0;
     vec3 ndc = clip.xyz / clip.w;  // perspective: divide by w
     vec2 uv = ndc.xy * 0.5 + 0.5;
     if (receiverPlaneCompares()) {
-        return filterAtlasReceiverPlane(view, uv, ndc.z, receiverPlaneDepthSlope(view.viewProjection, biased, normal));
+        return filterAtlasReceiverPlane(read, view, uv, ndc.z, receiverPlaneDepthSlope(view.viewProjection, read.biased, normal));
     }
-    return filterAtlas(view, uv, shadowReference(ndc.z), angle);
+    return filterAtlas(read, view, uv, shadowReference(ndc.z), angle);
 }
 
 // Cube faces: the direction's position on face f is uv = (sc / |ma| + 1) / 2 with sc = r.U,
@@ -155,48 +186,92 @@ float filterCube(vec3 direction, uint face, float cube, float reference, float a
 }
 
 
-// Fraction of `light` reaching `position` past the shadow casters (1 = lit), blended by the
-// light's shadow strength. Called only where the light's attenuation is non-zero.
-float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3 normal) {
+// The resolution a receiver `linearDepth` along view `viewIndex`'s axis reads: the view's square, or
+// with virtual pages its level's (virtualReadLevel, which `level` receives; 0 otherwise).
+float shadowResolutionAt(uint viewIndex, GpuShadowView view, float linearDepth, vec3 position, out uint level) {
+    level = 0u;
+    if (SHADOW_PAGES == PUNCTUAL_SHADOW_PAGES_OFF) return view.texel.x;
+    level = virtualReadLevel(viewIndex, view, linearDepth, position);
+    return float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> level);
+}
+
+// The penumbra that widens the bias (ShadowSettings::biasPenumbraTexels): the view's, or with
+// virtual pages the same rule at the level's resolution (the disk's reach grows with it).
+float biasPenumbraAt(GpuShadowView view, float resolution) {
+    if (SHADOW_PAGES == PUNCTUAL_SHADOW_PAGES_OFF) return view.texel.z;
+    return receiverPlaneCompares() ? 0.0
+                                   : shadowKernelReachTexels(SHADOW_KERNEL, SHADOW_FILTER_SIZE, frame.diskRadius * resolution);
+}
+
+// Where the receiver reads `light`'s map. Spot: its one view; linear depth along the spot axis
+// sizes the texel (design notes). Point: the face is the major axis of the light-to-point
+// direction, sized there, and then the face the biased point falls on.
+ShadowRead shadowReadOf(GpuPunctualLight light, vec3 toLight, vec3 position, vec3 normal) {
     uint first = uint(light.angleOffsetShadow.y);
     vec3 lightPosition = light.positionInvRangeSq.xyz;
-    float angle = filterAngle(position);
-    float visibility = 1.0;
+    ShadowRead read;
     if (light.angleOffsetShadow.z > -1.0) {
-        // Spot: one view. Linear depth along the spot axis sizes the texel (design notes).
+        read.view = first;
         GpuShadowView view = shadowViews[first];
-        if (view.params.x < 0.0) return 1.0;  // no caster in its frustum, or no storage
         float linearDepth = abs(dot(lightPosition - position, light.directionAngleScale.xyz));
-        float texel = shadowTexelWorldSize(linearDepth, view.params.y, view.texel.x);
-        vec3 biased = applyShadowBias(position, normal, toLight, texel, view.texel.z, frame.shadowBias);
-        visibility = filterAtlasView(view, biased, normal, angle);
+        read.resolution = shadowResolutionAt(first, view, linearDepth, position, read.level);
+        float texel = shadowTexelWorldSize(linearDepth, view.params.y, read.resolution);
+        read.biased = applyShadowBias(position, normal, toLight, texel, biasPenumbraAt(view, read.resolution), frame.shadowBias);
     } else {
-        // Point: the face is the major axis of the light-to-point direction.
         vec3 direction = position - lightPosition;
         uint face = cubeFaceOfDirection(direction);
         float linearDepth = abs(dot(direction, cubeFaceAxis(face)));
         GpuShadowView unbiasedView = shadowViews[first + face];
-        float texel = shadowTexelWorldSize(linearDepth, unbiasedView.params.y, unbiasedView.texel.x);
-        vec3 biased = applyShadowBias(position, normal, toLight, texel, unbiasedView.texel.z, frame.shadowBias);
-        vec3 biasedDirection = biased - lightPosition;
-        face = cubeFaceOfDirection(biasedDirection);
-        GpuShadowView view = shadowViews[first + face];
-        if (view.params.x < 0.0) return 1.0;  // no caster on this face, or no storage
+        read.resolution = shadowResolutionAt(first + face, unbiasedView, linearDepth, position, read.level);
+        float texel = shadowTexelWorldSize(linearDepth, unbiasedView.params.y, read.resolution);
+        read.biased = applyShadowBias(position, normal, toLight, texel, biasPenumbraAt(unbiasedView, read.resolution),
+                                      frame.shadowBias);
+        read.view = first + cubeFaceOfDirection(read.biased - lightPosition);
+    }
+    read.hasMap = shadowViews[read.view].params.x >= 0.0;  // no caster in its frustum, or no storage: lit
+    read.paged = SHADOW_PAGES != PUNCTUAL_SHADOW_PAGES_OFF;
+    return read;
+}
+
+// The marking pass (PUNCTUAL_SHADOW_PAGES_MARK): marks the pages the lookup below will read for
+// this receiver and light, where it will read any (a view with a map, the receiver inside it).
+void markShadowPages(GpuPunctualLight light, vec3 toLight, vec3 position, vec3 normal) {
+    ShadowRead read = shadowReadOf(light, toLight, position, normal);
+    if (!read.hasMap) return;
+    vec4 clip = shadowViews[read.view].viewProjection * vec4(read.biased, 1.0);
+    if (clip.w <= 0.0) return;
+    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return;
+    markVirtualFootprint(read.view, read.level, uv);
+}
+
+// Fraction of `light` reaching `position` past the shadow casters (1 = lit), blended by the
+// light's shadow strength. Called only where the light's attenuation is non-zero.
+float shadowVisibility(GpuPunctualLight light, vec3 toLight, vec3 position, vec3 normal) {
+    ShadowRead read = shadowReadOf(light, toLight, position, normal);
+    if (!read.hasMap) return 1.0;
+    GpuShadowView view = shadowViews[read.view];
+    float angle = filterAngle(position);
+    float visibility = 1.0;
+    bool spot = light.angleOffsetShadow.z > -1.0;
+    // One call site for the atlas's views (spots, and points as slices): the shader compiler
+    // inlines every call, and the filters are the shader's largest code.
+    bool cube = false;
+    if (!spot) {
         switch (POINT_SHADOW_LAYOUT) {
-            case PUNCTUAL_POINT_SHADOW_CUBE: {
-                float reference = shadowReference(
-                    perspectiveDepth(abs(dot(biasedDirection, cubeFaceAxis(face))), view.params.z, view.params.w));
-                visibility = filterCube(biasedDirection, face, view.atlasRect.x, reference, angle, view.texel.x);
-                break;
-            }
-            case PUNCTUAL_POINT_SHADOW_SLICES: {
-                visibility = filterAtlasView(view, biased, normal, angle);
-                break;
-            }
-            default:
-                unknownVariant = true;
-                break;
+            case PUNCTUAL_POINT_SHADOW_CUBE: cube = true; break;
+            case PUNCTUAL_POINT_SHADOW_SLICES: break;
+            default: unknownVariant = true; return 1.0;
         }
+    }
+    if (cube) {
+        vec3 biasedDirection = read.biased - light.positionInvRangeSq.xyz;
+        uint face = read.view - uint(light.angleOffsetShadow.y);
+        float reference = shadowReference(
+            perspectiveDepth(abs(dot(biasedDirection, cubeFaceAxis(face))), view.params.z, view.params.w));
+        visibility = filterCube(biasedDirection, face, view.atlasRect.x, reference, angle, view.texel.x);
+    } else {
+        visibility = filterAtlasView(read, view, normal, angle);
     }
     return mix(1.0, visibility, light.angleOffsetShadow.w);
 }
@@ -210,8 +285,14 @@ float cascadeShadow(uint cascade, vec3 position, vec3 normal, vec3 toSun, float 
     GpuShadowView view = shadowViews[frame.sunShadow.x + cascade];
     if (view.params.x < 0.0) return 1.0;  // no caster, or no storage
     float texel = cascadeTexelWorldSize(0.5 * view.params.y, view.texel.x) * 1.41421356;
-    vec3 biased = applyShadowBias(position, normal, toSun, texel, view.texel.z, frame.shadowBias);
-    return filterAtlasView(view, biased, normal, angle);
+    ShadowRead read;
+    read.view = frame.sunShadow.x + cascade;
+    read.level = 0u;
+    read.resolution = view.texel.x;
+    read.biased = applyShadowBias(position, normal, toSun, texel, view.texel.z, frame.shadowBias);
+    read.hasMap = true;
+    read.paged = false;  // the cascades stay whole views of the atlas
+    return filterAtlasView(read, view, normal, angle);
 }
 
 // The sun's visibility at the receiver (1 = lit), and the cascade it read (frame.sunShadow.y when

@@ -139,10 +139,12 @@ int runRenderCommand(const std::vector<std::string>& args) {
             stats["shadows"] = shadowStatsJson(renderer);
             if (settings.shadows.enabled) {
                 const std::vector<VirtualPageLayout> layouts = virtualPageLayoutsToCompare();
-                stats["shadows"]["virtual_estimate"] = virtualPageEstimateJson(
-                    estimateVirtualPages(scene, renderer.lights(), renderer.shadowPlan(), settings.width, settings.height,
-                                         settings.shadows, layouts),
-                    renderer);
+                const VirtualPageEstimate estimate = estimateVirtualPages(
+                    scene, renderer.lights(), renderer.shadowPlan(), settings.width, settings.height, settings.shadows, layouts);
+                stats["shadows"]["virtual_estimate"] = virtualPageEstimateJson(estimate, renderer);
+                if (settings.shadows.virtualPages()) {
+                    stats["shadows"]["virtual_pages"] = virtualPagesJson(renderer, estimate.shadedPairs);
+                }
             }
             stats["memory"]["light_grid_floor_bytes"] = lightGridFloorBytes(renderer);
             outputs.add(*options.statsPath, stats.dump(2) + "\n");

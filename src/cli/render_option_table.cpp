@@ -17,12 +17,20 @@ constexpr size_t kListIndent = 25;
 
 using Notes = RenderOptionNotes;
 
-// --shadow-res: auto, or a whole number (0 is refused here: it is how auto is stored).
+// --shadow-res: a named mode (kShadowResolutionModes), or a whole number (the modes' stored values,
+// 0 and 1, are refused as numbers: validateShadowSettings takes 16 to 8192).
 void applyShadowResolution(RenderOptions& o, const std::string& v, Notes&) {
-    o.shadows.resolution = v == "auto" ? ShadowSettings::kAutoResolution : parseWhole("--shadow-res", v);
-    if (v != "auto" && o.shadows.resolution == ShadowSettings::kAutoResolution) {
-        throw Error("--shadow-res", "must be auto or a power of two from 16 to 8192, got 0");
+    for (const ShadowResolutionModeInfo& mode : kShadowResolutionModes) {
+        if (v == mode.name) {
+            o.shadows.resolution = mode.value;
+            return;
+        }
     }
+    const uint32_t resolution = parseWhole("--shadow-res", v);
+    if (resolution < 16) {
+        throw Error("--shadow-res", "must be auto, virtual or a power of two from 16 to 8192, got " + v);
+    }
+    o.shadows.resolution = resolution;
 }
 
 // --light-range: auto, or metres above 0 and at most 10^6.
@@ -119,16 +127,18 @@ const RenderOptionSpec kRenderOptions[] = {
      [](RenderOptions& o, const std::string& v, Notes&) { o.shadows.enabled = parseOnOff("--shadows", v); }},
     {"--shadowed", "S,P", "shadow at most S spot and P point lights, the most important\n(default 64,32: all of them)",
      [](RenderOptions& o, const std::string& v, Notes&) { parseShadowedCounts(v, o.shadows); }},
-    {"--shadow-res", "auto|N",
-     "auto (default): each shadow view the power-of-two resolution at which\none texel covers about one screen pixel "
-     "where it is seen, within\n--shadow-budget; N: every view N x N texels (a power of two, 16-8192)",
-     &applyShadowResolution},
+    {"--shadow-res", "MODE|N",
+     "N: every shadow view N x N texels (a power of two, 16-8192); or,\nwithin --shadow-budget:",
+     &applyShadowResolution,
+     [](const RenderOptions& d, size_t indent) {
+         return variantHelp(kShadowResolutionModes, d.shadows.resolution, indent);
+     }},
     {"--shadow-texels-per-pixel", "X",
      "auto: the shadow texels a screen pixel should span where a\nview's receivers are seen, 0.25 to 16 (default 1)",
      [](RenderOptions& o, const std::string& v, Notes&) {
          o.shadows.texelsPerPixel = parseFloat("--shadow-texels-per-pixel", v);
      }},
-    {"--shadow-budget", "MiB", "the most memory auto resolution may give the shadow atlas (default 64)",
+    {"--shadow-budget", "MiB", "the most memory auto or virtual resolution may give the shadow\natlas (default 64)",
      [](RenderOptions& o, const std::string& v, Notes&) {
          o.shadows.budgetBytes = uint64_t(parseWhole("--shadow-budget", v)) << 20;
      }},

@@ -140,6 +140,15 @@ glm::mat4 spotViewProjection(const glm::vec3& position, const glm::vec3& directi
 
 }  // namespace
 
+float shadowResolutionRead(const ShadowPlan& plan, uint32_t viewIndex, float linearDepth, const glm::vec3& position) {
+    const ShadowView& view = plan.views[viewIndex];
+    const VirtualPageReads& reads = plan.virtualReads;
+    if (!reads.enabled || view.isCascade || view.resolution == 0) return float(view.resolution);
+    const float pixel = gpu::screenPixelWorldSize(glm::dot(position - reads.eye, reads.forward), reads.pixelSpan);
+    const float needed = gpu::resolutionForOneTexelPerPixel(linearDepth, view.tanSpan, pixel) * reads.texelsPerPixel;
+    return float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> gpu::virtualShadowReadLevel(needed, view.coarserLevels));
+}
+
 float ShadowSettings::penumbraTexels(uint32_t viewResolution) const {
     const ShadowFilterInfo* info = findVariant(kShadowFilters, filter);
     if (!info) info = &kShadowFilters[0];
@@ -159,7 +168,10 @@ float shadowDepthQuantum(ShadowFormat format) {
 const char* shadowFormatName(ShadowFormat format) { return format == ShadowFormat::D16 ? "d16" : "d32"; }
 
 std::string shadowResolutionName(const ShadowSettings& settings) {
-    return settings.autoResolution() ? "auto" : std::to_string(settings.resolution);
+    for (const ShadowResolutionModeInfo& mode : kShadowResolutionModes) {
+        if (mode.value == settings.resolution) return mode.name;
+    }
+    return std::to_string(settings.resolution);
 }
 
 uint32_t ShadowSettings::filterTaps() const {
@@ -172,7 +184,7 @@ void validateShadowSettings(const ShadowSettings& settings) {
     validateCascadeSettings(settings.cascades);
     if (!settings.autoResolution() &&
         (settings.resolution < 16 || settings.resolution > 8192 || (settings.resolution & (settings.resolution - 1)) != 0)) {
-        throw Error("--shadow-res", "must be auto or a power of two from 16 to 8192, got " + std::to_string(settings.resolution));
+        throw Error("--shadow-res", "must be auto, virtual or a power of two from 16 to 8192, got " + std::to_string(settings.resolution));
     }
     if (settings.autoResolution() && settings.pointLayout == PointShadowLayout::Cube) {
         throw Error("--point-shadow-layout cube",

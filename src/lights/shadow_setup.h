@@ -10,6 +10,7 @@
 // visible receivers need (lights/shadow_resolution.h) within the budget (lights/shadow_budget.h).
 // Spot views and point faces stored as slices live in one atlas (lights/shadow_atlas.h); the cube
 // layout keeps a cube array and needs a fixed resolution.
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -18,6 +19,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/variant_table.h"
 #include "gpu_types.h"
 #include "lights/cascade_settings.h"
 #include "lights/cascade_setup.h"
@@ -38,6 +40,9 @@ struct ShadowSettings {
     // tier its visible receivers need (--shadow-res auto, the default).
     uint32_t resolution = kAutoResolution;
     static constexpr uint32_t kAutoResolution = 0;
+    // Each spot view and point slice a virtual map whose pages visible receivers mark
+    // (--shadow-res virtual; shaders/shared/shadow_pages.h); the sun's cascades as in auto.
+    static constexpr uint32_t kVirtualResolution = 1;
     // auto: the shadow texels one screen pixel should span where a view's receivers are seen (the
     // tier rule's target density; see shadow_resolution.h).
     float texelsPerPixel = 1.0f;
@@ -65,7 +70,9 @@ struct ShadowSettings {
     bool pancaking = false;         // clamp caster vertices' depth onto the near plane (Unity's pancaking)
     float spotNearFraction = 0.0f;  // > 0: spot near plane at this fraction of the range, not fitted
 
-    bool autoResolution() const { return resolution == kAutoResolution; }
+    // Auto sizing of whole views: --shadow-res auto, and the sun's cascades with virtual pages.
+    bool autoResolution() const { return resolution == kAutoResolution || resolution == kVirtualResolution; }
+    bool virtualPages() const { return resolution == kVirtualResolution; }
     // The filter's reach in texels, for a view of `viewResolution` texels a side, which widens the
     // bias (the design notes' penumbra) and the slices' guard band, and its lookups per shadow
     // test: the filter table's footprint, or the disk's settings.
@@ -77,6 +84,22 @@ struct ShadowSettings {
     uint32_t filterTaps() const;
     uint32_t texelBytes() const { return format == ShadowFormat::D16 ? 2u : 4u; }
 };
+
+// The named values of --shadow-res (any other value is a fixed resolution N): a table, so parsing,
+// --help and the bench's series derive from it.
+struct ShadowResolutionModeInfo {
+    uint32_t value;     // ShadowSettings::resolution
+    const char* name;
+    GpuConstant pages;  // how the forward shader reads spot and point shadows (PUNCTUAL_SHADOW_PAGES_*)
+    const char* description;
+};
+inline constexpr std::array<ShadowResolutionModeInfo, 2> kShadowResolutionModes = {{
+    {ShadowSettings::kAutoResolution, "auto", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_SHADOW_PAGES_OFF),
+     "each view the power of two at which a texel spans about a pixel"},
+    {ShadowSettings::kVirtualResolution, "virtual", PUNCTUAL_GPU_CONSTANT(PUNCTUAL_SHADOW_PAGES_LOOKUP),
+     "32-texel pages of 16384-texel maps, where visible pixels read them"},
+}};
+static_assert(namesAreUnique(kShadowResolutionModes));
 
 const char* shadowFormatName(ShadowFormat format);
 // What receiver-plane compares subtract from the plane's depth (frame.shadowDepthQuantum): the format's
@@ -104,8 +127,21 @@ struct ShadowView {
     float demand = 0.0f;            // auto: texels a side its visible receivers need (0: none seen)
     uint32_t demandedTier = 0;      // auto: the tier of the demand, before the budget
     uint32_t resolution = 0;        // texels a side it is rendered at; 0: no storage, always lit
+                                    // (virtual pages: PUNCTUAL_VIRTUAL_SHADOW_SIZE, its level 0)
+    uint32_t coarserLevels = 0;     // virtual pages: levels coarser than its receivers ask (the budget's)
     AtlasRect rect;                 // where it lives in the atlas (not for the cube layout)
     bool rendered() const { return resolution > 0 && !casters.empty(); }
+};
+
+// Virtual pages (--shadow-res virtual): what sets the level a receiver reads, beside its view
+// (shaders/shared/shadow_pages.glsl, virtualReadLevel): the camera, for the world size of a
+// screen pixel at the receiver, and the target density.
+struct VirtualPageReads {
+    bool enabled = false;
+    glm::vec3 eye{0.0f};
+    glm::vec3 forward{0.0f, 0.0f, -1.0f};  // the camera's axis
+    float pixelSpan = 0.0f;                 // a screen pixel's world size at unit depth along it
+    float texelsPerPixel = 1.0f;
 };
 
 struct ShadowPlan {
@@ -131,6 +167,7 @@ struct ShadowPlan {
     uint32_t receiverSamples = 0;   // auto: visible receiver samples the demand came from
     uint32_t sampleStep = 0;        // auto: pixels between them
     CascadePlan cascades;           // the sun's (planCascades)
+    VirtualPageReads virtualReads;
     // How alphaMode BLEND casters shadow (ShadowSettings::transparent), for whoever checks the
     // views against rays (reference/shadow_validation.h).
     TransparentShadows transparentShadows = TransparentShadows::Clip;
@@ -142,6 +179,11 @@ struct ShadowPlan {
 // have no resolution yet: sizeShadowViews (lights/shadow_sizing.h) gives them one.
 ShadowPlan planShadows(const Scene& scene, FrameLights& lights, const glm::vec3& cameraPosition,
                        const ShadowSettings& settings);
+
+// The resolution receiver `position`, `linearDepth` along view `view`'s axis, reads of the view:
+// its own, or with virtual pages its level's (virtualShadowReadLevel, as the forward shader
+// chooses it); 0 for a view without storage.
+float shadowResolutionRead(const ShadowPlan& plan, uint32_t view, float linearDepth, const glm::vec3& position);
 
 // The matrix of cube face `face` of a light at `position`: clip.x = dot(r, U) / scale,
 // clip.y = dot(r, V) / scale, clip.w = dot(r, axis) for r = p - position (see shadows.h), and a

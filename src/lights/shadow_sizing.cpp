@@ -10,6 +10,8 @@ namespace punctual {
 
 namespace {
 
+constexpr uint32_t kVirtualSliceGuardResolution = 512;
+
 // Each view's light's rank (0 = the most important), for the budget. The sun's cascades come
 // first: the sun reaches every pixel the frame shows.
 std::vector<uint32_t> lightRanks(const ShadowPlan& plan, const Scene& scene, const FrameLights& lights,
@@ -32,6 +34,15 @@ std::vector<uint32_t> lightRanks(const ShadowPlan& plan, const Scene& scene, con
     }
     return ranks;
 }
+
+}  // namespace
+
+std::vector<uint32_t> shadowViewRanks(const ShadowPlan& plan, const Scene& scene, const FrameLights& lights,
+                                      const glm::vec3& cameraPosition) {
+    return lightRanks(plan, scene, lights, cameraPosition);
+}
+
+namespace {
 
 bool usesCubeArray(const ShadowView& view, const ShadowSettings& settings) {
     return view.isPoint && settings.pointLayout == PointShadowLayout::Cube;
@@ -56,8 +67,12 @@ void finishViews(ShadowPlan& plan, const FrameLights& lights, const ShadowSettin
             const glm::vec3 position(lights.packed[view.packedLight].positionInvRangeSq);
             // Slices: widen each face so that a filter reaching `penumbraTexels` (plus one for the
             // bilinear footprint) past the face edge still reads the same slice (URP's guard angle).
+            // Virtual pages: a receiver reads a level of the face, not the face's 16384 texels; the
+            // band is sized for levels of 512 texels and finer, so only the coarsest levels, read by
+            // receivers whose pixels span more than 1/512 of the face, clamp at the band's edge.
+            const uint32_t guarded = settings.virtualPages() ? kVirtualSliceGuardResolution : view.resolution;
             const float scale = settings.pointLayout == PointShadowLayout::Slices
-                                    ? 1.0f + 2.0f * (settings.penumbraTexels(view.resolution) + 1.0f) / resolution
+                                    ? 1.0f + 2.0f * (settings.penumbraTexels(guarded) + 1.0f) / float(std::max(guarded, 1u))
                                     : 1.0f;
             view.tanSpan = 2.0f * scale;
             view.gpu.viewProjection = cubeFaceViewProjection(position, view.face, view.nearPlane, view.farPlane, scale);
@@ -194,8 +209,10 @@ void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& li
         ShadowView& view = plan.views[v];
         view.demand = demand[v];
         view.demandedTier = shadowTierFor(demand[v] * settings.texelsPerPixel, settings.minTier, settings.maxTier);
-        // A view with no caster is lit everywhere: it needs no storage whatever its receivers.
-        tiers.push_back(view.casters.empty() ? 0u : view.demandedTier);
+        // A view with no caster is lit everywhere: it needs no storage whatever its receivers. With
+        // virtual pages only the cascades take squares of the atlas; the pages come after marking.
+        const bool paged = settings.virtualPages() && !view.isCascade;
+        tiers.push_back(view.casters.empty() || paged ? 0u : view.demandedTier);
     }
     ShadowBudgetLimits budget;
     budget.texelBytes = settings.texelBytes();
@@ -215,8 +232,11 @@ void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& li
     plan.reductions = allocation.reductions;
     plan.reducedBy = allocation.limitName;
     for (uint32_t v = 0; v < plan.views.size(); ++v) {
-        plan.views[v].resolution = allocation.resolutions[v];
-        plan.views[v].rect = plan.atlas.rects[v];
+        ShadowView& view = plan.views[v];
+        view.resolution = allocation.resolutions[v];
+        view.rect = plan.atlas.rects[v];
+        // A virtual map with casters has a map (its pages come from the marks), but no square.
+        if (settings.virtualPages() && !view.isCascade && !view.casters.empty()) view.resolution = PUNCTUAL_VIRTUAL_SHADOW_SIZE;
     }
     finishViews(plan, lights, settings);
 }

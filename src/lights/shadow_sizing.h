@@ -41,6 +41,11 @@ void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& li
                      uint32_t frameWidth, uint32_t frameHeight, const ShadowSettings& settings,
                      const ShadowMemoryLimits& limits, const LazyTriangleBvh* geometry = nullptr);
 
+// Each view's light's rank by importance (lightImportance; 0: the sun's cascades, then 1 for the
+// most important light), which orders the budget's reductions.
+std::vector<uint32_t> shadowViewRanks(const ShadowPlan& plan, const Scene& scene, const FrameLights& lights,
+                                      const glm::vec3& cameraPosition);
+
 // Bytes of the fixed-mode maps of `plan` at `resolution` texels a side: the atlas (spots and
 // slices) and the cube array. A lower bound of what the device allocates (it may pad).
 uint64_t shadowMapBytes(const ShadowPlan& plan, const ShadowSettings& settings, uint32_t resolution);

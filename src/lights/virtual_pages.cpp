@@ -1,9 +1,12 @@
 #include "lights/virtual_pages.h"
 
 #include <bit>
+#include <cmath>
 #include <numeric>
 
+#include "lights/shadow_page_allocation.h"
 #include "lights/shadow_resolution.h"
+#include "shading.h"
 #include "shadow_pages.h"
 #include "shadows.h"
 
@@ -149,6 +152,65 @@ VirtualPageEstimate estimateVirtualPages(const Scene& scene, const FrameLights& 
     });
     for (const PageMarks& layoutMarks : marks) estimate.layouts.push_back(layoutMarks.demand());
     return estimate;
+}
+
+std::optional<VirtualRead> virtualReadOnCpu(const ShadowPlan& plan, const gpu::GpuPunctualLight& light,
+                                            const glm::vec3& position, const glm::vec3& normal,
+                                            const ShadowSettings& settings) {
+    if (light.angleOffsetShadow.y < 0.0f) return std::nullopt;  // no shadow
+    const gpu::LightSample arrival = gpu::sampleLight(light, position);
+    if (!(arrival.attenuation > 0.0f) || !(glm::dot(normal, arrival.toLight) > 0.0f)) return std::nullopt;
+    // shadowReadOf: the view sized at the receiver, the bias at its level's texel.
+    const ShadowFilterInfo& filter = shadowFilterInfo(settings.filter);
+    const uint32_t first = uint32_t(light.angleOffsetShadow.y);
+    const glm::vec3 lightPosition(light.positionInvRangeSq);
+    const bool spot = light.angleOffsetShadow.z > -1.0f;
+    const glm::vec3 direction = position - lightPosition;
+    const uint32_t sized = spot ? first : first + gpu::cubeFaceOfDirection(direction);
+    const float linearDepth = spot ? std::abs(glm::dot(direction, glm::vec3(light.directionAngleScale)))
+                                   : std::abs(glm::dot(direction, gpu::cubeFaceAxis(sized - first)));
+    const float resolution = shadowResolutionRead(plan, sized, linearDepth, position);
+    if (!(resolution > 0.0f)) return std::nullopt;
+    const float texel = gpu::shadowTexelWorldSize(linearDepth, plan.views[sized].tanSpan, resolution);
+    const bool receiverPlane = settings.receiverPlane && filter.footprint() > 0;
+    const float penumbra = receiverPlane ? 0.0f : filter.reachTexels(settings.diskRadius * resolution);
+    const glm::vec3 biased = gpu::applyShadowBias(position, normal, arrival.toLight, texel, penumbra, settings.bias);
+    VirtualRead read;
+    read.view = spot ? first : first + gpu::cubeFaceOfDirection(biased - lightPosition);
+    if (!plan.views[read.view].rendered()) return std::nullopt;  // no caster: lit, no map
+    const glm::vec4 clip = plan.views[read.view].gpu.viewProjection * glm::vec4(biased, 1.0f);
+    if (!(clip.w > 0.0f)) return std::nullopt;
+    read.uv = glm::vec2(clip) / clip.w * 0.5f + 0.5f;
+    if (glm::any(glm::lessThan(read.uv, glm::vec2(0.0f))) || glm::any(glm::greaterThan(read.uv, glm::vec2(1.0f)))) {
+        return std::nullopt;
+    }
+    read.level = uint32_t(std::lround(std::log2(float(PUNCTUAL_VIRTUAL_SHADOW_SIZE) / resolution)));
+    read.reach = filter.reachTexels(settings.diskRadius * resolution);
+    return read;
+}
+
+std::vector<uint32_t> markVirtualPagesOnCpu(const Scene& scene, const FrameLights& lights, const ShadowPlan& plan,
+                                            uint32_t width, uint32_t height, const ShadowSettings& settings) {
+    const ShadowPageMarkLayout layout = ShadowPageMarkLayout::of(plan);
+    std::vector<uint32_t> marks(layout.words, 0u);
+    const uint32_t spotsAndPoints = lights.spotCount + lights.pointCount;
+    forEachVisibleReceiver(scene, width, height, 1, [&](uint32_t, uint32_t, const ReceiverSample& sample) {
+        for (uint32_t i = 0; i < spotsAndPoints; ++i) {
+            const std::optional<VirtualRead> read = virtualReadOnCpu(plan, lights.packed[i], sample.position, sample.normal, settings);
+            if (!read) continue;
+            const glm::uvec4 pages = gpu::virtualShadowFootprintPages(read->uv, read->reach + PUNCTUAL_VIRTUAL_SHADOW_MARK_MARGIN,
+                                                                      read->level, PUNCTUAL_VIRTUAL_SHADOW_SIZE,
+                                                                      PUNCTUAL_VIRTUAL_SHADOW_PAGE);
+            for (uint32_t y = pages.y; y <= pages.w; ++y) {
+                for (uint32_t x = pages.x; x <= pages.z; ++x) {
+                    const uint32_t index = gpu::virtualShadowPageIndex(glm::uvec2(x, y), read->level, PUNCTUAL_VIRTUAL_SHADOW_SIZE,
+                                                                       PUNCTUAL_VIRTUAL_SHADOW_PAGE);
+                    marks[layout.firstWord[read->view] + index / 32] |= 1u << (index % 32);
+                }
+            }
+        }
+    });
+    return marks;
 }
 
 }  // namespace punctual

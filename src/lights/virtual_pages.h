@@ -18,6 +18,7 @@
 // The floor is the design notes' one texel per shaded pair (DESIGN.md, "Shadows fitted to the
 // frame"): shadedPairs x the texel's bytes.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -70,5 +71,32 @@ struct VirtualPageEstimate {
 VirtualPageEstimate estimateVirtualPages(const Scene& scene, const FrameLights& lights, const ShadowPlan& plan,
                                          uint32_t width, uint32_t height, const ShadowSettings& settings,
                                          std::span<const VirtualPageLayout> layouts);
+
+// Where a receiver at `position` (unit `normal`) reads `light`'s virtual map, as the forward
+// shader's shadowReadOf does (shaders/shared/shadow_sampling.glsl): the view, its level and the
+// biased receiver's UV, and the filter's reach in texels; nullopt where it reads none (no shadow,
+// no light arriving, facing away, a view without a map, outside the view). `plan` must be sized
+// for virtual pages.
+struct VirtualRead {
+    uint32_t view = 0;
+    uint32_t level = 0;
+    glm::vec2 uv{0.0f};
+    float reach = 0.0f;
+};
+std::optional<VirtualRead> virtualReadOnCpu(const ShadowPlan& plan, const gpu::GpuPunctualLight& light,
+                                            const glm::vec3& position, const glm::vec3& normal,
+                                            const ShadowSettings& settings);
+
+// The marking pass on the CPU (the GPU pass's oracle in the tests): one primary ray through every
+// pixel of a width x height frame; at each surface it reaches (attenuation > 0) and faces, each
+// shadowed light with a map marks, as shaders/shared/shadow_sampling.glsl's markShadowPages does,
+// the pages its filter will read: the level of shadowResolutionRead, the receiver biased at that
+// level's texel, its view (for a point light the face of the biased point), and the footprint of
+// the filter's reach plus PUNCTUAL_VIRTUAL_SHADOW_MARK_MARGIN. `plan` must be sized for virtual
+// pages (sizeShadowViews with --shadow-res virtual). Returns the marks in the GPU's layout
+// (ShadowPageMarkLayout::of(plan)). The surfaces differ from the rasterized ones by what a ray
+// hit differs from an interpolated fragment (a fraction of a pixel); so may a few pages.
+std::vector<uint32_t> markVirtualPagesOnCpu(const Scene& scene, const FrameLights& lights, const ShadowPlan& plan,
+                                            uint32_t width, uint32_t height, const ShadowSettings& settings);
 
 }  // namespace punctual

@@ -35,8 +35,9 @@ double ShadowCounts::misclassifiedOutsideBand() const {
 namespace {
 
 // The world size of one shadow-map texel at `position` for the light's view there: the spot's
-// frustum, or the point face the position falls on (linear depth along the view's axis), at that
-// view's own resolution; 0 for a view without storage (always lit: no edge to be near).
+// frustum, or the point face the position falls on (linear depth along the view's axis), at the
+// resolution it reads there (shadowResolutionRead: the view's, or its virtual level's); 0 for a
+// view without storage (always lit: no edge to be near).
 float texelWorldSize(const gpu::GpuPunctualLight& light, const ShadowPlan& plan, uint32_t firstView,
                      const glm::vec3& position) {
     const glm::vec3 lightPosition(light.positionInvRangeSq);
@@ -51,7 +52,8 @@ float texelWorldSize(const gpu::GpuPunctualLight& light, const ShadowPlan& plan,
         viewIndex += face;
     }
     const ShadowView& view = plan.views[viewIndex];
-    return view.resolution > 0 ? gpu::shadowTexelWorldSize(depth, view.tanSpan, float(view.resolution)) : 0.0f;
+    const float resolution = shadowResolutionRead(plan, viewIndex, depth, position);
+    return resolution > 0.0f ? gpu::shadowTexelWorldSize(depth, view.tanSpan, resolution) : 0.0f;
 }
 
 }  // namespace

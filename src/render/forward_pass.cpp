@@ -8,6 +8,7 @@
 #include "render/depth_prepass.h"
 #include "render/frame_bindings.h"
 #include "render/scene_gpu.h"
+#include "shaders/raster_forward_frag_SHADOW_PAGES_spv.h"
 #include "shaders/raster_forward_frag_spv.h"
 #include "shaders/raster_mesh_vert_spv.h"
 #include "vk/buffer.h"
@@ -44,8 +45,10 @@ ForwardPass::ForwardPass(const vk::Context& context, const vk::Image& radiance, 
 
 std::vector<ImageUse> ForwardPass::imageUses() const {
     if (blendsNothing()) return {};
-    return {{&radiance_, radianceExpected(), kRadianceLayout},
-            {&depth_, DepthPrepass::kFinalLayout, DepthPrepass::kFinalLayout}};
+    std::vector<ImageUse> uses = {{&radiance_, radianceExpected(), kRadianceLayout},
+                                  {&depth_, DepthPrepass::kFinalLayout, DepthPrepass::kFinalLayout}};
+    for (const vk::Image* image : undrawnImages_) uses.push_back({image, VK_IMAGE_LAYOUT_UNDEFINED, undrawnReadLayout_});
+    return uses;
 }
 
 void ForwardPass::createPipelines(const vk::Context& context, const FrameBindings& bindings) {
@@ -69,14 +72,16 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
         VkBool32 transparent;
         uint32_t gridWords;
         uint32_t listForm;
+        uint32_t shadowPages;
     };
     const Constants constants{variant.lightSource, variant.tileSize, variant.slices,
                               variant.writeLightStats ? VK_TRUE : VK_FALSE, variant.shadows ? VK_TRUE : VK_FALSE,
                               variant.shadowKernel, variant.shadowFilterSize, variant.shadowSamples, variant.pointShadowLayout,
                               variant.writeShadowFactors ? VK_TRUE : VK_FALSE,
                               variant.shadowReceiverPlane ? VK_TRUE : VK_FALSE, variant.cascadeBlend,
-                              variant.transparent ? VK_TRUE : VK_FALSE, variant.gridWords, variant.listForm};
-    const std::array<VkSpecializationMapEntry, 15> entries = {{
+                              variant.transparent ? VK_TRUE : VK_FALSE, variant.gridWords, variant.listForm,
+                              variant.shadowPages};
+    const std::array<VkSpecializationMapEntry, 16> entries = {{
         {PUNCTUAL_SPEC_LIGHT_SOURCE, offsetof(Constants, lightSource), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_TILE_SIZE, offsetof(Constants, tileSize), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_SLICE_COUNT, offsetof(Constants, slices), sizeof(uint32_t)},
@@ -92,6 +97,7 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
         {PUNCTUAL_SPEC_TRANSPARENT, offsetof(Constants, transparent), sizeof(VkBool32)},
         {PUNCTUAL_SPEC_GRID_WORDS, offsetof(Constants, gridWords), sizeof(uint32_t)},
         {PUNCTUAL_SPEC_LIGHT_LIST_FORM, offsetof(Constants, listForm), sizeof(uint32_t)},
+        {PUNCTUAL_SPEC_SHADOW_PAGES, offsetof(Constants, shadowPages), sizeof(uint32_t)},
     }};
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(constants), &constants};
 
@@ -99,7 +105,9 @@ void ForwardPass::createPipelines(const vk::Context& context, const FrameBinding
     pipelineDesc.layout = bindings.pipelineLayout();
     pipelineDesc.renderPass = renderPass_;
     pipelineDesc.vertexSpirv = raster_mesh_vert_spv;
-    pipelineDesc.fragmentSpirv = raster_forward_frag_spv;
+    // The virtual-pages build only where the variant reads or marks pages (cmake/Shaders.cmake).
+    pipelineDesc.fragmentSpirv = variant.shadowPages == PUNCTUAL_SHADOW_PAGES_OFF ? std::span<const uint32_t>(raster_forward_frag_spv)
+                                                                                  : std::span<const uint32_t>(raster_forward_frag_SHADOW_PAGES_spv);
     pipelineDesc.fragmentSpecialization = &specialization;
     pipelineDesc.vertexStride = SceneGpu::vertexStride();
     pipelineDesc.vertexAttributes = SceneGpu::vertexAttributes();
@@ -119,6 +127,10 @@ void ForwardPass::record(const FrameContext& frame) const {
                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
     }
     if (blendsNothing()) return;
+    for (const vk::Image* image : undrawnImages_) {
+        vk::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_UNDEFINED, undrawnReadLayout_, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+                         VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    }
     if (variant_.transparent) {
         // The opaque pass's colour writes land before these blend over them.
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,

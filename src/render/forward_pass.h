@@ -7,6 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "gpu_types.h"
 #include "render/pass.h"
 #include "vk/handle.h"
 
@@ -36,6 +37,10 @@ struct ForwardVariant {
     // The transparent pass: the alphaMode BLEND objects, back to front, composited over the
     // opaque image by their base colour's alpha, depth-tested against the prepass (GREATER).
     bool transparent = false;
+    // PUNCTUAL_SHADOW_PAGES_*: spot and point shadows from the atlas's squares or from virtual pages,
+    // or the marking pass (the frame's "shadow_marks" pass), which writes `debugOutput`'s page marks.
+    uint32_t shadowPages = PUNCTUAL_SHADOW_PAGES_OFF;
+    bool marksShadowPages() const { return shadowPages == PUNCTUAL_SHADOW_PAGES_MARK; }
 };
 
 class ForwardPass final : public Pass {
@@ -50,15 +55,27 @@ public:
                 const ForwardVariant& variant, std::vector<uint32_t> drawOrder,
                 const vk::Buffer* debugOutput = nullptr);
 
-    const char* name() const override { return variant_.transparent ? "transparent" : "forward"; }
+    const char* name() const override {
+        if (variant_.marksShadowPages()) return variant_.transparent ? "shadow_marks_transparent" : "shadow_marks";
+        return variant_.transparent ? "transparent" : "forward";
+    }
     bool timed() const override { return !drawOrder_.empty() || !variant_.transparent; }
     void createPipelines(const vk::Context& context, const FrameBindings& bindings) override;
     void record(const FrameContext& frame) const override;
     // The radiance (the opaque pass: from any layout, cleared; the transparent pass: over the
     // opaque pass's, in kRadianceLayout) and the prepass's depth, tested, not written.
     std::vector<ImageUse> imageUses() const override;
-    // The fragment shader samples the shadow maps.
-    VkShaderStageFlags boundImageStages() const override { return blendsNothing() ? 0 : VK_SHADER_STAGE_FRAGMENT_BIT; }
+    // The fragment shader samples the shadow maps. The marking pass runs before they are drawn and
+    // never reads them (its light walk returns before any lookup), but its pipeline's set 0 holds
+    // them: it moves them, contents discarded, into the layout set 0 reads them in
+    // (readUndrawnImages), so that the shadow stage finds them as it would anyway.
+    VkShaderStageFlags boundImageStages() const override {
+        return blendsNothing() || variant_.marksShadowPages() ? 0 : VK_SHADER_STAGE_FRAGMENT_BIT;
+    }
+    void readUndrawnImages(std::vector<const vk::Image*> images, VkImageLayout readLayout) {
+        undrawnImages_ = std::move(images);
+        undrawnReadLayout_ = readLayout;
+    }
 
     static constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
     // The layout the pass leaves the radiance in, for the next forward pass and tone mapping.
@@ -77,6 +94,8 @@ private:
 
     ForwardVariant variant_;
     std::vector<uint32_t> drawOrder_;
+    std::vector<const vk::Image*> undrawnImages_;
+    VkImageLayout undrawnReadLayout_ = VK_IMAGE_LAYOUT_UNDEFINED;
     const vk::Buffer* debugOutput_ = nullptr;
     const vk::Image& radiance_;
     const vk::Image& depth_;

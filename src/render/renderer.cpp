@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -12,6 +13,7 @@
 #include "culling.h"
 #include "gpu_types.h"
 #include "lights/cascade_setup.h"
+#include "lights/shadow_page_allocation.h"
 #include "lights/shadow_sizing.h"
 #include "lights/view_objects.h"
 #include "metrics/debug_buffers.h"
@@ -37,6 +39,9 @@
 namespace punctual::render {
 namespace {
 
+bool usesShadowPages(const RenderSettings& settings) {
+    return settings.shadows.enabled && settings.shadows.virtualPages();
+}
 
 }  // namespace
 
@@ -49,6 +54,7 @@ struct Renderer::Resources {
     vk::Buffer objectLights;
     vk::Buffer lightStats;
     vk::Buffer shadowDebug;
+    vk::Buffer shadowPageMarks;  // virtual pages: the marking pass's bits (lights/shadow_page_allocation.h)
     vk::Image radiance;
     // The passes in frame order; the typed pointers below point into this list.
     PassList passes;
@@ -109,6 +115,8 @@ struct Renderer::Resources {
         variant.writeShadowFactors = shadowFactors;
         variant.shadowReceiverPlane = settings.shadows.receiverPlane;
         variant.cascadeBlend = uint32_t(settings.shadows.cascades.blend);
+        const ShadowResolutionModeInfo* mode = findVariant(kShadowResolutionModes, settings.shadows.resolution);
+        variant.shadowPages = mode ? mode->pages.value : PUNCTUAL_SHADOW_PAGES_OFF;
         return variant;
     }
 
@@ -141,6 +149,9 @@ struct Renderer::Resources {
                                  "light stats")),
           shadowDebug(debugOutput(context, settings.collectShadowFactors, shadowFactorBytes(settings.width, settings.height),
                                   "shadow debug")),
+          shadowPageMarks(debugOutput(context, usesShadowPages(settings),
+                                      VkDeviceSize(std::max(ShadowPageMarkLayout::of(plan.shadows).words, 1u)) * 4,
+                                      "shadow page marks")),
           readback(context, VkDeviceSize(settings.width) * settings.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                    vk::MemoryUse::Readback, "readback"),
           timer(context, 16) {
@@ -189,7 +200,19 @@ struct Renderer::Resources {
                                          settings.height);
         culling = passes.add<LightCullingPass>(context, gridLayout, usesLightGrid(settings.method), settings.width,
                                             settings.height, cullLights, plan.zBins ? &*plan.zBins : nullptr);
+        ForwardPass* marking = nullptr;
+        if (usesShadowPages(settings)) {
+            // The marking pass: the forward shader's light walk over the same surfaces, marking the
+            // pages its lookups will read (opaque, then transparent fragments).
+            ForwardVariant variant = forwardVariant(settings, gridLayout, false, false);
+            variant.shadowPages = PUNCTUAL_SHADOW_PAGES_MARK;
+            marking = passes.add<ForwardPass>(context, radiance, depth->depth(), variant, unblended, &shadowPageMarks);
+            variant.transparent = true;
+            passes.add<ForwardPass>(context, radiance, depth->depth(), variant, backToFront(sceneData, blended, eye),
+                                    &shadowPageMarks);
+        }
         shadows = passes.add<ShadowPass>(context, plan.shadows, settings.shadows);
+        if (marking) marking->readUndrawnImages({&shadows->maps().atlas(), &shadows->maps().pointCubes()}, ShadowPass::kReadLayout);
         forward = passes.add<ForwardPass>(context, radiance, depth->depth(),
                                           forwardVariant(settings, gridLayout, false, false), unblended);
         ForwardVariant transparent = forwardVariant(settings, gridLayout, false, false);
@@ -225,6 +248,8 @@ struct Renderer::Resources {
                         lightStats);
         table.addBuffer(PUNCTUAL_BINDING_SHADOW_DEBUG, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
                         shadowDebug);
+        table.addBuffer(PUNCTUAL_BINDING_SHADOW_PAGE_MARKS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
+                        shadowPageMarks);
         for (const auto& pass : passes.passes()) pass->addBindings(table);
         bindings = std::make_unique<FrameBindings>(context, scene, table);
         boundImages = table.boundImages();
@@ -238,7 +263,8 @@ struct Renderer::Resources {
 namespace {
 
 // The frame's constants, all from the plan: packed once, never patched.
-gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, const FramePlan& plan) {
+gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, const FramePlan& plan,
+                        const ShadowPageAllocation& pages) {
     const glm::mat4& view = plan.view;
     const glm::mat4& projection = plan.projection;
     const FrameLights& lights = plan.lights;
@@ -279,6 +305,11 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
                                         gpu::cascadeFadeScale(shadows.cascades.cascadeFade), cascades.strength);
         for (uint32_t i = 0; i < PUNCTUAL_MAX_CASCADES; ++i) frame.cascadeSpheres[i] = cascades.selection[i];
     }
+    // screenPixelWorldSize's span at unit depth, 2 tan(yfov / 2) / height, as the CPU estimate's rays
+    // measure it (forEachVisibleReceiver); 1 / P11 is -tan(yfov / 2) under Vulkan's flipped y.
+    frame.shadowPageNeed =
+        glm::vec4(shadows.texelsPerPixel, 2.0f * std::abs(frame.ndcToView.y) / float(settings.height), 0.0f, 0.0f);
+    frame.shadowPagePool = glm::uvec4(pages.pagesAcross, pages.firstRow, pages.litSlot(), 0u);
     return frame;
 }
 
@@ -291,7 +322,7 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     plan_ = planFrame(context, scene, settings);
     resources_ = std::make_unique<Resources>(context, scene, settings, plan_, cameraDraws_);
     Resources& r = *resources_;
-    const gpu::GpuFrame frame = packFrame(scene, settings, plan_);
+    const gpu::GpuFrame frame = packFrame(scene, settings, plan_, pageAllocation_);
     r.frameUniform.write(&frame, sizeof(frame));
 
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
@@ -300,7 +331,56 @@ Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSetting
     r.fence = vk::Handle<VkFence>(context.device(), fence, vkDestroyFence);
 
     recordFrames();
+    if (usesShadowPages(settings)) allocateShadowPages();
     if (plan_.gridLayout.indexLists) sizeIndexLists();
+}
+
+void Renderer::allocateShadowPages() {
+    // Every frame of this renderer is the same frame, so the marks of one marking frame are every
+    // frame's: they are read back once and allocated on the CPU (as the index lists are sized).
+    // The timed frames still run the marking pass, so its time is counted in the shadow stage.
+    Resources& r = *resources_;
+    ShadowPlan& shadows = plan_.shadows;
+    const ShadowPageMarkLayout layout = ShadowPageMarkLayout::of(shadows);
+    const uint64_t capacity = shadowPagePoolCapacity(shadows, shadows.budgetBytes, settings_.shadows.texelBytes());
+    const std::vector<uint32_t> ranks = shadowViewRanks(shadows, scene_, plan_.lights, scene_.camera.position());
+    std::vector<uint32_t> coarser(shadows.views.size(), 0);
+    std::vector<uint32_t> marks;
+    ShadowPageStats& stats = pageStats_;
+    for (;;) {
+        r.shadows->setUnallocatedPages(unallocatedPageViews(layout, coarser));
+        submitAndWait(r.commandBuffer);
+        marks = readWords(r.shadowPageMarks);
+        const auto start = std::chrono::steady_clock::now();
+        const ShadowPageCounts counts = countMarkedPages(layout, marks);
+        if (stats.markingFrames++ == 0) stats.marked = counts;
+        stats.afterCoarsening = counts;
+        if (counts.total() <= capacity) break;
+        coarser = coarsenViewsForBudget(shadows, ranks, counts, coarser, capacity,
+                                        "--shadow-budget " + std::to_string(shadows.budgetBytes >> 20));
+        stats.allocateMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+    const auto start = std::chrono::steady_clock::now();
+    for (size_t v = 0; v < coarser.size(); ++v) {
+        if (coarser[v] > 0) stats.coarsenedPages += stats.marked.perView[v];
+        stats.coarsenedViews += coarser[v] > 0;
+        shadows.views[v].coarserLevels = coarser[v];
+    }
+    pageAllocation_ = punctual::allocateShadowPages(layout, marks, coarser);
+    placeShadowPagePool(shadows, pageAllocation_, ShadowMaps::memoryLimits(context_, settings_.shadows).atlasSide);
+    ShadowPageDraws draws = punctual::shadowPageDraws(scene_, shadows, pageAllocation_);
+    stats.allocateMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats.marksBytes = uint64_t(layout.words) * 4;
+    if (stats.coarsenedPages > 0 && settings_.warnReducedShadows) {
+        log::warn("shadows: " + std::to_string(stats.coarsenedPages) + " virtual page(s) of " +
+                  std::to_string(stats.coarsenedViews) + " view(s) read a coarser level than their receivers need, to fit --shadow-budget " +
+                  std::to_string(shadows.budgetBytes >> 20) + " (the stats' shadows.virtual_pages counts them)");
+    }
+    r.shadows->usePages(context_, pageAllocation_, std::move(draws));
+    const gpu::GpuFrame frame = packFrame(scene_, settings_, plan_, pageAllocation_);
+    r.frameUniform.write(&frame, sizeof(frame));
+    r.bindPasses(context_);  // set 0 points at the new atlas and page table
+    recordFrames();
 }
 
 void Renderer::recordFrames() {
@@ -474,6 +554,18 @@ DeviceMemory Renderer::deviceMemory() const {
     memory.lightGrid = r.passes.memoryBytes(MemoryKind::LightGrid);
     memory.frame += r.passes.memoryBytes(MemoryKind::Frame);
     return memory;
+}
+
+std::vector<uint32_t> Renderer::readShadowPageMarks() {
+    PUNCTUAL_CHECK(usesShadowPages(settings_), "shadow page marks read without virtual pages");
+    std::vector<uint32_t> marks = readWords(resources_->shadowPageMarks);
+    marks.resize(ShadowPageMarkLayout::of(plan_.shadows).words);
+    return marks;
+}
+
+Renderer::ShadowPageDrawCounts Renderer::shadowPageDraws() const {
+    const ShadowPass& shadows = *resources_->shadows;
+    return {shadows.pageDraws(), shadows.pageInstances(), shadows.pagesDrawn()};
 }
 
 ShadowDraws Renderer::shadowDraws() const {

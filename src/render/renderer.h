@@ -16,6 +16,7 @@
 #include "gpu_types.h"
 #include "lights/light_setup.h"
 #include "lights/per_object_lights.h"
+#include "lights/shadow_page_allocation.h"
 #include "lights/z_bins.h"
 #include "lights/shadow_setup.h"
 #include "metrics/culling_stats.h"
@@ -67,6 +68,17 @@ struct ShadowDraws {
     uint64_t triangles = 0;  // summed over the rendered views
 };
 
+// Virtual shadow pages (--shadow-res virtual): what the marking frames found and the allocation did.
+struct ShadowPageStats {
+    ShadowPageCounts marked;           // the first marking frame's pages, each view at the level its receivers ask
+    ShadowPageCounts afterCoarsening;  // the last one's: what was allocated
+    uint64_t coarsenedPages = 0;       // pages of `marked` whose views read coarser levels to fit the budget
+    uint32_t coarsenedViews = 0;
+    uint32_t markingFrames = 0;        // 1, plus one per coarsening round
+    uint64_t marksBytes = 0;           // the marking pass's bits
+    double allocateMs = 0.0;           // CPU: counting, coarsening, allocating, placing, culling casters per page
+};
+
 struct FrameResult {
     ImageRgba8 image;
     PassTimings medianMs;              // per pass, median over the timed frames
@@ -116,6 +128,18 @@ public:
     DeviceMemory deviceMemory() const;
     const CameraDraws& cameraDraws() const { return cameraDraws_; }
     ShadowDraws shadowDraws() const;
+    // Virtual shadow pages: the allocation (no pages otherwise) and what made it.
+    const ShadowPageAllocation& shadowPages() const { return pageAllocation_; }
+    const ShadowPageStats& shadowPageStats() const { return pageStats_; }
+    // Virtual pages: the last frame's marks (ShadowPageMarkLayout::of(shadowPlan()) words).
+    std::vector<uint32_t> readShadowPageMarks();
+    // The pages' draws: draws (a view's caster), instances (a page of it), pages drawn into.
+    struct ShadowPageDrawCounts {
+        uint64_t draws = 0;
+        uint64_t instances = 0;
+        uint64_t pagesDrawn = 0;
+    };
+    ShadowPageDrawCounts shadowPageDraws() const;
     const FrameLights& lights() const { return plan_.lights; }
     const glm::mat4& view() const { return plan_.view; }
     const glm::mat4& projection() const { return plan_.projection; }
@@ -137,6 +161,9 @@ private:
     void recordFrames();
     // Index lists: sizes the index array from a counting frame and records the frames again.
     void sizeIndexLists();
+    // Virtual pages: runs marking frames (again after each coarsening round), allocates the pages
+    // and records the frames again with them.
+    void allocateShadowPages();
     std::vector<uint8_t> readBuffer(const vk::Buffer& buffer);
     std::vector<uint32_t> readWords(const vk::Buffer& buffer);  // readBuffer as 32-bit words
 
@@ -145,6 +172,8 @@ private:
     RenderSettings settings_;
     FramePlan plan_;  // what the frame needs, decided before anything is allocated (frame_plan.h)
     CameraDraws cameraDraws_;
+    ShadowPageAllocation pageAllocation_;
+    ShadowPageStats pageStats_;
     std::unique_ptr<Resources> resources_;
 };
 

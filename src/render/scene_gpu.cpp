@@ -258,12 +258,28 @@ uint64_t SceneGpu::memoryBytes() const {
     return bytes;
 }
 
-void SceneGpu::drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<const uint32_t> objects,
-                           uint32_t pushOffset, VkShaderStageFlags stages, bool withTextures) const {
+void SceneGpu::bindGeometry(VkCommandBuffer cmd) const {
     const VkBuffer vertexBuffer = vertices_.handle();
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
     vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+}
+
+void SceneGpu::drawObjectInstances(VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t object, uint32_t pushOffset,
+                                   VkShaderStageFlags stages, bool withTextures, uint32_t instanceCount,
+                                   uint32_t firstInstance) const {
+    if (withTextures) {
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &materialSets_[drawMaterial_[object]], 0,
+                                nullptr);
+    }
+    vkCmdPushConstants(cmd, layout, stages, pushOffset, sizeof(uint32_t), &object);
+    vkCmdDrawIndexed(cmd, draws_[object].indexCount, instanceCount, draws_[object].firstIndex, draws_[object].vertexOffset,
+                     firstInstance);
+}
+
+void SceneGpu::drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<const uint32_t> objects,
+                           uint32_t pushOffset, VkShaderStageFlags stages, bool withTextures) const {
+    bindGeometry(cmd);
     uint32_t boundMaterial = UINT32_MAX;
     for (const uint32_t i : objects) {
         if (withTextures && drawMaterial_[i] != boundMaterial) {

@@ -55,6 +55,14 @@ public:
     void drawObjects(VkCommandBuffer cmd, VkPipelineLayout layout, std::span<const uint32_t> objects,
                      uint32_t pushOffset, VkShaderStageFlags stages, bool withTextures = false) const;
 
+    // One indexed draw of `object` with `instanceCount` instances from `firstInstance` (the shadow
+    // pages' draws, one instance a page), as drawObjects otherwise; the geometry must be bound
+    // (bindGeometry).
+    void drawObjectInstances(VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t object, uint32_t pushOffset,
+                             VkShaderStageFlags stages, bool withTextures, uint32_t instanceCount,
+                             uint32_t firstInstance) const;
+    void bindGeometry(VkCommandBuffer cmd) const;
+
     // Bytes of the scene's device buffers and textures.
     uint64_t memoryBytes() const;
 

@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 
+#include "core/error.h"
 #include "gpu_types.h"
 #include "render/frame_bindings.h"
 #include "render/scene_gpu.h"
 #include "shaders/raster_alpha_mask_frag_spv.h"
 #include "shaders/raster_shadow_masked_vert_spv.h"
+#include "shaders/raster_shadow_paged_masked_vert_spv.h"
+#include "shaders/raster_shadow_paged_vert_spv.h"
 #include "shaders/raster_shadow_vert_spv.h"
 #include "vk/check.h"
 #include "vk/context.h"
@@ -30,19 +34,39 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
       settings_(settings),
       maps_(context, plan, settings),
       views_(context, std::max<size_t>(plan.views.size(), 1) * sizeof(gpu::GpuShadowView),
-             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "shadow views") {
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "shadow views"),
+      pageViews_(context, std::max<size_t>(plan.views.size(), 1) * sizeof(gpu::GpuVirtualShadowView),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "shadow page views"),
+      pageTable_(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload,
+                 "shadow page table"),
+      pageInstances_(context, sizeof(glm::uvec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload,
+                     "shadow page instances") {
+    if (settings.virtualPages() && settings.enabled && context.enabledFeatures().shaderClipDistance != VK_TRUE) {
+        throw Error("--shadow-res virtual", "the device (" + context.deviceName() +
+                                                ") lacks shaderClipDistance, which drawing casters into pages needs");
+    }
     std::vector<gpu::GpuShadowView> views;
     for (const ShadowView& view : plan.views) views.push_back(view.gpu);
     if (!views.empty()) views_.write(views.data(), views.size() * sizeof(gpu::GpuShadowView));
+    // No pages until the renderer allocates them (virtual mode), and none at all otherwise.
+    setUnallocatedPages(unallocatedPageViews(ShadowPageMarkLayout::of(plan), {}));
+    const uint32_t noEntry = PUNCTUAL_NO_SHADOW_PAGE;
+    pageTable_.write(&noEntry, sizeof(noEntry));
 
-    const VkDevice device = context.device();
-    const VkFormat format = ShadowMaps::format(settings.format);
     vk::RenderPassDesc passDesc;
-    passDesc.depthFormat = format;
+    passDesc.depthFormat = ShadowMaps::format(settings.format);
     passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_CLEAR;
     passDesc.depthInitialLayout = kDrawLayout;
     passDesc.depthFinalLayout = kDrawLayout;
     renderPass_ = context.objects().renderPass(passDesc);
+    createTargets(context);
+}
+
+void ShadowPass::createTargets(const vk::Context& context) {
+    targets_.clear();
+    const VkDevice device = context.device();
+    const VkFormat format = ShadowMaps::format(settings_.format);
+    const ShadowPlan& plan = plan_;
     auto addTarget = [&](const vk::Image& image, uint32_t layer, uint32_t width, uint32_t height) -> Target& {
         VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         viewInfo.image = image.handle();
@@ -76,9 +100,39 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
     }
 }
 
+void ShadowPass::setUnallocatedPages(const std::vector<gpu::GpuVirtualShadowView>& views) {
+    if (!views.empty()) pageViews_.write(views.data(), views.size() * sizeof(gpu::GpuVirtualShadowView));
+}
+
+void ShadowPass::usePages(const vk::Context& context, const ShadowPageAllocation& allocation, ShadowPageDraws draws) {
+    maps_ = ShadowMaps(context, plan_, settings_);
+    createTargets(context);
+    setUnallocatedPages(allocation.views);
+    auto upload = [&](const void* data, size_t bytes, const char* name) {
+        vk::Buffer buffer(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, name);
+        buffer.write(data, bytes);
+        return buffer;
+    };
+    const std::vector<uint32_t> table = allocation.table.empty() ? std::vector<uint32_t>{PUNCTUAL_NO_SHADOW_PAGE}
+                                                                 : allocation.table;
+    pageTable_ = upload(table.data(), table.size() * sizeof(uint32_t), "shadow page table");
+    if (!draws.instances.empty()) {
+        pageInstances_ = upload(draws.instances.data(), draws.instances.size() * sizeof(glm::uvec4), "shadow page instances");
+    }
+    pageDraws_ = std::move(draws);
+    poolFirstRow_ = allocation.firstRow;
+}
+
 void ShadowPass::addBindings(BindingTable& table) const {
-    table.addBuffer(PUNCTUAL_BINDING_SHADOW_VIEWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
-                    views_);
+    // The casters' vertex shaders read the views and the instances of the pages they draw.
+    table.addBuffer(PUNCTUAL_BINDING_SHADOW_VIEWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                    VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_VERTEX_BIT, views_);
+    table.addBuffer(PUNCTUAL_BINDING_SHADOW_PAGE_DRAWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT,
+                    pageInstances_);
+    table.addBuffer(PUNCTUAL_BINDING_SHADOW_PAGE_VIEWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
+                    pageViews_);
+    table.addBuffer(PUNCTUAL_BINDING_SHADOW_PAGE_TABLE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
+                    pageTable_);
     table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(), maps_.atlas(),
                    kReadLayout);
     table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.depthSampler(),
@@ -118,6 +172,16 @@ void ShadowPass::createPipelines(const vk::Context& context, const FrameBindings
     masked.vertexSpecialization = &vertexSpecialization;
     pipelines_.opaque = context.objects().graphicsPipeline(opaque);
     pipelines_.masked = context.objects().graphicsPipeline(masked);
+    if (settings_.virtualPages()) {
+        vk::GraphicsPipelineDesc pagedOpaque = opaque;
+        vk::GraphicsPipelineDesc pagedMasked = masked;
+        pagedOpaque.vertexSpirv = raster_shadow_paged_vert_spv;
+        pagedMasked.vertexSpirv = raster_shadow_paged_masked_vert_spv;
+        pagedOpaque.vertexSpecialization = nullptr;
+        pagedMasked.vertexSpecialization = nullptr;
+        pagePipelines_.opaque = context.objects().graphicsPipeline(pagedOpaque);
+        pagePipelines_.masked = context.objects().graphicsPipeline(pagedMasked);
+    }
 
     // Cascades pancake (the seed's "pancaking"), with the depth clamp where the device has it: the
     // vertex clamp bends the depth of triangles that cross the near plane, the depth clamp does
@@ -136,25 +200,29 @@ void ShadowPass::createPipelines(const vk::Context& context, const FrameBindings
     }
 }
 
-void ShadowPass::drawView(const FrameContext& frame, const ShadowView& view) const {
+std::optional<bool> ShadowPass::casterIsMasked(const FrameContext& frame, uint32_t object) const {
+    if (!frame.scene.blended(object)) return frame.scene.masked(object);
+    switch (settings_.transparent) {  // the seed's shadow modes (lights/transparent_shadows.h)
+        case TransparentShadows::On: return false;
+        case TransparentShadows::Clip:
+        case TransparentShadows::Dither: return true;
+        case TransparentShadows::Off: return std::nullopt;
+    }
+    return std::nullopt;
+}
+
+void ShadowPass::drawView(const FrameContext& frame, const ShadowView& view, const glm::mat4& viewProjection,
+                          const std::vector<uint32_t>& casters) const {
     const VkCommandBuffer cmd = frame.cmd;
     const Pipelines& pipelines = view.isCascade ? cascadePipelines_ : pipelines_;
     std::vector<uint32_t> opaque;
     std::vector<uint32_t> masked;
-    for (const uint32_t object : view.casters) {
-        if (!frame.scene.blended(object)) {
-            (frame.scene.masked(object) ? masked : opaque).push_back(object);
-            continue;
-        }
-        switch (settings_.transparent) {  // the seed's shadow modes (lights/transparent_shadows.h)
-            case TransparentShadows::On: opaque.push_back(object); break;
-            case TransparentShadows::Clip:
-            case TransparentShadows::Dither: masked.push_back(object); break;
-            case TransparentShadows::Off: break;
-        }
+    for (const uint32_t object : casters) {
+        const std::optional<bool> isMasked = casterIsMasked(frame, object);
+        if (isMasked) (*isMasked ? masked : opaque).push_back(object);
     }
     frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_);
-    vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::mat4), &view.gpu.viewProjection);
+    vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::mat4), &viewProjection);
     if (!opaque.empty()) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.opaque);
         frame.scene.drawObjects(cmd, pipelineLayout_, opaque, kObjectIndexOffset, VK_SHADER_STAGE_VERTEX_BIT);
@@ -163,6 +231,37 @@ void ShadowPass::drawView(const FrameContext& frame, const ShadowView& view) con
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.masked);
         frame.scene.drawObjects(cmd, pipelineLayout_, masked, kObjectIndexOffset, VK_SHADER_STAGE_VERTEX_BIT,
                                 /*withTextures=*/true);
+    }
+}
+
+uint64_t ShadowPass::pagesDrawn() const {
+    std::vector<bool> drawn;
+    for (const glm::uvec4& instance : pageDraws_.instances) {
+        if (instance.w >= drawn.size()) drawn.resize(instance.w + 1, false);
+        drawn[instance.w] = true;
+    }
+    return uint64_t(std::count(drawn.begin(), drawn.end(), true));
+}
+
+// Every caster of every view with pages, instanced over the pages it meets (shadow_page_draw.glsl),
+// through one viewport over the whole atlas; the scissor keeps the pool's rows.
+void ShadowPass::drawPages(const FrameContext& frame) const {
+    if (pageDraws_.draws.empty()) return;
+    const VkCommandBuffer cmd = frame.cmd;
+    const VkViewport viewport{0.0f, 0.0f, float(plan_.atlas.width), float(plan_.atlas.height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, int32_t(poolFirstRow_)}, {plan_.atlas.width, plan_.atlas.height - poolFirstRow_}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_);
+    frame.scene.bindGeometry(cmd);
+    for (const bool maskedPass : {false, true}) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, maskedPass ? pagePipelines_.masked : pagePipelines_.opaque);
+        for (const ShadowPageDraws::Draw& draw : pageDraws_.draws) {
+            const std::optional<bool> masked = casterIsMasked(frame, draw.object);
+            if (!masked || *masked != maskedPass) continue;
+            frame.scene.drawObjectInstances(cmd, pipelineLayout_, draw.object, kObjectIndexOffset, VK_SHADER_STAGE_VERTEX_BIT,
+                                            maskedPass, draw.instanceCount, draw.firstInstance);
+        }
     }
 }
 
@@ -189,7 +288,7 @@ void ShadowPass::record(const FrameContext& frame) const {
         for (uint32_t index : target.planViews) {
             const ShadowView& view = plan_.views[index];
             if (view.isPoint && settings_.pointLayout == PointShadowLayout::Cube) {
-                drawView(frame, view);  // the whole face; beginRenderPass set its viewport
+                drawView(frame, view, view.gpu.viewProjection, view.casters);  // the whole face; beginRenderPass set its viewport
                 continue;
             }
             // The view's square of the atlas: the viewport maps its clip space onto the square, the
@@ -199,8 +298,9 @@ void ShadowPass::record(const FrameContext& frame) const {
             const VkRect2D scissor{{int32_t(view.rect.x), int32_t(view.rect.y)}, {view.rect.size, view.rect.size}};
             vkCmdSetViewport(cmd, 0, 1, &viewport);
             vkCmdSetScissor(cmd, 0, 1, &scissor);
-            drawView(frame, view);
+            drawView(frame, view, view.gpu.viewProjection, view.casters);
         }
+        if (&target == &targets_.front() && plan_.atlas.width > 0) drawPages(frame);
         vkCmdEndRenderPass(cmd);
     }
     for (const vk::Image* image : images) {

@@ -4,11 +4,22 @@
 // records, for the forward pass. The atlas is cleared once and every view drawn in one render
 // pass, its viewport and scissor moving from square to square; each cube face is its own target.
 // A view without casters or storage draws nothing (the shader never reads it).
+//
+// Virtual pages (--shadow-res virtual): the atlas holds the cascades' squares and, below them,
+// the page pool. Each caster is drawn once per view, instanced over the allocated pages its
+// bounds meet (shadowPageDraws); each instance maps the page's square of the view onto its slot
+// and cuts the triangles at the slot's edges with clip distances (shadow_page_draw.glsl). Not one
+// draw per page with its own viewport: that is a draw per (page, caster), 23,000 on the hall,
+// and lavapipe spends about 50 us on a draw whatever it holds (1.2 s). Not atomics into an R32
+// pool either: the pages stay D16 depth targets that the same filters read (R32 would double the
+// memory), drawn by the same fixed-function depth test.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
+#include "lights/shadow_page_allocation.h"
 #include "lights/shadow_setup.h"
 #include "render/pass.h"
 #include "render/shadow_maps.h"
@@ -32,7 +43,20 @@ public:
     // filtering reads across face edges), and leaves both images in kReadLayout for the forward
     // pass.
     void record(const FrameContext& frame) const override;
-    uint64_t memoryBytes() const override { return maps_.allocatedBytes(); }
+    uint64_t memoryBytes() const override { return maps_.allocatedBytes() + pageViews_.size() + pageTable_.size(); }
+
+    // Virtual pages: the records the marking pass reads before any page is allocated (each view's
+    // marks and coarsening; every lookup lit).
+    void setUnallocatedPages(const std::vector<gpu::GpuVirtualShadowView>& views);
+    // Virtual pages: `plan` (the one the pass was made with) now holds the pool in its atlas
+    // (placeShadowPagePool); makes the maps anew, uploads the page table and draws each page with
+    // its casters (shadowPageCasters). The caller binds the frame's set again and re-records.
+    void usePages(const vk::Context& context, const ShadowPageAllocation& allocation, ShadowPageDraws draws);
+    // What the pages' draws take: draws (one per view and caster) and instances (one per page and caster).
+    uint64_t pageDraws() const { return pageDraws_.draws.size(); }
+    uint64_t pageInstances() const { return pageDraws_.instances.size(); }
+    // Pages with at least one caster drawn into them (the others stay cleared: lit).
+    uint64_t pagesDrawn() const;
     MemoryKind memoryKind() const override { return MemoryKind::Shadows; }
     std::vector<ImageUse> imageUses() const override;
 
@@ -50,11 +74,23 @@ private:
         uint32_t height = 0;
         std::vector<uint32_t> planViews;  // indices into plan_.views drawn into it
     };
-    void drawView(const FrameContext& frame, const ShadowView& view) const;
+    // Draws `casters` (objects) through `viewProjection` with `view`'s pipelines.
+    void drawView(const FrameContext& frame, const ShadowView& view, const glm::mat4& viewProjection,
+                  const std::vector<uint32_t>& casters) const;
+    void drawPages(const FrameContext& frame) const;
+    // Whether `object` casts through the masked pipeline (alpha-tested), the opaque one, or none
+    // (a transparent caster with --transparent-shadows off).
+    std::optional<bool> casterIsMasked(const FrameContext& frame, uint32_t object) const;
+    void createTargets(const vk::Context& context);
     const ShadowPlan& plan_;
     ShadowSettings settings_;
     ShadowMaps maps_;
     vk::Buffer views_;  // GpuShadowView per plan view (one slot when there are none)
+    vk::Buffer pageViews_;  // GpuVirtualShadowView per plan view (one slot when there are none)
+    vk::Buffer pageTable_;  // the page table's entries (one word when there are none)
+    vk::Buffer pageInstances_;  // ShadowPageDraws::instances (one slot when there are none)
+    ShadowPageDraws pageDraws_;
+    uint32_t poolFirstRow_ = 0;
     // The render pass, layout and pipelines: the context's object cache (vk/object_cache.h) owns them.
     VkRenderPass renderPass_ = VK_NULL_HANDLE;
     VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
@@ -66,6 +102,8 @@ private:
     // The sun's cascades: casters between the sun and a cascade's near plane are pancaked onto it
     // (depth clamp, or the vertex clamp where the device lacks it), never clipped.
     Pipelines cascadePipelines_;
+    // Virtual pages' instanced draws (PAGED).
+    Pipelines pagePipelines_;
     std::vector<Target> targets_;  // the atlas first (when it has storage), then the cube faces
 };
 

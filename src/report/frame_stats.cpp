@@ -174,8 +174,8 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
     for (const auto& [resolution, count] : shadowTierCounts(plan)) tiers[std::to_string(resolution)] = count;
     nlohmann::json json = {
         {"enabled", settings.enabled},
-        {"mode", settings.autoResolution() ? "auto" : "fixed"},
-        {"resolution", settings.autoResolution() ? nlohmann::json("auto") : nlohmann::json(settings.resolution)},
+        {"mode", settings.autoResolution() ? shadowResolutionName(settings) : "fixed"},
+        {"resolution", settings.autoResolution() ? nlohmann::json(shadowResolutionName(settings)) : nlohmann::json(settings.resolution)},
         {"tiers", tiers},
         {"format", shadowFormatName(settings.format)},
         {"budget_bytes", settings.autoResolution() ? plan.budgetBytes : 0},
@@ -209,6 +209,36 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer) {
         json["receiver_sample_step_px"] = plan.sampleStep;
     }
     return json;
+}
+
+nlohmann::json virtualPagesJson(const render::Renderer& renderer, uint64_t shadedPairs) {
+    const uint32_t texelBytes = renderer.settings().shadows.texelBytes();
+    const ShadowPageAllocation& allocation = renderer.shadowPages();
+    const render::ShadowPageStats& stats = renderer.shadowPageStats();
+    const render::Renderer::ShadowPageDrawCounts draws = renderer.shadowPageDraws();
+    const uint64_t floorBytes = shadedPairs * texelBytes;
+    const uint64_t physical = allocation.physicalBytes(texelBytes);
+    return {{"virtual_size", PUNCTUAL_VIRTUAL_SHADOW_SIZE},
+            {"page_texels", PUNCTUAL_VIRTUAL_SHADOW_PAGE},
+            {"slot_texels", PUNCTUAL_VIRTUAL_SHADOW_SLOT},
+            {"levels", PUNCTUAL_VIRTUAL_SHADOW_LEVELS},
+            {"pages_marked", stats.marked.total()},
+            {"pages_marked_per_level", stats.marked.perLevel},
+            {"pages_allocated", allocation.pages.size()},
+            {"pages_allocated_per_level", allocation.pagesPerLevel},
+            {"pages_coarsened", stats.coarsenedPages},
+            {"views_coarsened", stats.coarsenedViews},
+            {"marking_frames", stats.markingFrames},
+            {"pages_drawn", draws.pagesDrawn},
+            {"draws", draws.draws},
+            {"instances", draws.instances},
+            {"physical_bytes", physical},
+            {"page_table_bytes", allocation.tableBytes()},
+            {"marks_bytes", stats.marksBytes},
+            {"shaded_pairs", shadedPairs},
+            {"floor_bytes", floorBytes},
+            {"over_floor", floorBytes ? double(physical + allocation.tableBytes()) / double(floorBytes) : 0.0},
+            {"allocate_ms", stats.allocateMs}};
 }
 
 nlohmann::json virtualPageEstimateJson(const VirtualPageEstimate& estimate, const render::Renderer& renderer) {

@@ -38,6 +38,11 @@ nlohmann::json shadowStatsJson(const render::Renderer& renderer);
 // "views_with_pages", "physical_bytes", "page_table_bytes" (every level's, per view with pages),
 // "used_levels_page_table_bytes" (the levels with pages only), "over_floor" ((physical + the used
 // levels' table) / floor), "over_atlas", "pairs_coarser_than_asked"}]}
+// Virtual shadow pages (--shadow-res virtual): pages marked, allocated, coarsened and drawn (per
+// level where it says so), the draws, the pool's and the table's bytes, and the floor of
+// `shadedPairs` (the frame's shaded (pixel, shadowed view) pairs) beside them.
+nlohmann::json virtualPagesJson(const render::Renderer& renderer, uint64_t shadedPairs);
+
 nlohmann::json virtualPageEstimateJson(const VirtualPageEstimate& estimate, const render::Renderer& renderer);
 
 // {"triangles" (in the scene's buffers), "triangles_instanced" (each object's mesh once), "objects",

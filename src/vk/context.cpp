@@ -236,6 +236,9 @@ Context::Context(const ContextOptions& options)
         enabledFeatures_.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
         enabledFeatures_.depthClamp = supported.depthClamp;
         enabledFeatures_.depthBiasClamp = supported.depthBiasClamp;
+        // Virtual shadow pages cut each caster at its page's edges with clip distances
+        // (shadow_page_draw.glsl); every desktop and mobile driver of note, and lavapipe, has them.
+        enabledFeatures_.shaderClipDistance = supported.shaderClipDistance;
 
         const float priority = 1.0f;
         VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

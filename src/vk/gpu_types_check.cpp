@@ -37,7 +37,14 @@ static_assert(offsetof(GpuFrame, shadowCounts) == 432);
 static_assert(offsetof(GpuFrame, sunShadow) == 448);
 static_assert(offsetof(GpuFrame, sunShadowFade) == 464);
 static_assert(offsetof(GpuFrame, cascadeSpheres) == 480);
-static_assert(sizeof(GpuFrame) == 480 + 16 * PUNCTUAL_MAX_CASCADES);
+static_assert(offsetof(GpuFrame, shadowPageNeed) == 480 + 16 * PUNCTUAL_MAX_CASCADES);
+static_assert(offsetof(GpuFrame, shadowPagePool) == 496 + 16 * PUNCTUAL_MAX_CASCADES);
+static_assert(sizeof(GpuFrame) == 512 + 16 * PUNCTUAL_MAX_CASCADES);
+
+static_assert(sizeof(GpuVirtualShadowView) == 16 + 16 * PUNCTUAL_VIRTUAL_SHADOW_LEVELS);
+static_assert(offsetof(GpuVirtualShadowView, levels) == 16);
+static_assert(virtualShadowLevels(PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_PAGE) ==
+              PUNCTUAL_VIRTUAL_SHADOW_LEVELS);
 
 static_assert(sizeof(GpuShadowView) == 112);
 static_assert(offsetof(GpuShadowView, params) == 64);

@@ -144,4 +144,16 @@ Scene offAxisPostScene() {
     return scene;
 }
 
+Scene tiltedSpotOverPostsSeenFromAbove() {
+    Scene scene = floorSeenFromAbove();
+    scene.source = "tilted spot over posts, seen from above";
+    for (float x = -2.5f; x <= 4.0f; x += 1.3f) {
+        for (float z = -2.6f; z <= 2.7f; z += 1.3f) addBox(scene, glm::vec3(x, 0.4f, z), glm::vec3(0.08f, 0.8f, 0.08f));
+    }
+    scene.lights.push_back(spotLight(glm::vec3(-4.0f, 3.0f, 0.0f), glm::normalize(glm::vec3(1.0f, -1.0f, 0.0f)), 14.0f,
+                                     40.0f, glm::radians(35.0f), glm::radians(45.0f)));
+    scene.computeBounds();
+    return scene;
+}
+
 }  // namespace punctual::testing

@@ -71,4 +71,12 @@ constexpr glm::vec3 kWideSpotPosition{0.0f, 1.0f, 0.0f};
 // that and is clipped, and its floor shadow beyond r = 3.2 m (up to 7.5 m) is lost.
 Scene offAxisPostScene();
 
+// Virtual pages' seams: the floor seen from above (floorSeenFromAbove, every pixel 0.039 m) under a
+// spot 3 m up at x = -4 tilted 45 degrees towards +x (outer cone 45 degrees), among a grid of thin
+// posts whose shadows run across the lit floor. The floor's depth along the spot's axis runs from
+// about 2 to 7 m, so at one texel per pixel its receivers ask for 110 to 360 texels across the
+// view: three levels of the virtual map (128, 256, 512), with level changes and page borders
+// everywhere under the shadows.
+Scene tiltedSpotOverPostsSeenFromAbove();
+
 }  // namespace punctual::testing
