@@ -28,7 +28,8 @@ its chart. Without results.json's keys (a folder from an older bench) the names 
 CSV itself, sorted.
 
 The modules: bench_data.py (reading, columns), chart_style.py (what every chart shares),
-sweep_charts.py (the sweeps and their laws), cost_model.py (the fit), bench_report.py
+sweep_charts.py (the sweeps and their laws), shadow_page_charts.py (virtual pages against whole
+views), cost_model.py (the fit), bench_report.py
 (index.html). Needs Debian's /usr/bin/python3 with python3-matplotlib (no other packages).
 """
 
@@ -55,6 +56,7 @@ from matplotlib.ticker import MaxNLocator, PercentFormatter
 import bench_report
 import cost_model
 import output_file
+import shadow_page_charts
 import sweep_charts
 
 # Pass colours by position in "passes" (a palette apart from the methods').
@@ -401,6 +403,7 @@ CHARTS = [
     ("pareto_light_assignment", "Light assignment: speed against accuracy",
      chart_assignment_pareto, ()),
     ("pareto_cascades", "The sun's cascades: cost against accuracy", chart_cascade_pareto, ()),
+    ("pareto_virtual_pages", "Virtual shadow pages against whole views", shadow_page_charts.chart_virtual_pages, ()),
 ]
 
 

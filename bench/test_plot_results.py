@@ -130,6 +130,13 @@ def full_rows(methods=METHODS):
                             shadow_misclassified_all=0.05 / (i + 1) + 0.001 * j))
     rows += cascade_rows()
     rows += sweep_rows(methods)
+    # Whole views against virtual pages on two scenes (the shadow-memory series).
+    for scene, scale in (("hall", 1.0), ("rooms", 2.0)):
+        for mode, memory, marks in (("auto", 64, ""), ("virtual", 20, 200.0)):
+            rows.append(row(f"sm-{scene}-{mode}", "shadow-memory", "tiled", 64, 32, shadows=1, shadow_res=mode,
+                            scene=scene, scene_triangles=int(10000 * scale), shadow_memory_bytes=memory * scale * 2**20,
+                            shadows_ms=100.0 * scale, shadow_marks_ms=marks,
+                            shadow_misclassified=0.0001 * scale))
     rows[0]["config"] = "mix <b>&amp;\"quoted\""  # must be escaped in the table
     return rows
 
@@ -289,7 +296,7 @@ class PlotResultsTest(unittest.TestCase):
         index = self.index()
         self.assert_charts(["sweep_mix"])  # two light counts are enough for a slope
         skipped = ["culling_efficiency", "pareto_shadows", "pareto_shadow_memory",
-                   "pareto_light_assignment", "pareto_cascades", "lights_reaching"]
+                   "pareto_light_assignment", "pareto_cascades", "pareto_virtual_pages", "lights_reaching"]
         skipped += [f"sweep_{s}" for s in ["spot-only", "point-only"] + SWEEP_SERIES]
         for name in skipped:
             self.assertFalse(os.path.exists(os.path.join(self.dir, "charts", name + ".png")))

@@ -264,8 +264,9 @@ struct GpuFrame {
     // (--shadow-texels-per-pixel), y: a screen pixel's world size at unit view depth
     // (screenPixelWorldSize, shadows.h); zw: unused.
     vec4 shadowPageNeed;
-    uvec4 shadowPagePool;  // x: slots across the pool, y: the pool's first texel row in the atlas, z: the lit
-                           // page's slot (cleared, never drawn); w: unused
+    uvec4 shadowPagePool;  // x: the cascades' squares' width, y: their height (the pool fills the rest:
+                           // virtualShadowSlotOrigin), z: slots across beside them, w: slots across below
+    uvec4 shadowPageSlots; // x: the lit page's slot (cleared, never drawn); yzw: unused
 };
 
 // One rendered shadow view: a spot light's frustum, or one face of a point light (+X -X +Y -Y +Z

@@ -28,8 +28,7 @@ vec4 pagedShadowPosition(vec4 world, uint instance) {
     gl_ClipDistance[2] = clip.w - local.y;
     gl_ClipDistance[3] = clip.w + local.y;
     // The slot's square in the atlas's NDC: its centre and half side.
-    uvec2 slot = uvec2(page.w % frame.shadowPagePool.x, page.w / frame.shadowPagePool.x);
-    vec2 origin = vec2(slot * PUNCTUAL_VIRTUAL_SHADOW_SLOT) + vec2(0.0, float(frame.shadowPagePool.y));
+    vec2 origin = vec2(virtualShadowSlotOrigin(page.w, frame.shadowPagePool.xy, frame.shadowPagePool.z, frame.shadowPagePool.w));
     vec2 halfSide = float(PUNCTUAL_VIRTUAL_SHADOW_SLOT) / frame.shadowAtlasSize;
     vec2 centre = (origin + 0.5 * float(PUNCTUAL_VIRTUAL_SHADOW_SLOT)) / frame.shadowAtlasSize * 2.0 - 1.0;
     return vec4(centre * clip.w + halfSide * local, clip.z, clip.w);

@@ -64,14 +64,13 @@ uint virtualPageSlot(uint viewIndex, uint level, uvec2 page) {
 
 // The atlas texel where pool slot `slot` starts (its top-left texel).
 ivec2 virtualSlotOrigin(uint slot) {
-    uvec2 origin = uvec2(slot % frame.shadowPagePool.x, slot / frame.shadowPagePool.x) * PUNCTUAL_VIRTUAL_SHADOW_SLOT;
-    return ivec2(origin) + ivec2(0, int(frame.shadowPagePool.y));
+    return ivec2(virtualShadowSlotOrigin(slot, frame.shadowPagePool.xy, frame.shadowPagePool.z, frame.shadowPagePool.w));
 }
 
 // The pages around one lookup, resolved through the table once: a filter reaching less than a page
 // meets at most 2 x 2 pages, from `first`, whose slots' atlas origins its gathers then use. A page
 // without a slot (one the filter does not read, at the block's edge) gets the lit slot, cleared to
-// the far plane (frame.shadowPagePool.z), so that no gather branches. (A table read, a slot's
+// the far plane (frame.shadowPageSlots.x), so that no gather branches. (A table read, a slot's
 // division and a branch per gather cost the forward pass 3x on lavapipe, measured.)
 struct PageBlock {
     int last;       // the level's last texel (clamp to edge)
@@ -81,7 +80,7 @@ struct PageBlock {
 };
 
 ivec2 slotOriginOrLit(uint slot) {
-    return virtualSlotOrigin(slot == PUNCTUAL_NO_SHADOW_PAGE ? frame.shadowPagePool.z : slot);
+    return virtualSlotOrigin(slot == PUNCTUAL_NO_SHADOW_PAGE ? frame.shadowPageSlots.x : slot);
 }
 
 // The page whose slot holds the texels corner - 1 and corner (its own texels and its neighbour's

@@ -99,6 +99,20 @@ PUNCTUAL_FN vec3 virtualShadowPageNdc(uint level, uvec2 page) {
     return vec3(vec2(page) * (float(PUNCTUAL_VIRTUAL_SHADOW_PAGE) * texelNdc) - 1.0f + halfSide, halfSide);
 }
 
+// Where pool slot `slot` starts in the atlas (its top-left texel). The pool fills what the squares
+// of the sun's cascades (the atlas's top-left `squares` texels: x wide, y tall) leave: first the
+// band beside them (from column squares.x, `beside` slots across, squares.y / slot side rows),
+// then the rows below them, `across` slots wide from row squares.y. So the pool's memory is its
+// slots', with no band of unused texels where the atlas is wider than the cascades.
+PUNCTUAL_FN uvec2 virtualShadowSlotOrigin(uint slot, uvec2 squares, uint beside, uint across) {
+    uint besideSlots = beside * (squares.y / PUNCTUAL_VIRTUAL_SHADOW_SLOT);
+    if (slot < besideSlots) {
+        return uvec2(squares.x + (slot % beside) * PUNCTUAL_VIRTUAL_SHADOW_SLOT, (slot / beside) * PUNCTUAL_VIRTUAL_SHADOW_SLOT);
+    }
+    uint below = slot - besideSlots;
+    return uvec2((below % across) * PUNCTUAL_VIRTUAL_SHADOW_SLOT, squares.y + (below / across) * PUNCTUAL_VIRTUAL_SHADOW_SLOT);
+}
+
 // A page's index among all the map's pages, level 0's first, row by row: level m starts after
 // the pages of the levels before it. Level k is 2^(L - 1 - k) pages across (L levels, the last one
 // page), so the levels before m hold sum over k < m of 4^(L - 1 - k) = (4^L - 4^(L - m)) / 3 pages.

@@ -190,9 +190,14 @@ float filterCube(vec3 direction, uint face, float cube, float reference, float a
 // with virtual pages its level's (virtualReadLevel, which `level` receives; 0 otherwise).
 float shadowResolutionAt(uint viewIndex, GpuShadowView view, float linearDepth, vec3 position, out uint level) {
     level = 0u;
-    if (SHADOW_PAGES == PUNCTUAL_SHADOW_PAGES_OFF) return view.texel.x;
-    level = virtualReadLevel(viewIndex, view, linearDepth, position);
-    return float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> level);
+    switch (SHADOW_PAGES) {
+        case PUNCTUAL_SHADOW_PAGES_OFF: return view.texel.x;
+        case PUNCTUAL_SHADOW_PAGES_LOOKUP:
+        case PUNCTUAL_SHADOW_PAGES_MARK:
+            level = virtualReadLevel(viewIndex, view, linearDepth, position);
+            return float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> level);
+        default: unknownVariant = true; return view.texel.x;
+    }
 }
 
 // The penumbra that widens the bias (ShadowSettings::biasPenumbraTexels): the view's, or with

@@ -13,6 +13,7 @@
 #include "core/output_files.h"
 #include "lights/shadow_sizing.h"
 #include "lights/virtual_pages.h"
+#include "metrics/shadow_page_overlay.h"
 #include "metrics/heatmap.h"
 #include "metrics/shadow_density.h"
 #include "render/renderer.h"
@@ -104,7 +105,11 @@ int runRenderCommand(const std::vector<std::string>& args) {
     const std::vector<NamedOutput> outputPaths = {{"--out", options.outPath},
                                                   {"--stats", options.statsPath},
                                                   {"--heatmap", options.heatmapPath},
-                                                  {"--shadow-density", options.shadowDensityPath}};
+                                                  {"--shadow-density", options.shadowDensityPath},
+                                                  {"--shadow-pages", options.shadowPagesPath}};
+    if (options.shadowPagesPath && !(options.shadows.virtualPages() && options.shadows.enabled)) {
+        throw Error("--shadow-pages", "shows virtual shadow pages: it needs --shadow-res virtual (and shadows on)");
+    }
     checkOutputPaths(outputPaths);
     const Scene scene = loadSceneForOptions(options);
     checkOutputPaths(outputPaths);  // again, now that the files the scene reads are known
@@ -163,6 +168,11 @@ int runRenderCommand(const std::vector<std::string>& args) {
             computeShadowDensity(scene, renderer.lights(), renderer.shadowPlan(), settings.width, settings.height);
         const std::string title = "shadow texels per pixel (--shadow-res " + shadowResolutionName(settings.shadows) + ")";
         outputs.add(*options.shadowDensityPath, encodePng(renderShadowDensity(density, title)));
+    }
+    if (options.shadowPagesPath) {
+        const std::vector<int8_t> levels = shadowPageLevels(scene, renderer.lights(), renderer.shadowPlan(), settings.width,
+                                                            settings.height, settings.shadows);
+        outputs.add(*options.shadowPagesPath, encodePng(shadowPageOverlay(result.image, levels)));
     }
     const auto written = outputs.pending();
     outputs.commit();

@@ -1,5 +1,7 @@
 #include "app/validate_command.h"
 
+#include <optional>
+
 #include <charconv>
 #include <cstdio>
 #include <system_error>
@@ -9,6 +11,7 @@
 #include "app/reference_command.h"
 #include "cli/scene_source.h"
 #include "report/frame_stats.h"
+#include "metrics/shadow_page_overlay.h"
 #include "report/validation_report.h"
 #include "core/error.h"
 #include "core/output_files.h"
@@ -90,7 +93,7 @@ ValidateArgs parseValidateArgs(const std::vector<std::string>& args) {
 // the ones it does not write again (a light that is gone leaves no mismatch map behind).
 void commitValidationFiles(const std::string& dir, nlohmann::json& report, const ImageRgba8& gpuImage,
                            const ImageRgba8& referenceImage, const reference::ShadowValidation& validation,
-                           const ShadowFactorImage& factors, bool exportExr) {
+                           const ShadowFactorImage& factors, const std::optional<ImageRgba8>& pageMap, bool exportExr) {
     const OutputFolderLayout& layout = validationFolderLayout();
     OutputFiles outputs;
     outputs.add(dir + "/report.html", validationHtml(report));
@@ -105,6 +108,7 @@ void commitValidationFiles(const std::string& dir, nlohmann::json& report, const
                     encodePng(mismatchMap(validation.sun->verdicts, validation.sun->inBand, validation.width, validation.height)));
         outputs.add(dir + "/cascades.png", encodePng(cascadeOverlay(gpuImage, factors.sunCascades)));
     }
+    if (pageMap) outputs.add(dir + "/pages.png", encodePng(*pageMap));
     if (exportExr) addExrImages(outputs, dir, factors);
     const std::vector<std::string> files = outputFolderFiles(outputs, dir, layout);
     report["files"] = files;
@@ -181,7 +185,14 @@ int runValidateCommand(const std::vector<std::string>& args) {
         band > 0.0f ? reference::EdgeBand::ofScreenPixels(band, scene.camera, options.height) : reference::EdgeBand{});
 
     nlohmann::json report = validationJson(validation, scene, renderer, band);
-    commitValidationFiles(dir, report, gpuImage, referenceImage, validation, factors, parsed.exportExr);
+    std::optional<ImageRgba8> pageMap;
+    if (settings.shadows.virtualPages()) {
+        // The virtual levels the frame's shadows read (the render command's --shadow-pages).
+        pageMap = shadowPageOverlay(gpuImage, shadowPageLevels(scene, renderer.lights(), renderer.shadowPlan(), settings.width,
+                                                               settings.height, settings.shadows));
+        report["page_map"] = "pages.png";
+    }
+    commitValidationFiles(dir, report, gpuImage, referenceImage, validation, factors, pageMap, parsed.exportExr);
     printValidationSummary(scene, options, renderer, validation);
     std::printf("wrote %s/report.json and report.html\n", dir.c_str());
     return 0;

@@ -190,6 +190,33 @@ void addShadowSeries(std::vector<BenchConfig>& configs, bool quick) {
     }
 }
 
+// Virtual shadow pages against whole views (issue 33): auto and virtual on the hall (the default
+// scene), the outdoor street and the rooms, each with its own lights, at 1280x720 and validated;
+// then the rooms at 10^4..10^6 triangles, whose memory must follow the pairs the frame shades,
+// not the views. --quick: the hall alone, at the run's size.
+void addShadowMemorySeries(std::vector<BenchConfig>& configs, bool quick) {
+    std::vector<std::pair<const BuiltinScene*, uint64_t>> scenes = {{&kDefaultBuiltinScene, 0}};
+    if (!quick) {
+        scenes.emplace_back(&parseBuiltinScene("outdoor"), 0);
+        for (uint64_t triangles : {10'000ull, 100'000ull, 1'000'000ull}) scenes.emplace_back(&parseBuiltinScene("rooms"), triangles);
+    }
+    for (const auto& [scene, triangles] : scenes) {
+        for (const ShadowResolutionModeInfo& mode : kShadowResolutionModes) {
+            BenchConfig config;
+            config.series = "shadow-memory";
+            config.scene = scene;
+            config.triangles = triangles;
+            config.shadows.resolution = mode.value;
+            config.validateShadows = true;
+            if (!quick) {
+                config.width = 1280;
+                config.height = 720;
+            }
+            configs.push_back(config);
+        }
+    }
+}
+
 // The sun's cascades on the outdoor scene: count x fixed resolution x filter. Its lamps keep
 // lighting the street but cast no shadow, so that the shadow stage and its memory are the
 // cascades' alone. The filters are those whose reach is counted in texels (the disk's radius is a
@@ -279,6 +306,8 @@ const std::vector<BenchSeries>& benchSeries() {
         {"shadow-budget", "the auto resolution's budget, 8..128 MiB, validated against Embree"},
         {"shadow-filters", "the filters " + joinNames(shadowFilterNames(), ", ") +
                                " at auto resolution, validated against Embree"},
+        {"shadow-memory", "auto against virtual shadow pages on the default scene, the outdoor street and the rooms "
+                          "(10^4..10^6 triangles), 1280x720, validated against Embree"},
         {"cascades", "the outdoor scene's sun: 1-4 cascades x 512, 1024, 2048 x the texel filters, validated"},
         {"triangles", "the rooms scene at 10^4..10^7 triangles x every method, with peak memory"},
         {"methods", "the default scene's own lights at 1280x720, shadows off, x every method and list form, the "
@@ -296,6 +325,7 @@ std::vector<BenchConfig> benchPlan(bool quick) {
     addRangeSeries(configs, quick);
     addPixelSeries(configs, quick);
     addShadowSeries(configs, quick);
+    addShadowMemorySeries(configs, quick);
     addCascadeSeries(configs, quick);
     addTriangleSeries(configs, quick);
     addMethodSeries(configs, quick);

@@ -49,7 +49,8 @@ std::vector<std::string> benchColumns(const std::vector<std::string>& passes) {
           "filter_taps_per_pixel", "shadow_views", "shadow_texels_rendered", "shadow_filter_taps", "objects_in_view",
           "camera_triangles", "depth_triangles", "forward_triangles", "transparent_triangles", "shadow_triangles",
           "depth_draws", "forward_draws", "transparent_draws", "shadow_draws", "shadow_draws_max",
-          "shadow_memory_bytes", "light_grid_bytes", "light_list_bytes", "light_grid_floor_bytes", "scene_bytes", "frame_bytes", "device_bytes", "peak_rss_bytes",
+          "shadow_memory_bytes", "shadow_floor_bytes", "shadow_pages", "shadow_pages_coarsened", "shadow_allocate_ms",
+          "light_grid_bytes", "light_list_bytes", "light_grid_floor_bytes", "scene_bytes", "frame_bytes", "device_bytes", "peak_rss_bytes",
           "efficiency", "floor_efficiency", "missed_energy", "image_error", "pixels_off", "shadow_reduced_views", "shadow_misclassified",
           "shadow_misclassified_all", "shadow_misclassified_1px", "shadow_false_shadow", "shadow_false_lit",
           "sun_misclassified", "sun_misclassified_1px"}) {
@@ -167,6 +168,11 @@ void addCounters(BenchRow& row, render::Renderer& renderer, const LightStatsImag
         row["shadow_filter_taps"] = std::to_string(renderer.settings().shadows.filterTaps());
         row["shadow_reduced_views"] = std::to_string(plan.reductions.size());
     }
+    if (renderer.settings().shadows.enabled && renderer.settings().shadows.virtualPages()) {
+        row["shadow_pages"] = std::to_string(renderer.shadowPages().pages.size());
+        row["shadow_pages_coarsened"] = std::to_string(renderer.shadowPageStats().coarsenedPages);
+        row["shadow_allocate_ms"] = benchNumber(renderer.shadowPageStats().allocateMs);
+    }
     const render::DeviceMemory memory = renderer.deviceMemory();
     row["shadow_memory_bytes"] = std::to_string(memory.shadows);
     row["light_grid_bytes"] = std::to_string(memory.lightGrid);
@@ -195,6 +201,9 @@ ShadowValidationRows addShadowValidation(BenchRow& row, render::Renderer& render
     row["shadow_misclassified_1px"] = benchNumber(onePixel.overall.misclassifiedOutsideBand());
     row["shadow_false_shadow"] = std::to_string(validation.overall.falseShadow);
     row["shadow_false_lit"] = std::to_string(validation.overall.falseLit);
+    // The floor (DESIGN.md): one texel per compared pair, the (pixel, shadowed light) pairs shaded.
+    row["shadow_floor_bytes"] =
+        std::to_string(validation.overall.compared * renderer.settings().shadows.texelBytes());
     for (const reference::LightShadowValidation& light : onePixel.lights) {
         const reference::ShadowCounts& c = light.counts;
         out.perLight.push_back({{"light", light.sceneLight},

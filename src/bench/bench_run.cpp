@@ -12,6 +12,18 @@
 
 namespace punctual::bench {
 
+void mergePassNames(std::vector<std::string>& known, const std::vector<std::string>& names) {
+    size_t at = 0;  // where the next new name goes: after the last known name seen
+    for (const std::string& name : names) {
+        const auto it = std::find(known.begin(), known.end(), name);
+        if (it != known.end()) {
+            at = size_t(it - known.begin()) + 1;
+        } else {
+            known.insert(known.begin() + std::ptrdiff_t(at++), name);
+        }
+    }
+}
+
 // One configuration while its group is measured: its scene, renderer and rounds.
 struct BenchRun::Measurement {
     BenchConfig config;
@@ -141,7 +153,8 @@ void BenchRun::addImageRows(BenchRow& row, const Measurement& m, const LightStat
 void BenchRun::recordMeasurement(Measurement& m) {
     const BenchConfig& config = m.config;
     render::Renderer& renderer = *m.renderer;
-    if (record_.passes.empty()) record_.passes = renderer.passNames();
+    // Every pass any configuration has, in frame order (virtual pages add the marking passes).
+    mergePassNames(record_.passes, renderer.passNames());
     BenchRow row;
     addConfiguration(row, config, *m.scene, renderer, settings_.rounds, settings_.bestOf);
     const RoundSummary frame = addTimings(row, m.rounds);

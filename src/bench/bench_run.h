@@ -25,6 +25,10 @@
 
 namespace punctual::bench {
 
+// Adds the names of `names` that `known` lacks, each after the last name of `names` before it that
+// `known` has (the frame order of both kept).
+void mergePassNames(std::vector<std::string>& known, const std::vector<std::string>& names);
+
 struct BenchRunSettings {
     cli::RenderOptions options;  // the frame's settings; each configuration overrides its own
     uint32_t rounds = 5;

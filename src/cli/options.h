@@ -37,6 +37,7 @@ struct RenderOptions {
     bool subgroupTiles = true;             // --subgroup-tiles on|off (tiled, zbin, zbin-2d)
     std::optional<std::string> heatmapPath;  // --heatmap FILE.png
     std::optional<std::string> shadowDensityPath;  // --shadow-density FILE.png
+    std::optional<std::string> shadowPagesPath;    // --shadow-pages FILE.png
     ShadowSettings shadows;                // --shadows, --shadow-res, --shadow-filter, ...
 };
 

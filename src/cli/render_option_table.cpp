@@ -123,6 +123,9 @@ const RenderOptionSpec kRenderOptions[] = {
      "draw the shadow texels per screen pixel (1 is the target of auto\nresolution) where shadowed lights reach, with "
      "a legend",
      [](RenderOptions& o, const std::string& v, Notes&) { o.shadowDensityPath = v; }},
+    {"--shadow-pages", "FILE.png",
+     "with --shadow-res virtual: tint each pixel by the finest level of\nthe virtual shadow maps its lights read, with a legend",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.shadowPagesPath = v; }},
     {"--shadows", "on|off", "spot and point shadows (default on: every spot and point light)",
      [](RenderOptions& o, const std::string& v, Notes&) { o.shadows.enabled = parseOnOff("--shadows", v); }},
     {"--shadowed", "S,P", "shadow at most S spot and P point lights, the most important\n(default 64,32: all of them)",

@@ -8,7 +8,7 @@
 // no marks and is lit everywhere, as in every mode.
 //
 // Pool: the allocated pages are 33 x 33 squares of the atlas (PUNCTUAL_VIRTUAL_SHADOW_SLOT: a page
-// and its neighbours' first column and row), below the sun's cascades, in rows of `pagesAcross`,
+// and its neighbours' first column and row), around the sun's cascades (virtualShadowSlotOrigin),
 // then the lit page; slot i is page i in (view, level, row, column) order, so the same marks give the
 // same atlas, texel for texel. The page table covers, per view and level with a marked page, the
 // rectangle of its marked pages (not the whole level: a view's level 0 alone has 512 x 512 pages),
@@ -71,8 +71,12 @@ struct ShadowPageAllocation {
     std::vector<uint32_t> table;                   // the page table's entries
     std::vector<ShadowPage> pages;                 // slot i holds pages[i]
     std::array<uint64_t, PUNCTUAL_VIRTUAL_SHADOW_LEVELS> pagesPerLevel{};
-    uint32_t pagesAcross = 1;  // the pool's rows, in slots
-    uint32_t firstRow = 0;     // the pool's first texel row in the atlas
+    // Where the slots are (shaders/shared/shadow_pages.h, virtualShadowSlotOrigin): beside the
+    // cascades' squares (`squares` texels at the atlas's top left), `besideAcross` slots a row,
+    // then below them, `belowAcross` a row.
+    glm::uvec2 squares{0u};
+    uint32_t besideAcross = 0;
+    uint32_t belowAcross = 1;
 
     // The pool's slots: the pages', then the lit page's (cleared, never drawn), which the lookups
     // read where a page has none (shadow_pages.glsl, PageBlock).
@@ -93,9 +97,11 @@ std::vector<gpu::GpuVirtualShadowView> unallocatedPageViews(const ShadowPageMark
 ShadowPageAllocation allocateShadowPages(const ShadowPageMarkLayout& layout, std::span<const uint32_t> marks,
                                          std::span<const uint32_t> coarser);
 
-// Places the pool below what the atlas already holds (the cascades; plan.atlas), in rows of the
-// atlas's width (64 pages when it has none, doubled while the rows would pass `maxSide`), and
-// grows plan.atlas to hold it. Throws Error when the pool cannot fit maxSide x maxSide.
+// Places the pool around what the atlas already holds (the cascades' squares; plan.atlas): rows
+// of the atlas's width below them (64 slots when it has none), the width doubled while the pool
+// would pass `maxSide`, which opens a band beside them that the pool fills first. Grows plan.atlas
+// to hold it and moves the squares' views (their atlas UV) to the grown atlas. Throws Error when
+// the pool cannot fit maxSide x maxSide.
 void placeShadowPagePool(ShadowPlan& plan, ShadowPageAllocation& allocation, uint32_t maxSide);
 
 // The pages the pool can hold beside the cascades: what remains of `budgetBytes` after plan.atlas,

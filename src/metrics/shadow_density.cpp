@@ -40,7 +40,11 @@ ShadowDensityImage computeShadowDensity(const Scene& scene, const FrameLights& l
             if (!plan.views[view].rendered()) continue;
             const float needed = resolutionNeededAt(plan, view, light, sample);
             if (!(needed > 0.0f)) continue;
-            const float density = float(plan.views[view].resolution) / needed;
+            // The resolution the receiver reads: the view's, or its virtual level's there.
+            const glm::vec3 axis = plan.views[view].isPoint ? gpu::cubeFaceAxis(plan.views[view].face)
+                                                            : glm::vec3(light.directionAngleScale);
+            const float depth = std::abs(glm::dot(sample.position - lightPosition, axis));
+            const float density = shadowResolutionRead(plan, view, depth, sample.position) / needed;
             smallest = smallest > 0.0f ? std::min(smallest, density) : density;
         }
         image.density[size_t(y) * width + x] = smallest;

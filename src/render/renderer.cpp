@@ -309,7 +309,8 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
     // measure it (forEachVisibleReceiver); 1 / P11 is -tan(yfov / 2) under Vulkan's flipped y.
     frame.shadowPageNeed =
         glm::vec4(shadows.texelsPerPixel, 2.0f * std::abs(frame.ndcToView.y) / float(settings.height), 0.0f, 0.0f);
-    frame.shadowPagePool = glm::uvec4(pages.pagesAcross, pages.firstRow, pages.litSlot(), 0u);
+    frame.shadowPagePool = glm::uvec4(pages.squares, pages.besideAcross, pages.belowAcross);
+    frame.shadowPageSlots = glm::uvec4(pages.litSlot(), 0u, 0u, 0u);
     return frame;
 }
 

@@ -107,6 +107,9 @@ void ShadowPass::setUnallocatedPages(const std::vector<gpu::GpuVirtualShadowView
 void ShadowPass::usePages(const vk::Context& context, const ShadowPageAllocation& allocation, ShadowPageDraws draws) {
     maps_ = ShadowMaps(context, plan_, settings_);
     createTargets(context);
+    std::vector<gpu::GpuShadowView> views;  // the cascades' squares moved with the grown atlas
+    for (const ShadowView& view : plan_.views) views.push_back(view.gpu);
+    if (!views.empty()) views_.write(views.data(), views.size() * sizeof(gpu::GpuShadowView));
     setUnallocatedPages(allocation.views);
     auto upload = [&](const void* data, size_t bytes, const char* name) {
         vk::Buffer buffer(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, name);
@@ -120,7 +123,6 @@ void ShadowPass::usePages(const vk::Context& context, const ShadowPageAllocation
         pageInstances_ = upload(draws.instances.data(), draws.instances.size() * sizeof(glm::uvec4), "shadow page instances");
     }
     pageDraws_ = std::move(draws);
-    poolFirstRow_ = allocation.firstRow;
 }
 
 void ShadowPass::addBindings(BindingTable& table) const {
@@ -244,12 +246,13 @@ uint64_t ShadowPass::pagesDrawn() const {
 }
 
 // Every caster of every view with pages, instanced over the pages it meets (shadow_page_draw.glsl),
-// through one viewport over the whole atlas; the scissor keeps the pool's rows.
+// through one viewport and scissor over the whole atlas: the clip distances keep each instance
+// inside its slot.
 void ShadowPass::drawPages(const FrameContext& frame) const {
     if (pageDraws_.draws.empty()) return;
     const VkCommandBuffer cmd = frame.cmd;
     const VkViewport viewport{0.0f, 0.0f, float(plan_.atlas.width), float(plan_.atlas.height), 0.0f, 1.0f};
-    const VkRect2D scissor{{0, int32_t(poolFirstRow_)}, {plan_.atlas.width, plan_.atlas.height - poolFirstRow_}};
+    const VkRect2D scissor{{0, 0}, {plan_.atlas.width, plan_.atlas.height}};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
     frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_);

@@ -90,7 +90,6 @@ private:
     vk::Buffer pageTable_;  // the page table's entries (one word when there are none)
     vk::Buffer pageInstances_;  // ShadowPageDraws::instances (one slot when there are none)
     ShadowPageDraws pageDraws_;
-    uint32_t poolFirstRow_ = 0;
     // The render pass, layout and pipelines: the context's object cache (vk/object_cache.h) owns them.
     VkRenderPass renderPass_ = VK_NULL_HANDLE;
     VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;

@@ -30,7 +30,7 @@ nlohmann::json countsJson(const reference::ShadowCounts& c) {
 const OutputFolderLayout& validationFolderLayout() {
     static const OutputFolderLayout layout = {"report.json",
                                               {"report.json", "report.html", "gpu.png", "reference.png",
-                                               "mismatch-*.png", "cascades.png", "positions.exr", "shadow-factor-*.exr"},
+                                               "mismatch-*.png", "cascades.png", "pages.png", "positions.exr", "shadow-factor-*.exr"},
                                               {}};
     return layout;
 }
@@ -202,6 +202,11 @@ std::string validationHtml(const nlohmann::json& report) {
         html << "<figure style=\"display:inline-block;width:31%\"><img style=\"max-width:100%\" src=\""
              << light["mismatch_map"].get<std::string>() << "\"><figcaption>" << light["slot"] << " ("
              << light["type"].get<std::string>() << ")</figcaption></figure>\n";
+    }
+    if (report.contains("page_map")) {
+        html << "<figure style=\"display:inline-block;width:31%\"><img style=\"max-width:100%\" src=\"pages.png\">"
+             << "<figcaption>virtual shadow pages: the finest level each pixel's lights read (red 0 = 16384 "
+             << "texels, blue 9 = 32)</figcaption></figure>\n";
     }
     if (report.contains("directional")) {
         html << "<figure style=\"display:inline-block;width:31%\"><img style=\"max-width:100%\" src=\"mismatch-sun.png\">"

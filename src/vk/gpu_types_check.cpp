@@ -39,7 +39,8 @@ static_assert(offsetof(GpuFrame, sunShadowFade) == 464);
 static_assert(offsetof(GpuFrame, cascadeSpheres) == 480);
 static_assert(offsetof(GpuFrame, shadowPageNeed) == 480 + 16 * PUNCTUAL_MAX_CASCADES);
 static_assert(offsetof(GpuFrame, shadowPagePool) == 496 + 16 * PUNCTUAL_MAX_CASCADES);
-static_assert(sizeof(GpuFrame) == 512 + 16 * PUNCTUAL_MAX_CASCADES);
+static_assert(offsetof(GpuFrame, shadowPageSlots) == 512 + 16 * PUNCTUAL_MAX_CASCADES);
+static_assert(sizeof(GpuFrame) == 528 + 16 * PUNCTUAL_MAX_CASCADES);
 
 static_assert(sizeof(GpuVirtualShadowView) == 16 + 16 * PUNCTUAL_VIRTUAL_SHADOW_LEVELS);
 static_assert(offsetof(GpuVirtualShadowView, levels) == 16);

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "bench/bench_rows.h"
+#include "bench/bench_run.h"
 
 namespace punctual::bench {
 namespace {
@@ -14,6 +15,20 @@ render::PassTimings frame(double depth, double forward, double total) {
     t.passes = {{"depth", depth}, {"forward", forward}};
     t.total = total;
     return t;
+}
+
+// The columns hold every pass any configuration ran, in frame order: virtual pages' marking passes
+// come between culling and shadows whichever configuration ran first.
+TEST(BenchRows, PassNamesOfEveryConfigurationMergeInFrameOrder) {
+    std::vector<std::string> known = {"depth", "culling", "shadows", "forward"};
+    bench::mergePassNames(known, {"depth", "culling", "shadow_marks", "shadow_marks_transparent", "shadows", "forward"});
+    EXPECT_EQ(known, (std::vector<std::string>{"depth", "culling", "shadow_marks", "shadow_marks_transparent", "shadows",
+                                               "forward"}));
+    bench::mergePassNames(known, {"depth", "shadows", "forward", "tonemap"});
+    EXPECT_EQ(known.back(), "tonemap");
+    std::vector<std::string> empty;
+    bench::mergePassNames(empty, {"depth", "forward"});
+    EXPECT_EQ(empty, (std::vector<std::string>{"depth", "forward"}));
 }
 
 TEST(BenchRows, FastestPerPassTakesEachPassAndTheTotalApart) {

@@ -11,6 +11,7 @@
 #include "lights/shadow_page_allocation.h"
 #include "lights/shadow_sizing.h"
 #include "lights/virtual_pages.h"
+#include "scene/builtin_scenes.h"
 #include "scene/default_scene.h"
 #include "shadow_test_runs.h"
 
@@ -166,6 +167,29 @@ TEST(VirtualShadows, DefaultSceneMisclassifiesAtMostHalfAPercent) {
         EXPECT_GE(testing::countVerdicts(run.validation, isPoint, PixelVerdict::AgreeShadow), 500u);
     }
     for (const ShadowView& view : run.plan.views) EXPECT_EQ(view.coarserLevels, 0u);
+    testing::expectNoValidationMessages(*context);
+}
+
+// The sun's cascades stay whole squares of the atlas, which grows around them to hold the pool:
+// they read their squares where they moved to, as accurately as beside auto's whole views, and
+// the pages fill the band beside them before the rows below (no unused texels).
+TEST(VirtualShadows, TheSunsCascadesStayWholeBesideThePool) {
+    auto context = testing::makeValidatedContext();
+    const Scene scene = makeBuiltinScene("outdoor");
+    double sunError[2] = {0.0, 0.0};
+    for (const bool paged : {false, true}) {
+        const ShadowSettings shadows = paged ? virtualShadows() : ShadowSettings{};
+        const testing::ShadowRun run = testing::renderAndValidateShadows(*context, scene, testing::shadowRenderSettings(320, 180, shadows));
+        ASSERT_TRUE(run.validation.sun.has_value());
+        EXPECT_GT(run.validation.sun->counts.comparedOutsideBand, 10000u);
+        sunError[paged] = run.validation.sun->counts.misclassifiedOutsideBand();
+        EXPECT_LE(run.validation.overall.misclassifiedOutsideBand(), 0.005) << (paged ? "virtual" : "auto");
+        if (paged) {
+            EXPECT_GT(run.plan.cascades.count, 0u);
+            EXPECT_GT(run.plan.atlas.height, 0u);
+        }
+    }
+    EXPECT_NEAR(sunError[1], sunError[0], 0.0005);
     testing::expectNoValidationMessages(*context);
 }
 

@@ -83,26 +83,44 @@ TEST(ShadowPageAllocation, TheTableCoversEachLevelsRectangleOfMarkedPages) {
     EXPECT_EQ(allocation.physicalBytes(2), 5u * 33u * 33u * 2u);
 }
 
-TEST(ShadowPageAllocation, ThePoolGoesBelowTheCascadesInRowsOfTheAtlasWidth) {
+TEST(ShadowPageAllocation, ThePoolFillsWhatTheCascadesLeave) {
     ShadowPlan plan = planOfViews(1);
     ShadowPageAllocation allocation;
     allocation.pages.resize(99);  // 100 slots with the lit page
     placeShadowPagePool(plan, allocation, 16384);
-    EXPECT_EQ(allocation.pagesAcross, 64u);
-    EXPECT_EQ(allocation.firstRow, 0u);
+    EXPECT_EQ(allocation.belowAcross, 64u);
+    EXPECT_EQ(allocation.besideAcross, 0u);
     EXPECT_EQ(plan.atlas.width, 64u * 33u);
     EXPECT_EQ(plan.atlas.height, 2u * 33u);
+    EXPECT_EQ(gpu::virtualShadowSlotOrigin(65, allocation.squares, allocation.besideAcross, allocation.belowAcross),
+              glm::uvec2(33u, 33u));
 
+    // Below cascades 2048 wide and 1024 tall: 62 slots a row (2048 / 33).
     ShadowPlan withCascades = planOfViews(1);
     withCascades.atlas.width = 2048;
     withCascades.atlas.height = 1024;
     // The cascades' 2048 x 1024 at 2 bytes leave (64 MiB - 4 MiB) for 33 x 33 slots, one the lit page's.
     EXPECT_EQ(shadowPagePoolCapacity(withCascades, 64ull << 20, 2), (60ull << 20) / (33 * 33 * 2) - 1);
     placeShadowPagePool(withCascades, allocation, 16384);
-    EXPECT_EQ(allocation.pagesAcross, 62u);  // 2048 / 33
-    EXPECT_EQ(allocation.firstRow, 1024u);
+    EXPECT_EQ(allocation.belowAcross, 62u);
     EXPECT_EQ(withCascades.atlas.width, 2048u);
     EXPECT_EQ(withCascades.atlas.height, 1024u + 2u * 33u);
+    EXPECT_EQ(gpu::virtualShadowSlotOrigin(0, allocation.squares, 0, 62), glm::uvec2(0u, 1024u));
+
+    // 6,000 slots are too tall at 2048 (97 rows of 62 below 1024: 4,225 > 4,096): the width
+    // doubles, and the band beside the cascades (62 slots a row, 31 rows of 33 in 1024) fills
+    // first with 1,922 slots; the other 4,078 go below, 124 a row (33 rows).
+    ShadowPlan doubled = planOfViews(1);
+    doubled.atlas.width = 2048;
+    doubled.atlas.height = 1024;
+    allocation.pages.resize(5999);
+    placeShadowPagePool(doubled, allocation, 4096);
+    EXPECT_EQ(doubled.atlas.width, 4096u);
+    EXPECT_EQ(allocation.besideAcross, 62u);
+    EXPECT_EQ(allocation.belowAcross, 124u);
+    EXPECT_EQ(doubled.atlas.height, 1024u + 33u * 33u);
+    EXPECT_EQ(gpu::virtualShadowSlotOrigin(63, allocation.squares, 62, 124), glm::uvec2(2048u + 33u, 33u));
+    EXPECT_EQ(gpu::virtualShadowSlotOrigin(1922 + 125, allocation.squares, 62, 124), glm::uvec2(33u, 1024u + 33u));
 
     ShadowPlan tight = planOfViews(1);
     allocation.pages.resize(20000);

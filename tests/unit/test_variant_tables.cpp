@@ -140,6 +140,7 @@ TEST(VariantTables, HelpListsEveryEntryAndTheDefault) {
     expectHelpListsEveryEntry(kShadowFilters, defaults.filter);
     expectHelpListsEveryEntry(kPointShadowLayouts, defaults.pointLayout);
     expectHelpListsEveryEntry(kCascadeBlends, defaults.cascades.blend);
+    expectHelpListsEveryEntry(kShadowResolutionModes, defaults.resolution);
     expectHelpListsEveryEntry(render::kLightListForms, cli::RenderOptions{}.lightLists);
     // The descriptions line up in one column after the longest name.
     EXPECT_EQ(variantHelp(kPointShadowLayouts, PointShadowLayout::Cube, 2).substr(0, 10), "  cube    ");
@@ -317,6 +318,11 @@ TEST(VariantTables, EveryPointShadowLayoutHasItsShaderCase) {
 TEST(VariantTables, EveryCascadeBlendHasItsShaderCase) {
     expectEveryConstantHasItsCase(constantsOf(kCascadeBlends, &CascadeBlendInfo::gpu), "shared/shadow_sampling.glsl",
                                   "CASCADE_BLEND", 1);
+}
+
+TEST(VariantTables, EveryShadowResolutionModeHasItsShaderCase) {
+    expectEveryConstantHasItsCase(constantsOf(kShadowResolutionModes, &ShadowResolutionModeInfo::pages),
+                                  "shared/shadow_sampling.glsl", "SHADOW_PAGES", 1);
 }
 
 TEST(VariantTables, EveryLightSourceHasItsShaderCase) {
