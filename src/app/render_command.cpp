@@ -92,6 +92,23 @@ void printFrameSummary(const Scene& scene, const vk::Context& context, const ren
     }
 }
 
+// --shadow-density and --shadow-pages: how the frame's shadows are resolved, drawn on the CPU.
+void addShadowImages(OutputFiles& outputs, const RenderOptions& options, const Scene& scene,
+                     const render::Renderer& renderer, const ImageRgba8& frame) {
+    const render::RenderSettings& settings = renderer.settings();
+    if (options.shadowDensityPath) {
+        const ShadowDensityImage density =
+            computeShadowDensity(scene, renderer.lights(), renderer.shadowPlan(), settings.width, settings.height);
+        const std::string title = "shadow texels per pixel (--shadow-res " + shadowResolutionName(settings.shadows) + ")";
+        outputs.add(*options.shadowDensityPath, encodePng(renderShadowDensity(density, title)));
+    }
+    if (options.shadowPagesPath) {
+        const std::vector<int8_t> levels = shadowPageLevels(scene, renderer.lights(), renderer.shadowPlan(), settings.width,
+                                                            settings.height, settings.shadows);
+        outputs.add(*options.shadowPagesPath, encodePng(shadowPageOverlay(frame, levels)));
+    }
+}
+
 }  // namespace
 
 int runRenderCommand(const std::vector<std::string>& args) {
@@ -163,17 +180,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
                         encodePng(renderHeatmap(lightStats->tested, background, settings.width, settings.height, heatmap)));
         }
     }
-    if (options.shadowDensityPath) {
-        const ShadowDensityImage density =
-            computeShadowDensity(scene, renderer.lights(), renderer.shadowPlan(), settings.width, settings.height);
-        const std::string title = "shadow texels per pixel (--shadow-res " + shadowResolutionName(settings.shadows) + ")";
-        outputs.add(*options.shadowDensityPath, encodePng(renderShadowDensity(density, title)));
-    }
-    if (options.shadowPagesPath) {
-        const std::vector<int8_t> levels = shadowPageLevels(scene, renderer.lights(), renderer.shadowPlan(), settings.width,
-                                                            settings.height, settings.shadows);
-        outputs.add(*options.shadowPagesPath, encodePng(shadowPageOverlay(result.image, levels)));
-    }
+    addShadowImages(outputs, options, scene, renderer, result.image);
     const auto written = outputs.pending();
     outputs.commit();
     for (const auto& file : written) std::printf("wrote %s\n", file.first.c_str());

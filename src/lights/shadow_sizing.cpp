@@ -142,60 +142,70 @@ uint64_t shadowMapBytes(const ShadowPlan& plan, const ShadowSettings& settings, 
     return atlas * settings.texelBytes() + cubeArrayBytes(plan, settings, resolution);
 }
 
+namespace {
+
+// Fixed mode: every view with a caster at settings.resolution, or one line saying what does not fit.
+void sizeFixedViews(ShadowPlan& plan, const FrameLights& lights, const ShadowSettings& settings,
+                    const ShadowMemoryLimits& limits) {
+    // The first limit the maps at `resolution` exceed, described; empty when they fit.
+    auto problemAt = [&](uint32_t resolution) -> std::string {
+        const std::vector<uint32_t> sizes = fixedAtlasSizes(plan, settings, resolution);
+        const uint64_t total = shadowMapBytes(plan, settings, resolution);
+        if (total > limits.total) {
+            return "the shadow maps of " + std::to_string(plan.shadowedSpots) + " spot and " +
+                   std::to_string(plan.shadowedPoints) + " point lights need " + describeBytes(total) + ", " +
+                   limits.totalName + " has " + describeBytes(limits.total);
+        }
+        if (!shadowAtlasFits(sizes, limits.atlasSide)) {
+            return "the shadow atlas would be wider or taller than the device's largest 2D image (" +
+                   std::to_string(limits.atlasSide) + " texels)";
+        }
+        const uint64_t atlas = packShadowAtlas(sizes, limits.atlasSide).texels() * settings.texelBytes();
+        if (atlas > limits.atlasBytes) {
+            return "the shadow atlas needs " + describeBytes(atlas) + ", the device's largest such image holds " +
+                   describeBytes(limits.atlasBytes);
+        }
+        const uint64_t cubes = cubeArrayBytes(plan, settings, resolution);
+        if (cubes > limits.cubeArrayBytes) {
+            return "the point shadow cube array (" + std::to_string(6 * plan.shadowedPoints) + " layers) needs " +
+                   describeBytes(cubes) + ", the device's largest such image holds " + describeBytes(limits.cubeArrayBytes);
+        }
+        if (atlas + cubes > limits.total) {
+            return "the shadow maps of " + std::to_string(plan.shadowedSpots) + " spot and " +
+                   std::to_string(plan.shadowedPoints) + " point lights need " + describeBytes(atlas + cubes) + ", " +
+                   limits.totalName + " has " + describeBytes(limits.total);
+        }
+        return {};
+    };
+    std::string problem = problemAt(settings.resolution);
+    if (!problem.empty()) {
+        for (uint32_t resolution = settings.resolution / 2; resolution >= 16; resolution /= 2) {
+            if (problemAt(resolution).empty()) {
+                problem += " (at most --shadow-res " + std::to_string(resolution) + " fits)";
+                break;
+            }
+        }
+        throw Error("--shadow-res " + std::to_string(settings.resolution), problem);
+    }
+    const std::vector<uint32_t> sizes = fixedAtlasSizes(plan, settings, settings.resolution);
+    plan.atlas = packShadowAtlas(sizes, limits.atlasSide);
+    for (uint32_t v = 0; v < plan.views.size(); ++v) {
+        ShadowView& view = plan.views[v];
+        view.resolution = usesCubeArray(view, settings) || !view.casters.empty() ? settings.resolution : 0u;
+        view.rect = plan.atlas.rects[v];
+    }
+    plan.cubeResolution = settings.pointLayout == PointShadowLayout::Cube && plan.shadowedPoints > 0 ? settings.resolution : 0;
+    finishViews(plan, lights, settings);
+}
+
+}  // namespace
+
 void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& lights, const glm::vec3& cameraPosition,
                      uint32_t frameWidth, uint32_t frameHeight, const ShadowSettings& settings,
                      const ShadowMemoryLimits& limits, const LazyTriangleBvh* geometry) {
     if (plan.views.empty()) return;
     if (!settings.autoResolution()) {
-        // The first limit the maps at `resolution` exceed, described; empty when they fit.
-        auto problemAt = [&](uint32_t resolution) -> std::string {
-            const std::vector<uint32_t> sizes = fixedAtlasSizes(plan, settings, resolution);
-            const uint64_t total = shadowMapBytes(plan, settings, resolution);
-            if (total > limits.total) {
-                return "the shadow maps of " + std::to_string(plan.shadowedSpots) + " spot and " +
-                       std::to_string(plan.shadowedPoints) + " point lights need " + describeBytes(total) + ", " +
-                       limits.totalName + " has " + describeBytes(limits.total);
-            }
-            if (!shadowAtlasFits(sizes, limits.atlasSide)) {
-                return "the shadow atlas would be wider or taller than the device's largest 2D image (" +
-                       std::to_string(limits.atlasSide) + " texels)";
-            }
-            const uint64_t atlas = packShadowAtlas(sizes, limits.atlasSide).texels() * settings.texelBytes();
-            if (atlas > limits.atlasBytes) {
-                return "the shadow atlas needs " + describeBytes(atlas) + ", the device's largest such image holds " +
-                       describeBytes(limits.atlasBytes);
-            }
-            const uint64_t cubes = cubeArrayBytes(plan, settings, resolution);
-            if (cubes > limits.cubeArrayBytes) {
-                return "the point shadow cube array (" + std::to_string(6 * plan.shadowedPoints) + " layers) needs " +
-                       describeBytes(cubes) + ", the device's largest such image holds " + describeBytes(limits.cubeArrayBytes);
-            }
-            if (atlas + cubes > limits.total) {
-                return "the shadow maps of " + std::to_string(plan.shadowedSpots) + " spot and " +
-                       std::to_string(plan.shadowedPoints) + " point lights need " + describeBytes(atlas + cubes) + ", " +
-                       limits.totalName + " has " + describeBytes(limits.total);
-            }
-            return {};
-        };
-        std::string problem = problemAt(settings.resolution);
-        if (!problem.empty()) {
-            for (uint32_t resolution = settings.resolution / 2; resolution >= 16; resolution /= 2) {
-                if (problemAt(resolution).empty()) {
-                    problem += " (at most --shadow-res " + std::to_string(resolution) + " fits)";
-                    break;
-                }
-            }
-            throw Error("--shadow-res " + std::to_string(settings.resolution), problem);
-        }
-        const std::vector<uint32_t> sizes = fixedAtlasSizes(plan, settings, settings.resolution);
-        plan.atlas = packShadowAtlas(sizes, limits.atlasSide);
-        for (uint32_t v = 0; v < plan.views.size(); ++v) {
-            ShadowView& view = plan.views[v];
-            view.resolution = usesCubeArray(view, settings) || !view.casters.empty() ? settings.resolution : 0u;
-            view.rect = plan.atlas.rects[v];
-        }
-        plan.cubeResolution = settings.pointLayout == PointShadowLayout::Cube && plan.shadowedPoints > 0 ? settings.resolution : 0;
-        finishViews(plan, lights, settings);
+        sizeFixedViews(plan, lights, settings, limits);
         return;
     }
 

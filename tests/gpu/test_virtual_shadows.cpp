@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <set>
 
+#include "core/image.h"
 #include "gpu_test_support.h"
 #include "lights/shadow_page_allocation.h"
 #include "lights/shadow_sizing.h"
@@ -226,6 +227,29 @@ TEST(VirtualShadows, AShortBudgetCoarsensTheLeastImportantLightsFirst) {
     }
     EXPECT_LT(worstKept, bestCoarsened);
     testing::expectNoValidationMessages(*context);
+}
+
+// The overlay: written with virtual pages, tinting the frame where shadows read pages (and only
+// there: the background keeps the frame's own pixels), refused in one line without them.
+TEST(VirtualShadows, TheShadowPagesOverlayTintsWhereShadowsReadPages) {
+    testing::TempFolder folder;
+    const std::string frame = folder.file("frame.png");
+    const std::string pages = folder.file("pages.png");
+    const testing::RunResult run = testing::runPunctual(
+        folder, testing::cat("render --validate --size 320x180 --shadow-res virtual --out ", testing::quoted(frame),
+                             " --shadow-pages ", testing::quoted(pages)));
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const ImageRgba8 plain = readPng(frame);
+    const ImageRgba8 tinted = readPng(pages);
+    ASSERT_EQ(plain.pixels.size(), tinted.pixels.size());
+    size_t changed = 0;
+    for (size_t i = 0; i < plain.pixels.size(); ++i) changed += plain.pixels[i] != tinted.pixels[i];
+    EXPECT_GT(changed, plain.pixels.size() / 4);  // most of the hall reads pages
+    // The top right corner is background (no surface, no shadow), away from the legend.
+    EXPECT_EQ(std::vector<uint8_t>(plain.at(319, 0), plain.at(319, 0) + 4),
+              std::vector<uint8_t>(tinted.at(319, 0), tinted.at(319, 0) + 4));
+    const std::string args = testing::cat("render --size 320x180 --shadow-pages ", testing::quoted(pages + "2"));
+    testing::expectOneClearError(testing::runPunctual(folder, args), args, "--shadow-pages");
 }
 
 }  // namespace
