@@ -53,21 +53,26 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     std::istringstream csv(readText(dir + "/results.csv"));
     std::string header;
     std::getline(csv, header);
+    // Every pass any configuration ran has its columns (virtual pages' marking passes included).
     EXPECT_EQ(header,
               "config,series,method,spot,point,light_range,width,height,pixels,scene,scene_triangles,objects,shadows,"
               "shadow_res,shadow_budget_mib,shadow_format,shadow_filter,point_layout,cascades,shadowed_spots,"
-              "shadowed_points,coarse_tiles,tile_kernel,tile_threads,light_lists,rounds,best_of,depth_ms,transparent_depth_ms,culling_ms,shadows_ms,forward_ms,transparent_ms,"
-              "tonemap_ms,total_ms,depth_iqr_ms,transparent_depth_iqr_ms,culling_iqr_ms,shadows_iqr_ms,forward_iqr_ms,"
-              "transparent_iqr_ms,tonemap_iqr_ms,total_iqr_ms,depth_cv,transparent_depth_cv,culling_cv,shadows_cv,"
-              "forward_cv,transparent_cv,tonemap_cv,total_cv,flagged,flag_reason,tested_per_pixel,affecting_per_pixel,"
-              "shadow_lookups_per_pixel,filter_taps_per_pixel,shadow_views,shadow_texels_rendered,shadow_filter_taps,"
-              "objects_in_view,camera_triangles,depth_triangles,forward_triangles,transparent_triangles,"
-              "shadow_triangles,depth_draws,forward_draws,transparent_draws,shadow_draws,shadow_draws_max,"
-              "shadow_memory_bytes,light_grid_bytes,light_list_bytes,light_grid_floor_bytes,scene_bytes,frame_bytes,device_bytes,peak_rss_bytes,efficiency,floor_efficiency,"
-              "missed_energy,image_error,pixels_off,shadow_reduced_views,shadow_misclassified,"
-              "shadow_misclassified_all,shadow_misclassified_1px,shadow_false_shadow,shadow_false_lit,"
-              "sun_misclassified,sun_misclassified_1px,sun_cascade0_misclassified_1px,sun_cascade1_misclassified_1px,"
-              "sun_cascade2_misclassified_1px,sun_cascade3_misclassified_1px");
+              "shadowed_points,coarse_tiles,tile_kernel,tile_threads,light_lists,rounds,best_of,depth_ms,"
+              "transparent_depth_ms,culling_ms,shadow_marks_ms,shadow_marks_transparent_ms,shadows_ms,forward_ms,"
+              "transparent_ms,tonemap_ms,total_ms,depth_iqr_ms,transparent_depth_iqr_ms,culling_iqr_ms,"
+              "shadow_marks_iqr_ms,shadow_marks_transparent_iqr_ms,shadows_iqr_ms,forward_iqr_ms,transparent_iqr_ms,"
+              "tonemap_iqr_ms,total_iqr_ms,depth_cv,transparent_depth_cv,culling_cv,shadow_marks_cv,"
+              "shadow_marks_transparent_cv,shadows_cv,forward_cv,transparent_cv,tonemap_cv,total_cv,flagged,flag_reason,"
+              "tested_per_pixel,affecting_per_pixel,shadow_lookups_per_pixel,filter_taps_per_pixel,shadow_views,"
+              "shadow_texels_rendered,shadow_filter_taps,objects_in_view,camera_triangles,depth_triangles,"
+              "forward_triangles,transparent_triangles,shadow_triangles,depth_draws,forward_draws,transparent_draws,"
+              "shadow_draws,shadow_draws_max,shadow_memory_bytes,shadow_floor_bytes,shadow_pages,shadow_pages_coarsened,"
+              "shadow_allocate_ms,light_grid_bytes,light_list_bytes,light_grid_floor_bytes,scene_bytes,frame_bytes,"
+              "device_bytes,peak_rss_bytes,efficiency,floor_efficiency,missed_energy,image_error,pixels_off,"
+              "shadow_reduced_views,shadow_misclassified,shadow_misclassified_all,shadow_misclassified_1px,"
+              "shadow_false_shadow,shadow_false_lit,sun_misclassified,sun_misclassified_1px,"
+              "sun_cascade0_misclassified_1px,sun_cascade1_misclassified_1px,sun_cascade2_misclassified_1px,"
+              "sun_cascade3_misclassified_1px");
     const size_t columns = size_t(std::count(header.begin(), header.end(), ',')) + 1;
     size_t rows = 0;
     std::set<std::string> series, methods;
@@ -86,8 +91,8 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     // --quick: the mix alone for the light counts (the full run adds spots and points alone), and
     // thousands of lights at constant density alone (the full run adds the fixed range).
     EXPECT_EQ(series, (std::set<std::string>{"mix", "scale", "range", "pixels", "shadows",
-                                             "shadow-quality", "shadow-budget", "shadow-filters", "cascades", "triangles",
-                                             "methods"}));
+                                             "shadow-quality", "shadow-budget", "shadow-filters", "shadow-memory",
+                                             "cascades", "triangles", "methods"}));
     EXPECT_EQ(methods, quickNames(render::kLightListMethods));
 
     const nlohmann::json json = nlohmann::json::parse(readText(dir + "/results.json"));
@@ -194,8 +199,8 @@ TEST(BenchCli, QuickModeWritesResultsWithEveryColumn) {
     }
     EXPECT_EQ(cascadeSettings, expectedCascades);
     // The names the chart scripts read instead of lists of their own: every pass has its columns.
-    EXPECT_EQ(json["passes"], nlohmann::json({"depth", "transparent_depth", "culling", "shadows", "forward",
-                                              "transparent", "tonemap"}));
+    EXPECT_EQ(json["passes"], nlohmann::json({"depth", "transparent_depth", "culling", "shadow_marks",
+                                              "shadow_marks_transparent", "shadows", "forward", "transparent", "tonemap"}));
     EXPECT_EQ(json["methods"], nlohmann::json(render::methodNames()));
     EXPECT_EQ(json["shadow_filters"], nlohmann::json(shadowFilterNames()));
     EXPECT_EQ(json["point_layouts"], nlohmann::json(pointShadowLayoutNames()));
