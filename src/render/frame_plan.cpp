@@ -35,13 +35,13 @@ ShadowPlan planFrameShadows(const vk::Context& context, const Scene& scene, Fram
     // Sized before anything is allocated: a request the device cannot hold fails here, in one line.
     sizeShadowViews(plan, scene, lights, scene.camera.position(), settings.width, settings.height, settings.shadows,
                     ShadowMaps::memoryLimits(context, settings.shadows), &geometry);
-    if (settings.shadows.virtualPages()) {
-        // What the forward shader's virtualReadLevel reads of the camera (shadow_pages.glsl).
-        const glm::mat4 cameraToWorld = glm::inverse(scene.camera.view);
-        plan.virtualReads = {true, glm::vec3(cameraToWorld[3]), -glm::normalize(glm::vec3(cameraToWorld[2])),
-                             2.0f * std::tan(scene.camera.yfov * 0.5f) / float(settings.height),
-                             settings.shadows.texelsPerPixel};
-    }
+    // What the forward shader's virtualReadLevel reads of the camera (shadow_pages.glsl); unread
+    // without virtual pages.
+    const glm::mat4 cameraToWorld = glm::inverse(scene.camera.view);
+    plan.virtualReads = {settings.shadows.virtualPages(), glm::vec3(cameraToWorld[3]),
+                         -glm::normalize(glm::vec3(cameraToWorld[2])),
+                         2.0f * std::tan(scene.camera.yfov * 0.5f) / float(settings.height),
+                         settings.shadows.texelsPerPixel};
     if (!plan.reductions.empty() && settings.warnReducedShadows) {
         log::warn("shadows: " + std::to_string(plan.reductions.size()) + " view(s) got less resolution than " +
                   "their receivers need, to fit " + plan.reducedBy + " (the stats' shadows.reduced lists them)");

@@ -305,10 +305,9 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
                                         gpu::cascadeFadeScale(shadows.cascades.cascadeFade), cascades.strength);
         for (uint32_t i = 0; i < PUNCTUAL_MAX_CASCADES; ++i) frame.cascadeSpheres[i] = cascades.selection[i];
     }
-    // screenPixelWorldSize's span at unit depth, 2 tan(yfov / 2) / height, as the CPU estimate's rays
-    // measure it (forEachVisibleReceiver); 1 / P11 is -tan(yfov / 2) under Vulkan's flipped y.
-    frame.shadowPageNeed =
-        glm::vec4(shadows.texelsPerPixel, 2.0f * std::abs(frame.ndcToView.y) / float(settings.height), 0.0f, 0.0f);
+    // What sets the level a receiver reads: the plan's, so that the CPU's mirror reads the same.
+    const VirtualPageReads& reads = shadowPlan.virtualReads;
+    frame.shadowPageNeed = glm::vec4(reads.texelsPerPixel, reads.pixelSpan, 0.0f, 0.0f);
     frame.shadowPagePool = glm::uvec4(pages.squares, pages.besideAcross, pages.belowAcross);
     frame.shadowPageSlots = glm::uvec4(pages.litSlot(), 0u, 0u, 0u);
     return frame;
@@ -355,7 +354,6 @@ void Renderer::allocateShadowPages() {
         const auto start = std::chrono::steady_clock::now();
         const ShadowPageCounts counts = countMarkedPages(layout, marks);
         if (stats.markingFrames++ == 0) stats.marked = counts;
-        stats.afterCoarsening = counts;
         if (counts.total() <= capacity) break;
         coarser = coarsenViewsForBudget(shadows, ranks, counts, coarser, capacity,
                                         "--shadow-budget " + std::to_string(shadows.budgetBytes >> 20));

@@ -71,7 +71,6 @@ struct ShadowDraws {
 // Virtual shadow pages (--shadow-res virtual): what the marking frames found and the allocation did.
 struct ShadowPageStats {
     ShadowPageCounts marked;           // the first marking frame's pages, each view at the level its receivers ask
-    ShadowPageCounts afterCoarsening;  // the last one's: what was allocated
     uint64_t coarsenedPages = 0;       // pages of `marked` whose views read coarser levels to fit the budget
     uint32_t coarsenedViews = 0;
     uint32_t markingFrames = 0;        // 1, plus one per coarsening round

@@ -45,9 +45,7 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
         throw Error("--shadow-res virtual", "the device (" + context.deviceName() +
                                                 ") lacks shaderClipDistance, which drawing casters into pages needs");
     }
-    std::vector<gpu::GpuShadowView> views;
-    for (const ShadowView& view : plan.views) views.push_back(view.gpu);
-    if (!views.empty()) views_.write(views.data(), views.size() * sizeof(gpu::GpuShadowView));
+    uploadViews();
     // No pages until the renderer allocates them (virtual mode), and none at all otherwise.
     setUnallocatedPages(unallocatedPageViews(ShadowPageMarkLayout::of(plan), {}));
     const uint32_t noEntry = PUNCTUAL_NO_SHADOW_PAGE;
@@ -100,6 +98,12 @@ void ShadowPass::createTargets(const vk::Context& context) {
     }
 }
 
+void ShadowPass::uploadViews() {
+    std::vector<gpu::GpuShadowView> views;
+    for (const ShadowView& view : plan_.views) views.push_back(view.gpu);
+    if (!views.empty()) views_.write(views.data(), views.size() * sizeof(gpu::GpuShadowView));
+}
+
 void ShadowPass::setUnallocatedPages(const std::vector<gpu::GpuVirtualShadowView>& views) {
     if (!views.empty()) pageViews_.write(views.data(), views.size() * sizeof(gpu::GpuVirtualShadowView));
 }
@@ -107,9 +111,7 @@ void ShadowPass::setUnallocatedPages(const std::vector<gpu::GpuVirtualShadowView
 void ShadowPass::usePages(const vk::Context& context, const ShadowPageAllocation& allocation, ShadowPageDraws draws) {
     maps_ = ShadowMaps(context, plan_, settings_);
     createTargets(context);
-    std::vector<gpu::GpuShadowView> views;  // the cascades' squares moved with the grown atlas
-    for (const ShadowView& view : plan_.views) views.push_back(view.gpu);
-    if (!views.empty()) views_.write(views.data(), views.size() * sizeof(gpu::GpuShadowView));
+    uploadViews();  // the cascades' squares moved with the grown atlas
     setUnallocatedPages(allocation.views);
     auto upload = [&](const void* data, size_t bytes, const char* name) {
         vk::Buffer buffer(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, name);

@@ -82,6 +82,7 @@ private:
     // (a transparent caster with --transparent-shadows off).
     std::optional<bool> casterIsMasked(const FrameContext& frame, uint32_t object) const;
     void createTargets(const vk::Context& context);
+    void uploadViews();  // every plan view's GpuShadowView into views_
     const ShadowPlan& plan_;
     ShadowSettings settings_;
     ShadowMaps maps_;
