@@ -21,7 +21,7 @@ TRAILING_COLUMNS = """total_ms total_iqr_ms total_cv flagged flag_reason tested_
     affecting_per_pixel shadow_lookups_per_pixel filter_taps_per_pixel shadow_texels_rendered
     depth_triangles forward_triangles transparent_triangles shadow_triangles depth_draws
     forward_draws transparent_draws shadow_draws shadow_draws_max shadow_views shadow_memory_bytes
-    light_grid_bytes light_grid_floor_bytes scene_bytes frame_bytes device_bytes peak_rss_bytes efficiency missed_energy
+    shadow_floor_bytes light_grid_bytes light_grid_floor_bytes scene_bytes frame_bytes device_bytes peak_rss_bytes efficiency missed_energy
     image_error pixels_off shadow_misclassified shadow_misclassified_all shadow_misclassified_1px
     shadow_false_shadow shadow_false_lit sun_misclassified sun_misclassified_1px
     sun_cascade0_misclassified_1px sun_cascade1_misclassified_1px sun_cascade2_misclassified_1px

@@ -404,6 +404,8 @@ CHARTS = [
      chart_assignment_pareto, ()),
     ("pareto_cascades", "The sun's cascades: cost against accuracy", chart_cascade_pareto, ()),
     ("pareto_virtual_pages", "Virtual shadow pages against whole views", shadow_page_charts.chart_virtual_pages, ()),
+    ("virtual_page_growth", "Shadow memory against the pairs shaded and the views",
+     shadow_page_charts.chart_virtual_page_growth, ()),
 ]
 
 

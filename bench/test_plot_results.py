@@ -55,7 +55,7 @@ def row(config, series, method, spot, point, **cells):
             0.01 * lights if method == "per-object" else 0.0),
         "shadow_misclassified": "", "shadow_false_shadow": "", "shadow_false_lit": "",
         "shadow_misclassified_all": "", "shadow_misclassified_1px": "", "shadow_memory_bytes": "",
-        "shadow_views": "", "shadow_texels_rendered": "", "shadow_filter_taps": "",
+        "shadow_floor_bytes": "", "shadow_views": "", "shadow_texels_rendered": "", "shadow_filter_taps": "",
         "shadow_reduced_views": "", "shadow_format": "", "shadowed_spots": "", "shadowed_points": "",
         "width": 640, "height": 360, "pixels": 640 * 360, "scene": "synthetic",
         "scene_triangles": 20000, "light_range": 0.1, "rounds": 5, "depth_triangles": 20000,
@@ -136,7 +136,8 @@ def full_rows(methods=METHODS):
             rows.append(row(f"sm-{scene}-{mode}", "shadow-memory", "tiled", 64, 32, shadows=1, shadow_res=mode,
                             scene=scene, scene_triangles=int(10000 * scale), shadow_memory_bytes=memory * scale * 2**20,
                             shadows_ms=100.0 * scale, shadow_marks_ms=marks,
-                            shadow_misclassified=0.0001 * scale))
+                            shadow_misclassified=0.0001 * scale, shadow_floor_bytes=8 * scale * 2**20,
+                            shadow_views=240 * scale))
     rows[0]["config"] = "mix <b>&amp;\"quoted\""  # must be escaped in the table
     return rows
 
@@ -296,7 +297,8 @@ class PlotResultsTest(unittest.TestCase):
         index = self.index()
         self.assert_charts(["sweep_mix"])  # two light counts are enough for a slope
         skipped = ["culling_efficiency", "pareto_shadows", "pareto_shadow_memory",
-                   "pareto_light_assignment", "pareto_cascades", "pareto_virtual_pages", "lights_reaching"]
+                   "pareto_light_assignment", "pareto_cascades", "pareto_virtual_pages", "virtual_page_growth",
+                   "lights_reaching"]
         skipped += [f"sweep_{s}" for s in ["spot-only", "point-only"] + SWEEP_SERIES]
         for name in skipped:
             self.assertFalse(os.path.exists(os.path.join(self.dir, "charts", name + ".png")))
@@ -439,6 +441,32 @@ class NamesFromResultsJsonTest(unittest.TestCase):
         # 1024 at 32 bits is beaten by 1024 at 16 bits in both memory and accuracy.
         self.assertEqual(set(plot_results.pareto_front([(0.01, 40), (0.08, 32), (0.012, 1024), (0.009, 512)])),
                          {0, 1, 3})
+
+    def test_virtual_page_growth_puts_each_mode_at_its_memory(self):
+        # Generated lights (no scene) at two counts and a built-in scene: each mode's points sit at
+        # (floor, memory) and (views, memory), labelled by scene or light count.
+        rows = []
+        for spots, floor, views in ((8, 1, 36), (64, 8, 240)):
+            for mode, memory in (("auto", 20 * floor), ("virtual", 2.5 * floor)):
+                rows.append(row(f"sm-{spots}-{mode}", "shadow-memory", "tiled", spots, spots // 2, shadows=1,
+                                shadow_res=mode, scene="", shadow_memory_bytes=memory * 2**20,
+                                shadow_floor_bytes=floor * 2**20, shadow_views=views))
+        rows.append(row("sm-hall-virtual", "shadow-memory", "tiled", 0, 0, shadows=1, shadow_res="virtual",
+                        scene="hall", scene_triangles="", shadow_memory_bytes=19 * 2**20,
+                        shadow_floor_bytes=7.7 * 2**20,
+                        shadow_views=240))
+        fig = chart("virtual_page_growth", rows, names())
+        floor_panel, views_panel = fig.axes
+        for ax, x_of in ((floor_panel, {8: 1, 64: 8}), (views_panel, {8: 36, 64: 240})):
+            points = {}
+            for collection in ax.collections:
+                for x, y in collection.get_offsets():
+                    points.setdefault(collection.get_label(), []).append((float(x), float(y)))
+            self.assertEqual(sorted(points["auto"]), [(x_of[8], 20 * 1), (x_of[64], 20 * 8)])
+            self.assertIn((x_of[64], 2.5 * 8), points["virtual"])
+            labels = {t.get_text() for t in ax.texts}
+            self.assertTrue({"8 + 4 lights", "64 + 32 lights", "hall"} <= labels, labels)
+        self.assertEqual(legend_texts(fig), ["auto", "virtual", "1x the floor", "3x the floor"])
 
     def test_cascade_chart_marks_both_pareto_fronts(self):
         rows = cascade_rows(counts=(1, 4), resolutions=(512, 2048))

@@ -191,21 +191,23 @@ void addShadowSeries(std::vector<BenchConfig>& configs, bool quick) {
 }
 
 // Virtual shadow pages against whole views (issue 33): auto and virtual on the hall (the default
-// scene), the outdoor street and the rooms, each with its own lights, at 1280x720 and validated;
-// then the rooms at 10^4..10^6 triangles, whose memory must follow the pairs the frame shades,
-// not the views. --quick: the hall alone, at the run's size.
+// scene), the outdoor street, the engine (thin parts) and the rooms, each with its own lights, at
+// 1280x720 and validated; the rooms at 10^4..10^6 triangles, whose memory must follow the pairs the
+// frame shades, not the views; then the bench's scene with 12 to 96 of its generated lights (2
+// spots to a point, as the mix series), the same growth against the light count. --quick: the
+// hall alone, at the run's size.
 void addShadowMemorySeries(std::vector<BenchConfig>& configs, bool quick) {
     std::vector<std::pair<const BuiltinScene*, uint64_t>> scenes = {{&kDefaultBuiltinScene, 0}};
+    std::vector<std::pair<uint32_t, uint32_t>> lightCounts;
     if (!quick) {
         scenes.emplace_back(&parseBuiltinScene("outdoor"), 0);
+        scenes.emplace_back(&parseBuiltinScene("engine"), 0);
         for (uint64_t triangles : {10'000ull, 100'000ull, 1'000'000ull}) scenes.emplace_back(&parseBuiltinScene("rooms"), triangles);
+        lightCounts = {{8, 4}, {16, 8}, {32, 16}, {kBenchSpots, kBenchPoints}};
     }
-    for (const auto& [scene, triangles] : scenes) {
+    const auto add = [&](BenchConfig config) {
         for (const ShadowResolutionModeInfo& mode : kShadowResolutionModes) {
-            BenchConfig config;
             config.series = "shadow-memory";
-            config.scene = scene;
-            config.triangles = triangles;
             config.shadows.resolution = mode.value;
             config.validateShadows = true;
             if (!quick) {
@@ -214,6 +216,18 @@ void addShadowMemorySeries(std::vector<BenchConfig>& configs, bool quick) {
             }
             configs.push_back(config);
         }
+    };
+    for (const auto& [scene, triangles] : scenes) {
+        BenchConfig config;
+        config.scene = scene;
+        config.triangles = triangles;
+        add(config);
+    }
+    for (const auto& [spots, points] : lightCounts) {
+        BenchConfig config;
+        config.spot = spots;
+        config.point = points;
+        add(config);
     }
 }
 
@@ -306,8 +320,8 @@ const std::vector<BenchSeries>& benchSeries() {
         {"shadow-budget", "the auto resolution's budget, 8..128 MiB, validated against Embree"},
         {"shadow-filters", "the filters " + joinNames(shadowFilterNames(), ", ") +
                                " at auto resolution, validated against Embree"},
-        {"shadow-memory", "auto against virtual shadow pages on the default scene, the outdoor street and the rooms "
-                          "(10^4..10^6 triangles), 1280x720, validated against Embree"},
+        {"shadow-memory", "auto against virtual shadow pages on the default scene, the outdoor street, the engine, the "
+                          "rooms (10^4..10^6 triangles) and 12-96 generated lights, 1280x720, validated against Embree"},
         {"cascades", "the outdoor scene's sun: 1-4 cascades x 512, 1024, 2048 x the texel filters, validated"},
         {"triangles", "the rooms scene at 10^4..10^7 triangles x every method, with peak memory"},
         {"methods", "the default scene's own lights at 1280x720, shadows off, x every method and list form, the "

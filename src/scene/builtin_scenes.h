@@ -11,6 +11,7 @@
 
 #include "core/variant_table.h"
 #include "scene/default_scene.h"
+#include "scene/engine_scene.h"
 #include "scene/outdoor_scene.h"
 #include "scene/rooms_scene.h"
 #include "scene/scene.h"
@@ -29,7 +30,7 @@ struct BuiltinScene {
     bool sized() const { return defaultTriangles != 0; }
 };
 
-inline constexpr std::array<BuiltinScene, 4> kBuiltinScenes = {{
+inline constexpr std::array<BuiltinScene, 5> kBuiltinScenes = {{
     {[](uint64_t) { return makeDefaultScene(); }, "hall", "a 40 m x 30 m hall of walls, pillars and crates, 96 lamps"},
     {[](uint64_t) { return makeOutdoorScene(); }, "outdoor",
      "a street in low sun, casters 0.9 to 300 m away, 32 lamps"},
@@ -38,6 +39,8 @@ inline constexpr std::array<BuiltinScene, 4> kBuiltinScenes = {{
      rooms_scene::kDefaultTriangles},
     {[](uint64_t) { return makeWarehouseScene(); }, "warehouse",
      "8 x 8 rooms of racks behind doorways, seen from above, 4,096 lamps"},
+    {[](uint64_t) { return makeEngineScene(); }, "engine",
+     "an air-cooled engine of 6 mm fins, grille bars and pipes, 64 + 32 generated lamps"},
 }};
 static_assert(namesAreUnique(kBuiltinScenes));
 

@@ -145,7 +145,7 @@ TEST(SceneCli, AnUnknownSceneFailsWithOneLineListingTheNames) {
     testing::TempFolder folder;
     const std::string png = quoted(folder.file("x.png"));
     const std::string dir = quoted(folder.file("dir"));
-    const std::string names = "expected hall, outdoor, rooms or warehouse, got 'nosuch'";
+    const std::string names = "expected hall, outdoor, rooms, warehouse or engine, got 'nosuch'";
     expectUserErrorAndNoOutput(folder, "render --scene nosuch --out " + png, names);
     expectUserErrorAndNoOutput(folder, "reference --scene nosuch --out " + png, names);
     expectUserErrorAndNoOutput(folder, "compare --scene nosuch", names);

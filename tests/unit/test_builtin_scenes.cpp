@@ -13,11 +13,12 @@ namespace {
 
 TEST(BuiltinScenes, HallIsTheDefaultAndTheOthersAreListed) {
     EXPECT_STREQ(kDefaultBuiltinScene.name, "hall");
-    EXPECT_EQ(variantNames(kBuiltinScenes), (std::vector<std::string>{"hall", "outdoor", "rooms", "warehouse"}));
+    EXPECT_EQ(variantNames(kBuiltinScenes), (std::vector<std::string>{"hall", "outdoor", "rooms", "warehouse", "engine"}));
     EXPECT_EQ(makeBuiltinScene(kDefaultBuiltinScene).source, default_scene::kSource);
     EXPECT_EQ(makeBuiltinScene("outdoor").source, outdoor_scene::kSource);
     EXPECT_EQ(makeBuiltinScene("rooms").source, rooms_scene::kSource);
     EXPECT_EQ(makeBuiltinScene("warehouse").source, warehouse_scene::kSource);
+    EXPECT_EQ(makeBuiltinScene("engine").source, engine_scene::kSource);
     // Only the rooms are built to a size; the others ignore one.
     EXPECT_FALSE(kDefaultBuiltinScene.sized());
     EXPECT_FALSE(parseBuiltinScene("outdoor").sized());
@@ -48,7 +49,7 @@ TEST(BuiltinScenes, UnknownNameFailsWithOneLineListingTheNames) {
             parseBuiltinScene(name);
             ADD_FAILURE() << "no error for '" << name << "'";
         } catch (const Error& error) {
-            EXPECT_EQ(std::string(error.what()), "--scene: expected hall, outdoor, rooms or warehouse, got '" + name + "'");
+            EXPECT_EQ(std::string(error.what()), "--scene: expected hall, outdoor, rooms, warehouse or engine, got '" + name + "'");
         }
     }
 }
