@@ -20,13 +20,13 @@ def shadow_stage_ms(row):
 
 
 def scene_label(row):
-    """A built-in scene with its own lights (its size where it has one), or the bench's scene
-    with its first generated lights."""
-    label = row.get("scene", "")
+    """A built-in scene with its own lights (with its triangles), or the bench's scene with its
+    first generated lights (the rows with a light_range), its name without "built-in ... scene"."""
+    name = row.get("scene", "").removeprefix("built-in ").removesuffix(" scene")
+    if row.get("light_range", ""):
+        return f"{name}, {int(float(row.get('spot', 0) or 0))} + {int(float(row.get('point', 0) or 0))} lights"
     triangles = row.get("scene_triangles", "")
-    if not label:
-        return f"{int(float(row.get('spot', 0) or 0))} + {int(float(row.get('point', 0) or 0))} lights"
-    return f"{label} ({int(float(triangles)):,} tri)" if triangles else label
+    return f"{name} ({int(float(triangles)):,} tri)" if triangles else name
 
 
 def chart_virtual_pages(rows, names):

@@ -134,7 +134,8 @@ def full_rows(methods=METHODS):
     for scene, scale in (("hall", 1.0), ("rooms", 2.0)):
         for mode, memory, marks in (("auto", 64, ""), ("virtual", 20, 200.0)):
             rows.append(row(f"sm-{scene}-{mode}", "shadow-memory", "tiled", 64, 32, shadows=1, shadow_res=mode,
-                            scene=scene, scene_triangles=int(10000 * scale), shadow_memory_bytes=memory * scale * 2**20,
+                            scene=scene, scene_triangles=int(10000 * scale), light_range="",
+                            shadow_memory_bytes=memory * scale * 2**20,
                             shadows_ms=100.0 * scale, shadow_marks_ms=marks,
                             shadow_misclassified=0.0001 * scale, shadow_floor_bytes=8 * scale * 2**20,
                             shadow_views=240 * scale))
@@ -443,16 +444,17 @@ class NamesFromResultsJsonTest(unittest.TestCase):
                          {0, 1, 3})
 
     def test_virtual_page_growth_puts_each_mode_at_its_memory(self):
-        # Generated lights (no scene) at two counts and a built-in scene: each mode's points sit at
+        # Generated lights (with a light range) at two counts and a built-in scene: each mode's points sit at
         # (floor, memory) and (views, memory), labelled by scene or light count.
         rows = []
         for spots, floor, views in ((8, 1, 36), (64, 8, 240)):
             for mode, memory in (("auto", 20 * floor), ("virtual", 2.5 * floor)):
                 rows.append(row(f"sm-{spots}-{mode}", "shadow-memory", "tiled", spots, spots // 2, shadows=1,
-                                shadow_res=mode, scene="", shadow_memory_bytes=memory * 2**20,
+                                shadow_res=mode, scene="built-in default scene", light_range=0.35,
+                                shadow_memory_bytes=memory * 2**20,
                                 shadow_floor_bytes=floor * 2**20, shadow_views=views))
         rows.append(row("sm-hall-virtual", "shadow-memory", "tiled", 0, 0, shadows=1, shadow_res="virtual",
-                        scene="hall", scene_triangles="", shadow_memory_bytes=19 * 2**20,
+                        scene="hall", scene_triangles="", light_range="", shadow_memory_bytes=19 * 2**20,
                         shadow_floor_bytes=7.7 * 2**20,
                         shadow_views=240))
         fig = chart("virtual_page_growth", rows, names())
@@ -465,7 +467,7 @@ class NamesFromResultsJsonTest(unittest.TestCase):
             self.assertEqual(sorted(points["auto"]), [(x_of[8], 20 * 1), (x_of[64], 20 * 8)])
             self.assertIn((x_of[64], 2.5 * 8), points["virtual"])
             labels = {t.get_text() for t in ax.texts}
-            self.assertTrue({"8 + 4 lights", "64 + 32 lights", "hall"} <= labels, labels)
+            self.assertTrue({"default, 8 + 4 lights", "default, 64 + 32 lights", "hall"} <= labels, labels)
         self.assertEqual(legend_texts(fig), ["auto", "virtual", "1x the floor", "3x the floor"])
 
     def test_cascade_chart_marks_both_pareto_fronts(self):

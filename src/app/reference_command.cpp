@@ -46,6 +46,7 @@ options:
   --no-shadows         the same as --shadows off: every light unoccluded
   --scene NAME         the built-in scene NAME instead of a file (see punctual render --help)
   --scene-triangles N  the size of --scene rooms, 10k to 10M triangles (default 100k)
+  --time T             pose the scene file at T seconds of its glTF animations, as render's
   --max-lights S,P     the light capacity, as render's (default 64,32)
   --lights S,P[,SEED]  replace the scene's lights with S spot and P point lights (at most
                        --max-lights) generated inside its bounds (same seed, same lights; seed 1)

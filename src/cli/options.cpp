@@ -98,6 +98,10 @@ void checkOptionCombinations(const RenderOptions& options, bool splitsAndLambda)
         throw Error("--scene", "a built-in scene and a scene file ('" + *options.scenePath +
                                    "') cannot both be given: choose one");
     }
+    if (options.time && !options.scenePath) {
+        throw Error("--time", "poses a scene file's glTF animations; the built-in scene " +
+                                  options.sceneName.value_or(kDefaultBuiltinScene.name) + " has none");
+    }
     if (options.sceneTriangles && !(options.sceneName && parseBuiltinScene(*options.sceneName).sized())) {
         std::string sized;
         for (const BuiltinScene& scene : kBuiltinScenes) {

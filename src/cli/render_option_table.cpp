@@ -33,6 +33,14 @@ void applyShadowResolution(RenderOptions& o, const std::string& v, Notes&) {
     o.shadows.resolution = resolution;
 }
 
+// --time: seconds, from 0 to 10^6 (a day is 86,400; a keyframe time past 2^24 s is not even a
+// whole second in float).
+double parseTime(const std::string& v) {
+    const float seconds = parseFloat("--time", v);
+    if (!(seconds >= 0.0f) || seconds > 1e6f) throw Error("--time", "must be seconds from 0 to 10^6, got '" + v + "'");
+    return double(seconds);
+}
+
 // --light-range: auto, or metres above 0 and at most 10^6.
 LightRange parseLightRangeValue(const std::string& v) {
     if (v == "auto") return {LightRange::Kind::ConstantDensity, 0.0f};
@@ -80,6 +88,10 @@ const RenderOptionSpec kRenderOptions[] = {
      [](const RenderOptions&, size_t indent) { return variantHelp(kBuiltinScenes, kDefaultBuiltinScene.value, indent); }},
     {"--scene-triangles", "N", "the size of --scene rooms, 10k to 10M triangles (e.g. 250k, 2M, 1e6;\ndefault 100k)",
      [](RenderOptions& o, const std::string& v, Notes&) { o.sceneTriangles = parseSceneTriangles(v); }},
+    {"--time", "T",
+     "pose the scene file at T seconds of its glTF animations (node\ntranslation, rotation, scale, morph weights; "
+     "cameras, lights and\nmeshes alike; every animation from 0 at once); default: as stored",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.time = parseTime(v); }},
     {"--max-lights", "S,P",
      "the light capacity: each frame keeps at most S spot and P point\nlights, the most important (default 64,32, "
      "the design notes'; up to\n16384,16384). The light lists hold one bit per light kept",

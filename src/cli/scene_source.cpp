@@ -12,6 +12,7 @@ Scene loadSceneForOptions(const RenderOptions& options) {
     // alike) samples the same texels.
     GltfLoadOptions load;
     load.textureLimit = textureLimitForFrame(options.width, options.height);
+    load.time = options.time;
     Scene scene = options.scenePath ? loadGltf(*options.scenePath, load)
                                     : makeBuiltinScene(options.sceneName ? parseBuiltinScene(*options.sceneName)
                                                                                          : kDefaultBuiltinScene,

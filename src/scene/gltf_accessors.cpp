@@ -248,6 +248,30 @@ std::vector<glm::vec2> AccessorReader::readTexcoords(int index, const std::strin
     return values;
 }
 
+std::vector<float> AccessorReader::readFloats(int index, const std::string& semantic, int type,
+                                             bool normalizedIntegers) const {
+    const tinygltf::Accessor& a = accessor(index, semantic);
+    const std::string who = semantic + " accessor " + std::to_string(index);
+    const size_t components = componentsPerElement(type);
+    if (a.type != type) {
+        fail(who + " is not " + (type == TINYGLTF_TYPE_SCALAR ? "SCALAR" : "VEC" + std::to_string(components)));
+    }
+    const bool integer = a.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                         a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                         a.componentType == TINYGLTF_COMPONENT_TYPE_SHORT ||
+                         a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !(normalizedIntegers && integer && a.normalized)) {
+        fail(who + " has component type " + componentTypeName(a.componentType) + " where FLOAT" +
+             (normalizedIntegers ? " or a normalized integer" : "") + " is needed");
+    }
+    const Span s = span(index, semantic);
+    std::vector<float> values(s.count * components);
+    for (size_t i = 0; i < s.count; ++i) {
+        for (size_t c = 0; c < components; ++c) values[i * components + c] = s.component(i, c);
+    }
+    return values;
+}
+
 std::vector<uint32_t> AccessorReader::readIndices(int index) const {
     checkIndexFormat(index);
     const Span s = span(index, "indices");

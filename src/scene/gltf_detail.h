@@ -161,6 +161,10 @@ public:
     std::vector<glm::vec3> readVec3(int index, const std::string& semantic, AttributeKind kind) const;
     std::vector<glm::vec2> readTexcoords(int index, const std::string& semantic) const;
     std::vector<uint32_t> readIndices(int index) const;
+    // Accessor `index` as floats, `type` (TINYGLTF_TYPE_SCALAR, _VEC3, _VEC4) numbers an element,
+    // flattened: FLOAT, or where `normalizedIntegers` also the normalized BYTE, UNSIGNED_BYTE,
+    // SHORT and UNSIGNED_SHORT that animation outputs of rotations and weights may use.
+    std::vector<float> readFloats(int index, const std::string& semantic, int type, bool normalizedIntegers) const;
 
 private:
     struct Span;

@@ -17,6 +17,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "scene/gltf_animation.h"
 #include "scene/gltf_detail.h"
 
 namespace punctual {
@@ -63,8 +64,8 @@ Material implicitDefaultMaterial() {
 class SceneBuilder {
 public:
     SceneBuilder(const tinygltf::Model& model, const std::string& path, const ImageDecoding& decoding,
-                 const UriFiles& files)
-        : model_(model), path_(path), decoding_(decoding), files_(files) {}
+                 const UriFiles& files, std::map<size_t, NodePose> poses)
+        : model_(model), path_(path), decoding_(decoding), files_(files), poses_(std::move(poses)) {}
 
     Scene build() {
         scene_.source = path_;
@@ -200,6 +201,8 @@ private:
         return roots;
     }
 
+    // The node's transform: its matrix, or T x R x S from its stored translation, rotation and
+    // scale, each replaced by its animated value where the scene is posed (poses_).
     glm::mat4 localTransform(const tinygltf::Node& node, size_t nodeIndex) const {
         const std::string who = "node " + std::to_string(nodeIndex);
         if (!node.matrix.empty()) {
@@ -208,21 +211,33 @@ private:
             for (int i = 0; i < 16; ++i) matrix[i / 4][i % 4] = float(node.matrix[size_t(i)]);
             return matrix;
         }
+        const auto posed = poses_.find(nodeIndex);
+        const NodePose* pose = posed == poses_.end() ? nullptr : &posed->second;
         glm::mat4 transform(1.0f);
-        if (!node.translation.empty()) {
+        if (pose && pose->translation) {
+            transform[3] = glm::vec4(*pose->translation, 1.0f);
+        } else if (!node.translation.empty()) {
             if (node.translation.size() != 3) fail(who + ": translation does not have 3 numbers");
             transform[3] = glm::vec4(float(node.translation[0]), float(node.translation[1]), float(node.translation[2]), 1.0f);
         }
-        if (!node.rotation.empty()) {
+        glm::quat rotation(1.0f, 0.0f, 0.0f, 0.0f);
+        const bool rotated = (pose && pose->rotation) || !node.rotation.empty();
+        if (pose && pose->rotation) {
+            rotation = *pose->rotation;
+        } else if (!node.rotation.empty()) {
             if (node.rotation.size() != 4) fail(who + ": rotation does not have 4 numbers");
             // glTF stores x, y, z, w; glm::quat's constructor takes w first.
-            glm::quat rotation(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
-                               float(node.rotation[2]));
+            rotation = glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
+                                 float(node.rotation[2]));
+        }
+        if (rotated) {
             const float length = glm::length(rotation);
             if (!(length > 1e-6f)) fail(who + ": rotation is a zero quaternion");
             transform *= glm::mat4_cast(rotation / length);
         }
-        if (!node.scale.empty()) {
+        if (pose && pose->scale) {
+            transform = glm::scale(transform, *pose->scale);
+        } else if (!node.scale.empty()) {
             if (node.scale.size() != 3) fail(who + ": scale does not have 3 numbers");
             transform = glm::scale(transform, glm::vec3(float(node.scale[0]), float(node.scale[1]), float(node.scale[2])));
         }
@@ -288,9 +303,11 @@ private:
                  ", which does not exist");
         const tinygltf::Mesh& mesh = model_.meshes[meshIndex];
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-            // glTF 2.0 3.7.2.2: a node's weights override its mesh's; without animation (a later
-            // issue) these are the pose drawn.
-            const std::vector<double>& weights = node.weights.empty() ? mesh.weights : node.weights;
+            // glTF 2.0 3.7.2.2: a node's weights override its mesh's, and animated weights both.
+            const auto posed = poses_.find(nodeIndex);
+            const std::vector<double>& weights = posed != poses_.end() && posed->second.weights ? *posed->second.weights
+                                                 : node.weights.empty()                           ? mesh.weights
+                                                                                                  : node.weights;
             const std::optional<uint32_t> converted = meshOfPrimitive(meshIndex, p, weights);
             if (!converted) continue;
             Object object;
@@ -432,6 +449,7 @@ private:
     const std::string& path_;
     const ImageDecoding& decoding_;
     const UriFiles& files_;
+    const std::map<size_t, NodePose> poses_;  // the animated nodes at GltfLoadOptions::time
     Scene scene_;
     std::map<std::tuple<size_t, size_t, std::vector<double>>, std::optional<uint32_t>> primitiveMeshes_;
     size_t unmorphedTargets_ = 0;  // weighted morph targets skipped (sparse accessors)
@@ -505,7 +523,12 @@ Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
 
     restoreDracoIndices(model, source.json);
     decodeMeshoptViews(model, source.json, path);
-    return SceneBuilder(model, path, decoding, files).build();
+    std::map<size_t, NodePose> poses;
+    if (options.time) {
+        if (model.animations.empty()) log::warn(path + ": --time: the scene has no animations; drawn as stored");
+        poses = animatedPoses(model, path, *options.time);
+    }
+    return SceneBuilder(model, path, decoding, files, std::move(poses)).build();
 }
 
 }  // namespace punctual

@@ -1,5 +1,6 @@
 #pragma once
 // Loads a glTF 2.0 scene (.gltf with external or data: URI buffers, or .glb) into a Scene.
+#include <optional>
 #include <string>
 
 #include "scene/scene.h"
@@ -18,8 +19,13 @@ namespace punctual {
 //
 // Base-colour textures larger than options.textureLimit are downscaled as they are decoded, with
 // one warning each (scene/texture_limit.h).
+//
+// With options.time the scene is posed at that many seconds of its animations (translation,
+// rotation, scale and morph weights of nodes, scene/gltf_animation.h), cameras, lights and meshes
+// alike; without it, at the nodes' stored values (the rest pose), as before animation existed.
 struct GltfLoadOptions {
     TextureLimit textureLimit;  // none by default
+    std::optional<double> time;  // seconds into the animations (--time T)
 };
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options = {});
 
