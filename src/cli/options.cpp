@@ -99,8 +99,15 @@ void checkOptionCombinations(const RenderOptions& options, bool splitsAndLambda)
                                    "') cannot both be given: choose one");
     }
     if (options.time && !options.scenePath) {
-        throw Error("--time", "poses a scene file's glTF animations; the built-in scene " +
-                                  options.sceneName.value_or(kDefaultBuiltinScene.name) + " has none");
+        const BuiltinScene& scene = options.sceneName ? parseBuiltinScene(*options.sceneName) : kDefaultBuiltinScene;
+        if (!scene.hasPath()) {
+            std::string withPaths;
+            for (const BuiltinScene& s : kBuiltinScenes) {
+                if (s.hasPath()) withPaths += std::string(withPaths.empty() ? "" : " and ") + s.name;
+            }
+            throw Error("--time", std::string("poses a scene file's animations or a built-in scene's path; ") + scene.name +
+                                      " has none (" + withPaths + " have)");
+        }
     }
     if (options.sceneTriangles && !(options.sceneName && parseBuiltinScene(*options.sceneName).sized())) {
         std::string sized;

@@ -89,8 +89,9 @@ const RenderOptionSpec kRenderOptions[] = {
     {"--scene-triangles", "N", "the size of --scene rooms, 10k to 10M triangles (e.g. 250k, 2M, 1e6;\ndefault 100k)",
      [](RenderOptions& o, const std::string& v, Notes&) { o.sceneTriangles = parseSceneTriangles(v); }},
     {"--time", "T",
-     "pose the scene file at T seconds of its glTF animations (node\ntranslation, rotation, scale, morph weights; "
-     "cameras, lights and\nmeshes alike; every animation from 0 at once); default: as stored",
+     "pose the scene at T seconds: a file's glTF animations (node\ntranslation, rotation, scale, morph weights; "
+     "cameras, lights and\nmeshes alike; every animation from 0 at once) or a built-in scene's\npath (--scene: the walk, the drive); "
+     "default: as stored",
      [](RenderOptions& o, const std::string& v, Notes&) { o.time = parseTime(v); }},
     {"--max-lights", "S,P",
      "the light capacity: each frame keeps at most S spot and P point\nlights, the most important (default 64,32, "

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "core/variant_table.h"
@@ -26,14 +27,22 @@ struct BuiltinScene {
     const char* name;
     const char* description;
     uint64_t defaultTriangles = 0;  // 0: a scene of fixed size, which --scene-triangles cannot size
+    // A scene with a path (issue 34; scene/scene_path.h): poses it at a time, and the path's
+    // length in seconds. nullptr: a still scene, which --time cannot pose.
+    void (*pose)(Scene& scene, double time) = nullptr;
+    float pathSeconds = 0.0f;
 
     bool sized() const { return defaultTriangles != 0; }
+    bool hasPath() const { return pose != nullptr; }
 };
 
 inline constexpr std::array<BuiltinScene, 5> kBuiltinScenes = {{
-    {[](uint64_t) { return makeDefaultScene(); }, "hall", "a 40 m x 30 m hall of walls, pillars and crates, 96 lamps"},
+    {[](uint64_t) { return makeDefaultScene(); }, "hall",
+     "a 40 m x 30 m hall of walls, pillars and crates, 96 lamps; a 12 s walk", 0, poseDefaultScene,
+     default_scene::kWalkSeconds},
     {[](uint64_t) { return makeOutdoorScene(); }, "outdoor",
-     "a street in low sun, casters 0.9 to 300 m away, 32 lamps"},
+     "a street in low sun, casters 0.9 to 300 m away, 32 lamps; a 10 s drive", 0, poseOutdoorScene,
+     outdoor_scene::kDriveSeconds},
     {makeRoomsScene, "rooms",
      "furnished rooms, 10^4 to 10^7 triangles (--scene-triangles), 96 lamps, a sun",
      rooms_scene::kDefaultTriangles},
@@ -52,9 +61,17 @@ inline const BuiltinScene& parseBuiltinScene(const std::string& name) {
     return parseVariant(kBuiltinScenes, name, "--scene");
 }
 
-// Builds `scene` with `triangles` (a sized scene; none: its default size).
-inline Scene makeBuiltinScene(const BuiltinScene& scene, std::optional<uint64_t> triangles = std::nullopt) {
-    return scene.value(triangles.value_or(scene.defaultTriangles));
+// Builds `scene` with `triangles` (a sized scene; none: its default size), posed at `time` seconds
+// of its path where one is given (a scene without a path: an internal error, the command line
+// refuses --time for it).
+inline Scene makeBuiltinScene(const BuiltinScene& scene, std::optional<uint64_t> triangles = std::nullopt,
+                              std::optional<double> time = std::nullopt) {
+    Scene made = scene.value(triangles.value_or(scene.defaultTriangles));
+    if (time) {
+        if (!scene.hasPath()) throw std::logic_error(std::string("built-in scene ") + scene.name + " has no path");
+        scene.pose(made, *time);
+    }
+    return made;
 }
 
 // Builds the scene named `name` (see parseBuiltinScene for an unknown name).

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/box_layout.h"
+#include "scene/scene_path.h"
 #include "scene/light_generator.h"
 #include "shading.h"
 
@@ -207,6 +208,20 @@ void addBollardLights(Scene& scene, PortableRandom& random) {
 }
 
 }  // namespace
+
+// ---- the drive (issue 34) --------------------------------------------------------------------
+
+// Down the street at 6 m/s (21.6 km/h) for 10 s, at eye height between the fence (0.55 m to the
+// right, to z = -30) and the crates on the left, the view fixed on a point 10 m ahead, so the
+// sun's cascades slide along the ground with the camera and the lamps and bollards pass by.
+void poseOutdoorScene(Scene& scene, double time) {
+    using outdoor_scene::kDriveSeconds;
+    ScenePath path;
+    path.eye = linearTrack({0.0f, kDriveSeconds}, {{0.0f, 1.7f, 0.0f}, {0.0f, 1.7f, -60.0f}});
+    path.target = linearTrack({0.0f, kDriveSeconds}, {{-0.8f, 0.0f, -10.0f}, {-0.8f, 0.0f, -70.0f}});
+    path.seconds = kDriveSeconds;
+    applyScenePath(scene, path, time);
+}
 
 Scene makeOutdoorScene() {
     Scene scene;

@@ -16,8 +16,14 @@ constexpr const char* kSource = "built-in outdoor scene";
 constexpr float kGroundHalfWidth = 250.0f;
 constexpr float kGroundNearZ = 100.0f;
 constexpr float kGroundFarZ = -400.0f;
+// The drive's length (poseOutdoorScene): 60 m at 6 m/s.
+constexpr float kDriveSeconds = 10.0f;
 }  // namespace outdoor_scene
 
 Scene makeOutdoorScene();
+
+// Poses the street at `time` seconds of its drive (scene/scene_path.h): the camera moves 60 m
+// down the street at eye height, looking ahead; the lights stand still. At 0, the still street.
+void poseOutdoorScene(Scene& scene, double time);
 
 }  // namespace punctual

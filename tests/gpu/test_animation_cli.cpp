@@ -73,8 +73,8 @@ TEST(AnimationCli, TheFrameAtATimeIsTheStillFrameOfTheInterpolatedPose) {
 TEST(AnimationCli, ATimeIsRefusedWhereItMeansNothing) {
     testing::TempFolder folder;
     const std::string png = quoted(folder.file("x.png"));
-    testing::expectOneClearError(testing::runPunctual(folder, "render --time 1 --out " + png), "render --time 1",
-                                 "--time: poses a scene file's glTF animations; the built-in scene hall has none");
+    testing::expectOneClearError(testing::runPunctual(folder, "render --scene rooms --time 1 --out " + png), "render --time 1",
+                                 "--time: poses a scene file's animations or a built-in scene's path; rooms has none (hall and outdoor have)");
     for (const char* bad : {"-1", "nan", "1e7", "soon"}) {
         const std::string args = cat("render --time ", bad, " --out ", png);
         testing::expectOneClearError(testing::runPunctual(folder, args), args, "--time");

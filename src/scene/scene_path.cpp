@@ -1,0 +1,36 @@
+#include "scene/scene_path.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scene/box_layout.h"
+
+namespace punctual {
+namespace {
+
+glm::vec3 sampled(const KeyframeTrack& track, double time) {
+    const std::vector<float> v = sampleTrack(track, time);
+    return glm::vec3(v[0], v[1], v[2]);
+}
+
+}  // namespace
+
+KeyframeTrack linearTrack(std::vector<float> times, const std::vector<glm::vec3>& values) {
+    KeyframeTrack track;
+    track.interpolation = Interpolation::Linear;
+    track.components = 3;
+    track.times = std::move(times);
+    for (const glm::vec3& v : values) track.values.insert(track.values.end(), {v.x, v.y, v.z});
+    return track;
+}
+
+void applyScenePath(Scene& scene, const ScenePath& path, double time) {
+    Camera& camera = scene.camera;
+    camera.view = glm::lookAtRH(sampled(path.eye, time), sampled(path.target, time), glm::vec3(0.0f, 1.0f, 0.0f));
+    camera.zfar = farthestViewDepth(scene.bounds, camera.view) + 1.0f;
+    for (const LightPath& moving : path.lights) {
+        Light& light = scene.lights.at(moving.light);
+        light.position = light.position + sampled(moving.offset, time);
+    }
+}
+
+}  // namespace punctual

@@ -1,0 +1,36 @@
+#pragma once
+// A built-in scene's path (issue 34): where its camera and some of its lights are at each time of
+// a sequence, as keyframe tracks (scene/keyframes.h) the way a glTF file animates its nodes. The
+// camera follows an eye and a target (LINEAR tracks, the view built with lookAt, so no
+// trigonometry enters and the path is the same on every platform); a moving light follows an
+// offset from where the scene put it. At time 0 every track holds the scene's own values, so a
+// scene posed at 0 is the still scene, bit for bit.
+#include <cstdint>
+#include <vector>
+
+#include "scene/keyframes.h"
+#include "scene/scene.h"
+
+namespace punctual {
+
+struct LightPath {
+    uint32_t light = 0;     // index into Scene::lights
+    KeyframeTrack offset;   // 3 numbers a keyframe: metres from the light's own position
+};
+
+struct ScenePath {
+    KeyframeTrack eye;      // 3 numbers a keyframe, world space
+    KeyframeTrack target;
+    std::vector<LightPath> lights;
+    double seconds = 0.0;   // the path's length: its last keyframe's time
+};
+
+// A LINEAR track of 3-number keyframes.
+KeyframeTrack linearTrack(std::vector<float> times, const std::vector<glm::vec3>& values);
+
+// Poses `scene` at `time` seconds along `path`: the camera looks from eye(time) at target(time)
+// (y up, its far plane refitted just past the scene's bounds, as the built-in scenes fit it), and
+// each moving light stands at its own position plus its offset(time).
+void applyScenePath(Scene& scene, const ScenePath& path, double time);
+
+}  // namespace punctual

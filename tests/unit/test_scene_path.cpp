@@ -1,0 +1,88 @@
+// The built-in scenes' paths (scene/scene_path.h): at time 0 the still scene bit for bit, the
+// keyframes where the path says (and halfway between, halfway), the swaying lamps offset by their
+// track and the others still, the end held past the path's length, and an eye that never passes
+// through anything. Measured on the scenes' own cameras, lights and objects.
+#include <gtest/gtest.h>
+
+#include "scene/builtin_scenes.h"
+#include "scene/scene_path.h"
+#include "scene_test_support.h"
+
+namespace punctual {
+namespace {
+
+Scene posed(const char* name, double time) { return makeBuiltinScene(parseBuiltinScene(name), std::nullopt, time); }
+
+void expectNear(const glm::vec3& actual, const glm::vec3& expected) {
+    EXPECT_NEAR(actual.x, expected.x, 1e-4f);
+    EXPECT_NEAR(actual.y, expected.y, 1e-4f);
+    EXPECT_NEAR(actual.z, expected.z, 1e-4f);
+}
+
+TEST(ScenePath, AtTimeZeroEveryPathIsItsStillScene) {
+    size_t withPaths = 0;
+    for (const BuiltinScene& scene : kBuiltinScenes) {
+        if (!scene.hasPath()) continue;
+        EXPECT_EQ(testing::firstSceneDifference(makeBuiltinScene(scene), makeBuiltinScene(scene, std::nullopt, 0.0)), "")
+            << scene.name;
+        EXPECT_GT(scene.pathSeconds, 0.0f) << scene.name;
+        ++withPaths;
+    }
+    EXPECT_EQ(withPaths, 2u);  // the hall's walk and the street's drive
+}
+
+// The walk's second keyframe is the eye at (-6, 6, 14) at 3 s; at 1.5 s it is halfway from the
+// still eye (0, 9, 18.5): (-3, 7.5, 16.25).
+TEST(ScenePath, TheHallsEyePassesItsKeyframes) {
+    expectNear(posed("hall", 3.0).camera.position(), glm::vec3(-6.0f, 6.0f, 14.0f));
+    expectNear(posed("hall", 1.5).camera.position(), glm::vec3(-3.0f, 7.5f, 16.25f));
+    EXPECT_EQ(posed("hall", 100.0).camera.view, posed("hall", default_scene::kWalkSeconds).camera.view);
+}
+
+// Every sixth lamp is 1 m to +x at 3 s, 0.5 m at 1.5 s, back at 6 s and 1 m to -x at 9 s; the
+// others never move.
+TEST(ScenePath, EverySixthLampSwaysAndTheOthersStandStill) {
+    const Scene still = makeDefaultScene();
+    for (const auto& [time, sway] : {std::pair{3.0, 1.0f}, {1.5, 0.5f}, {6.0, 0.0f}, {9.0, -1.0f}}) {
+        const Scene at = posed("hall", time);
+        size_t swaying = 0;
+        for (size_t i = 0; i < still.lights.size(); ++i) {
+            const glm::vec3 expected = still.lights[i].position + glm::vec3(i % 6 == 0 ? sway : 0.0f, 0.0f, 0.0f);
+            EXPECT_EQ(at.lights[i].position, expected) << i << " at " << time;
+            EXPECT_EQ(at.lights[i].direction, still.lights[i].direction);
+            swaying += i % 6 == 0;
+        }
+        EXPECT_EQ(swaying, 16u);
+    }
+}
+
+// The drive covers 60 m in 10 s down -z at eye height: at 5 s, 30 m.
+TEST(ScenePath, TheStreetsEyeDrivesDownTheStreet) {
+    expectNear(posed("outdoor", 5.0).camera.position(), glm::vec3(0.0f, 1.7f, -30.0f));
+    expectNear(posed("outdoor", outdoor_scene::kDriveSeconds).camera.position(), glm::vec3(0.0f, 1.7f, -60.0f));
+    const Scene still = makeOutdoorScene();
+    const Scene at = posed("outdoor", 5.0);
+    for (size_t i = 0; i < still.lights.size(); ++i) EXPECT_EQ(at.lights[i].position, still.lights[i].position);
+}
+
+// Sampled every 0.05 s, the eye stays 0.3 m clear of every object's bounds and above the ground.
+TEST(ScenePath, NoEyePassesThroughAnything) {
+    for (const BuiltinScene& entry : kBuiltinScenes) {
+        if (!entry.hasPath()) continue;
+        const Scene scene = makeBuiltinScene(entry);
+        size_t samples = 0;
+        for (double t = 0.0; t <= double(entry.pathSeconds); t += 0.05) {
+            const glm::vec3 eye = makeBuiltinScene(entry, std::nullopt, t).camera.position();
+            for (const Object& object : scene.objects) {
+                const Bounds& b = object.worldBounds;
+                const bool inside = glm::all(glm::greaterThan(eye, b.min - 0.3f)) && glm::all(glm::lessThan(eye, b.max + 0.3f));
+                EXPECT_FALSE(inside) << entry.name << " at " << t << " s: in " << object.name;
+            }
+            ++samples;
+        }
+        EXPECT_GT(samples, 190u) << entry.name;
+    }
+}
+
+}  // namespace
+}  // namespace punctual
