@@ -9,6 +9,7 @@
 #include "app/reference_command.h"
 #include "app/bench_command.h"
 #include "app/compare_command.h"
+#include "app/play_command.h"
 #include "app/render_command.h"
 #include "app/validate_command.h"
 #include "core/error.h"
@@ -33,6 +34,9 @@ commands:
                              compare the GPU's shadows with Embree's ray-cast visibility
   compare [SCENE] [options]  every light-list method side by side: time, error against brute
                              force, shadow accuracy against Embree
+  play [SCENE] [options] --out-dir DIR [--fps F] [--seconds S]
+                             render the scene's animation or path frame by frame: per-frame
+                             statistics, p50/p95/p99 frame times, a chart and index.html
   bench [SCENE] [--quick] --out-dir DIR
                              sweep light counts, methods and shadow settings into results.csv
   devices                    list the Vulkan devices (index, name, type)
@@ -67,6 +71,7 @@ int main(int argc, char** argv) {
         if (args[0] == "validate") return punctual::app::runValidateCommand(rest);
         if (args[0] == "bench") return punctual::app::runBenchCommand(rest);
         if (args[0] == "compare") return punctual::app::runCompareCommand(rest);
+        if (args[0] == "play") return punctual::app::runPlayCommand(rest);
         if (args[0] == "devices") return listDevices();
         std::fprintf(stderr, "punctual: error: unknown command '%s' (try punctual help)\n", args[0].c_str());
         return kExitUsage;

@@ -84,6 +84,7 @@ public:
         placeCamera();
         warnAboutSkippedPrimitives();
         validateLights(scene_.lights, path_);
+        scene_.animationSeconds = animationSeconds();
         return std::move(scene_);
     }
 
@@ -178,6 +179,20 @@ private:
                                      std::isfinite(light.direction.z);
         if (light.type == LightType::Point && !finiteDirection) light.direction = glm::vec3(0.0f, 0.0f, -1.0f);
         scene_.lights.push_back(std::move(light));
+    }
+
+    // The last keyframe time of any animation, from the input accessors' "max" (which the spec
+    // requires of animation inputs); a malformed animation is reported when a time poses it.
+    double animationSeconds() const {
+        double last = 0.0;
+        for (const tinygltf::Animation& animation : model_.animations) {
+            for (const tinygltf::AnimationSampler& sampler : animation.samplers) {
+                if (sampler.input < 0 || size_t(sampler.input) >= model_.accessors.size()) continue;
+                const std::vector<double>& max = model_.accessors[size_t(sampler.input)].maxValues;
+                if (!max.empty() && std::isfinite(max[0])) last = std::max(last, max[0]);
+            }
+        }
+        return last;
     }
 
     // --- node graph ----------------------------------------------------------------------------

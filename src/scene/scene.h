@@ -175,6 +175,9 @@ struct Scene {
     Camera camera;
     bool cameraFromFile = false;
     Bounds bounds;  // world bounds of all objects
+    // The length of the scene's motion, in seconds: its glTF animations' last keyframe, or its
+    // built-in path's end (scene/scene_path.h); 0 for a still scene. `punctual play` plays this long.
+    double animationSeconds = 0.0;
 
     size_t triangleCount() const { return indices.size() / 3; }
     void computeBounds();  // fills every Object::worldBounds and Scene::bounds

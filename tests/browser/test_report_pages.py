@@ -1,12 +1,13 @@
 #!/usr/bin/python3
 """The reports punctual writes, opened in headless Chromium (check_pages.py): the bench's
-index.html and failures.html, and validate's report.html (two scenes).
+index.html and failures.html, validate's report.html (two scenes) and play's index.html.
 
     /usr/bin/python3 tests/browser/test_report_pages.py PATH/TO/punctual [--keep DIR]
 
 Writes the pages into a temporary folder (or DIR, kept) with a small bench: the 2:1 mix series
 (charts, images) and the failure study (failures.html's charts) at --quick and a tiny size, then
-validate runs of the hall and the outdoor scene. Exits 0 when every page is clean, 1 with every
+validate runs of the hall and the outdoor scene, then play along the hall's walk with its frames.
+Exits 0 when every page is clean, 1 with every
 problem listed otherwise, and 77 (skipped) with one line saying why where Chromium is missing or
 does not start; Chromium is tried first, so a skip costs no bench.
 """
@@ -38,7 +39,7 @@ def run(command):
 
 
 def write_pages(punctual, folder):
-    """Writes the three pages under FOLDER; their paths."""
+    """Writes the pages under FOLDER; their paths."""
     bench = os.path.join(folder, "bench")
     run([punctual, "bench", "--quick", "--series", "mix,failures", "--size", SIZE,
          "--rounds", "1", "--out-dir", bench])
@@ -50,6 +51,10 @@ def write_pages(punctual, folder):
         validate = os.path.join(folder, "validate-" + scene)
         run([punctual, "validate", "--scene", scene, "--size", SIZE, "--out-dir", validate])
         pages.append(os.path.join(validate, "report.html"))
+    # A sequence: its chart (SVG) and its saved frames.
+    play = os.path.join(folder, "play")
+    run([punctual, "play", "--scene", "hall", "--fps", "0.5", "--size", SIZE, "--save-frames", "--out-dir", play])
+    pages.append(os.path.join(play, "index.html"))
     return pages
 
 

@@ -1,0 +1,97 @@
+// `punctual play` (issue 34): a sequence along the hall's walk writes a frame per 1/F s with its
+// statistics, percentiles that are the frames' own, a chart and a page; each saved frame is the
+// image `render --time T` gives, bit for bit; a glTF file plays its animations for their length;
+// and bad input fails with one line and writes nothing.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "animated_gltf.h"
+#include "core/image.h"
+#include "gpu_test_support.h"
+#include "report/sequence_report.h"
+
+namespace punctual {
+namespace {
+
+using testing::cat;
+using testing::quoted;
+
+TEST(PlayCli, TheWalkWritesAFramePerStepWithItsOwnPercentiles) {
+    testing::TempFolder folder;
+    const std::string dir = folder.file("walk");
+    const testing::RunResult run =
+        testing::runPunctual(folder, cat("play --scene hall --fps 1 --seconds 2 --size 64x36 --save-frames --out-dir ", quoted(dir)));
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_EQ(run.err, "");
+    const nlohmann::json document = nlohmann::json::parse(testing::readText(dir + "/frames.json"));
+    EXPECT_EQ(document["frame_count"], 3);
+    ASSERT_EQ(document["frames"].size(), 3u);
+    std::vector<double> totals;
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_DOUBLE_EQ(document["frames"][i]["time_s"].get<double>(), double(i));
+        totals.push_back(document["frames"][i]["gpu_ms"]["total"].get<double>());
+        EXPECT_GT(totals.back(), 0.0);
+        EXPECT_EQ(document["frames"][i]["stats"]["lights"]["spot"].get<int>() +
+                      document["frames"][i]["stats"]["lights"]["point"].get<int>() +
+                      document["frames"][i]["stats"]["lights"]["culled_by_frustum"].get<int>(),
+                  96);
+    }
+    EXPECT_DOUBLE_EQ(document["summary"]["total"]["p95"].get<double>(), report::percentile(totals, 95.0));
+    EXPECT_EQ(testing::lineCount(testing::readText(dir + "/frames.csv")), 4u);  // a header and three frames
+    EXPECT_NE(testing::readText(dir + "/frame_times.svg").find("p99"), std::string::npos);
+    EXPECT_NE(testing::readText(dir + "/index.html").find("frame-0002.png"), std::string::npos);
+    EXPECT_EQ(document["files"].size(), 7u);  // three frames, the CSV, the chart, the page and frames.json
+
+    // The frame at 1 s is render --time 1.
+    const std::string still = folder.file("still.png");
+    ASSERT_EQ(testing::runPunctual(folder, cat("render --time 1 --size 64x36 --out ", quoted(still))).exitCode, 0);
+    EXPECT_EQ(readPng(dir + "/frame-0001.png").pixels, readPng(still).pixels);
+    EXPECT_NE(readPng(dir + "/frame-0000.png").pixels, readPng(still).pixels);  // and the walk moved
+}
+
+// Without --seconds a file plays its animations' length: keyframes to 1.5 s at 2 fps are frames
+// at 0, 0.5, 1 and 1.5 s.
+TEST(PlayCli, AFilePlaysForItsAnimationsLength) {
+    testing::TempFolder folder;
+    testing::AnimatedGltf animated;
+    animated.addChannel(0, testing::AnimatedGltf::kCamera, "translation", "LINEAR", {0.0f, 1.5f}, {0, 0, 3, 0, 0, 5});
+    const std::string file = animated.write(folder.file("a.gltf"));
+    const std::string dir = folder.file("seq");
+    const testing::RunResult run = testing::runPunctual(folder, cat("play ", quoted(file), " --fps 2 --size 48x32 --out-dir ", quoted(dir)));
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json document = nlohmann::json::parse(testing::readText(dir + "/frames.json"));
+    EXPECT_DOUBLE_EQ(document["seconds"].get<double>(), 1.5);
+    EXPECT_EQ(document["frames"].size(), 4u);
+
+    // A still file plays for the --seconds given, one scene every frame, and says nothing.
+    testing::AnimatedGltf stillFile;
+    const std::string still = stillFile.write(folder.file("still.gltf"));
+    const testing::RunResult stillRun =
+        testing::runPunctual(folder, cat("play ", quoted(still), " --fps 1 --seconds 1 --size 48x32 --out-dir ", quoted(dir)));
+    ASSERT_EQ(stillRun.exitCode, 0) << stillRun.err;
+    EXPECT_EQ(stillRun.err, "");
+    EXPECT_EQ(nlohmann::json::parse(testing::readText(dir + "/frames.json"))["frames"].size(), 2u);
+}
+
+TEST(PlayCli, BadInputFailsWithOneLineAndWritesNothing) {
+    testing::TempFolder folder;
+    testing::AnimatedGltf still;  // no animation
+    const std::string file = still.write(folder.file("still.gltf"));
+    const std::string dir = quoted(folder.file("out"));
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"play --scene hall --size 32x18", "--out-dir: play needs an output folder"},
+        {"play --scene hall --fps 0 --out-dir " + dir, "--fps: expected frames a second from 0.1 to 240, got '0'"},
+        {"play --scene hall --seconds -1 --out-dir " + dir, "--seconds: expected seconds"},
+        {"play --scene hall --time 2 --out-dir " + dir, "--time: play sets each frame's time itself"},
+        {"play --scene hall --out x.png --out-dir " + dir, "--out: not an option of play"},
+        {"play --scene rooms --out-dir " + dir, "built-in rooms scene has no animation or path to take a length from"},
+        {"play " + quoted(file) + " --out-dir " + dir, "has no animation or path to take a length from: give --seconds S"},
+        {"play --scene hall --fps 240 --seconds 1000 --out-dir " + dir, "play renders at most 10000"},
+    };
+    for (const auto& [args, mention] : cases) testing::expectOneClearError(testing::runPunctual(folder, args), args, mention);
+    testing::expectNothingLeftBehind(folder, "refused plays", {"still.gltf"});
+}
+
+}  // namespace
+}  // namespace punctual
