@@ -12,13 +12,8 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
 # The variants, from `punctual render --help` (which prints the tables): a new method or filter is
-# hashed without an edit here. A variant line is indented 25 columns under its option's line.
-variants() {  # OPTION: the names --help lists under it
-  "$binary" render --help | awk -v option="  $1 " '
-    !done && index($0, option) == 1 { listing = 1; next }
-    listing && /^  --/ { listing = 0; done = 1 }  # read on: an early exit would break the pipe
-    listing && substr($0, 1, 25) ~ /^ +$/ && substr($0, 26, 1) != " " { print $1 }'
-}
+# hashed without an edit here.
+source "$root/scripts/lib/variants.sh"
 methods=($(variants --culling))
 filters=($(variants --shadow-filter))
 forms=($(variants --light-lists))

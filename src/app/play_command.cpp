@@ -1,5 +1,6 @@
 #include "app/play_command.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -10,8 +11,12 @@
 #include "cli/scene_source.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/log.h"
 #include "core/output_files.h"
 #include "core/output_folder.h"
+#include "reference/embree_scene.h"
+#include "reference/shadow_stability.h"
+#include "reference/shadow_validation.h"
 #include "report/frame_stats.h"
 #include "report/sequence_report.h"
 #include "render/renderer.h"
@@ -24,7 +29,7 @@ using namespace report;
 namespace {
 
 constexpr const char* kUsage = R"(usage: punctual play [SCENE] [render options] --out-dir DIR [--fps F] [--seconds S]
-                     [--save-frames]
+                     [--save-frames] [--validate-every K]
 
 Renders a sequence: the scene posed every 1/F s from 0 to S (a glTF file's animations, or a
 built-in scene's path: the hall's walk, the street's drive), each frame rendered and timed as
@@ -36,6 +41,12 @@ built-in scene's path: the hall's walk, the street's drive), each frame rendered
   DIR/frame_times.svg  the total GPU time per frame, with its p50, p95 and p99
   DIR/index.html       all of it on one page
   DIR/frame-NNNN.png   with --save-frames: every frame
+With --validate-every K, every K-th frame (the first included) also has its shadows compared with
+Embree's ray-cast visibility, as `punctual validate` compares them: each such frame's compared
+pixels, false shadow, false lit and misclassified share outside the edge band join its row; and
+from the second such frame on, the flips since the last: shadow tests on a static receiver, lit
+by a light that did not move, whose ray-traced truth is the same in both frames but whose GPU
+state changed (temporal instability: shimmer and popping).
 --fps F is 0.1 to 240 frames a second (default 10); --seconds S defaults to the length of the
 file's animations or the scene's path. At most 10,000 frames. DIR is created if missing (its
 parent must exist); frames.json lists the files written, and a later run into DIR removes the
@@ -50,6 +61,7 @@ struct PlayArgs {
     std::optional<std::string> outDir;
     double fps = 10.0;
     std::optional<double> seconds;
+    uint32_t validateEvery = 0;  // 0: no frame validated
     bool saveFrames = false;
     bool help = false;
 };
@@ -82,6 +94,11 @@ PlayArgs parsePlayArgs(const std::vector<std::string>& args) {
             parsed.fps = parseNumberIn("--fps", value(i), 0.1, 240.0, "frames a second");
         } else if (arg == "--seconds") {
             parsed.seconds = parseNumberIn("--seconds", value(i), 0.0, 1e6, "seconds");
+        } else if (arg == "--validate-every") {
+            parsed.validateEvery = uint32_t(parseNumberIn("--validate-every", value(i), 1.0, 1e6, "a whole number of frames"));
+            if (double(parsed.validateEvery) != std::stod(args[i])) {
+                throw Error("--validate-every", "expected a whole number of frames from 1 to 1e+06, got '" + args[i] + "'");
+            }
         } else if (arg == "--save-frames") {
             parsed.saveFrames = true;
         } else if (arg == "--time") {
@@ -105,6 +122,47 @@ uint32_t frameCount(double seconds, double fps) {
                                      "play renders at most " + std::to_string(kMaxFrames));
     }
     return uint32_t(last) + 1;
+}
+
+// A validated frame's shadows against Embree (as `punctual validate` compares them, edge band one
+// shadow texel): {"compared", "false_shadow", "false_lit", "edge_band", "misclassified_outside_band"},
+// and where an earlier frame was validated, "flips": the tests whose state flipped since it where
+// nothing that decides them changed (reference/shadow_stability.h). `previous` becomes this frame.
+nlohmann::json frameValidationJson(const Scene& scene, render::Renderer& renderer,
+                                   std::optional<reference::StabilityFrame>& previous) {
+    const ShadowFactorImage factors = renderer.readShadowFactors();
+    const reference::EmbreeScene embree(scene);
+    const reference::ShadowValidation validation =
+        reference::validateShadows(embree, factors, renderer.lights(), renderer.shadowPlan());
+    const reference::ShadowCounts& c = validation.overall;
+    nlohmann::json json = {{"compared", c.compared},
+                           {"false_shadow", c.falseShadow},
+                           {"false_lit", c.falseLit},
+                           {"edge_band", c.edgeBand},
+                           {"misclassified_outside_band", c.misclassifiedOutsideBand()}};
+    reference::StabilityFrame frame = reference::stabilityFrame(scene, factors, validation);
+    if (previous) {
+        const reference::ShadowFlips flips = reference::countShadowFlips(*previous, frame);
+        json["flips"] = {{"compared", flips.compared}, {"flips", flips.flips}, {"rate", flips.rate()}};
+    }
+    previous = std::move(frame);
+    return json;
+}
+
+// One line for the whole sequence where the shadow budget reduced some frame's views (render warns
+// per frame; a sequence would repeat it frame after frame).
+void warnAboutReducedFrames(const std::vector<SequenceFrame>& frames) {
+    size_t reducedFrames = 0;
+    size_t most = 0;
+    for (const SequenceFrame& f : frames) {
+        const size_t reduced = f.stats["shadows"].value("reduced", nlohmann::json::array()).size();
+        reducedFrames += reduced > 0;
+        most = std::max(most, reduced);
+    }
+    if (reducedFrames == 0) return;
+    log::warn("shadows: in " + std::to_string(reducedFrames) + " of " + std::to_string(frames.size()) +
+              " frames, up to " + std::to_string(most) + " view(s) got less resolution than their receivers need, to fit " +
+              "--shadow-budget (frames.csv's shadow_reduced_views counts them)");
 }
 
 }  // namespace
@@ -132,24 +190,34 @@ int runPlayCommand(const std::vector<std::string>& args) {
     const uint32_t count = frameCount(seconds, parsed.fps);
 
     vk::Context context(contextOptionsFrom(options));
-    const render::RenderSettings settings = renderSettingsFrom(options);
+    render::RenderSettings settings = renderSettingsFrom(options);
+    settings.warnReducedShadows = false;  // counted per frame (shadow_reduced_views), and warned once below
+    if (parsed.validateEvery > 0 && !settings.shadows.enabled) {
+        throw Error("--validate-every", "compares shadows with Embree: shadows must be on");
+    }
     std::vector<SequenceFrame> frames;
     OutputFiles outputs;
     std::vector<std::string> frameImages;
+    std::optional<reference::StabilityFrame> lastValidated;
     for (uint32_t i = 0; i < count; ++i) {
         const double time = double(i) / parsed.fps;
         options.time = moves ? std::optional<double>(time) : std::nullopt;
         const Scene scene = moves ? loadSceneForOptions(options) : still;
-        render::Renderer renderer(context, scene, settings);
+        const bool validated = parsed.validateEvery > 0 && i % parsed.validateEvery == 0;
+        render::RenderSettings frameSettings = settings;
+        frameSettings.collectShadowFactors = validated;
+        render::Renderer renderer(context, scene, frameSettings);
         const render::FrameResult result = renderer.render(options.frames);
         nlohmann::json stats = frameStatsJson(result, renderer, scene, context.deviceName(), options.frames);
         stats["shadows"] = shadowStatsJson(renderer);
+        if (validated) stats["validation"] = frameValidationJson(scene, renderer, lastValidated);
         frames.push_back({i, time, result.medianMs, std::move(stats)});
         if (parsed.saveFrames) {
             frameImages.push_back(frameImageName(i));
             outputs.add(dir + "/" + frameImages.back(), encodePng(result.image));
         }
     }
+    warnAboutReducedFrames(frames);
     if (context.validationMessageCount() > 0) {
         throw Error("vulkan", std::to_string(context.validationMessageCount()) +
                                   " validation message(s) (printed above); no output written");

@@ -84,6 +84,21 @@ nlohmann::json sequenceSummaryJson(const std::vector<SequenceFrame>& frames) {
         for (const auto& [pass, ms] : frames.front().ms.passes) summary[pass] = spread(column(frames, pass));
     }
     summary["total"] = spread(column(frames, "total"));
+    std::vector<double> misclassified;
+    double flipTests = 0.0;
+    double flips = 0.0;
+    for (const SequenceFrame& f : frames) {
+        if (!f.stats.contains("validation")) continue;
+        misclassified.push_back(counter(f.stats, "/validation/misclassified_outside_band"));
+        flipTests += counter(f.stats, "/validation/flips/compared");
+        flips += counter(f.stats, "/validation/flips/flips");
+    }
+    if (!misclassified.empty()) {
+        const nlohmann::json s = spread(misclassified);
+        summary["validation"] = {{"frames", misclassified.size()}, {"mean", s["mean"]}, {"max", s["max"]},
+                                 {"flip_tests", flipTests}, {"flips", flips},
+                                 {"flip_rate", flipTests > 0.0 ? flips / flipTests : 0.0}};
+    }
     return summary;
 }
 
@@ -112,12 +127,27 @@ std::string sequenceCsv(const std::vector<SequenceFrame>& frames) {
     }
     csv << ",total_ms";
     for (const CsvCounter& c : kCsvCounters) csv << "," << c.column;
-    csv << "\n";
+    csv << ",shadow_reduced_views,shadow_compared,shadow_misclassified,shadow_flip_tests,shadow_flips\n";
     for (const SequenceFrame& f : frames) {
         csv << f.index << "," << fixed(f.time, 4);
         for (const auto& [pass, ms] : f.ms.passes) csv << "," << fixed(ms, 3);
         csv << "," << fixed(f.ms.total, 3);
         for (const CsvCounter& c : kCsvCounters) csv << "," << fixed(counter(f.stats, c.pointer), 0);
+        const nlohmann::json::json_pointer reduced("/shadows/reduced");
+        csv << "," << (f.stats.contains(reduced) && f.stats[reduced].is_array() ? f.stats[reduced].size() : 0);
+        // Validated frames only (play --validate-every): empty cells elsewhere.
+        if (f.stats.contains("validation")) {
+            csv << "," << fixed(counter(f.stats, "/validation/compared"), 0) << ","
+                << fixed(counter(f.stats, "/validation/misclassified_outside_band"), 8);
+        } else {
+            csv << ",,";
+        }
+        if (f.stats.contains(nlohmann::json::json_pointer("/validation/flips"))) {
+            csv << "," << fixed(counter(f.stats, "/validation/flips/compared"), 0) << ","
+                << fixed(counter(f.stats, "/validation/flips/flips"), 0);
+        } else {
+            csv << ",,";
+        }
         csv << "\n";
     }
     return csv.str();
@@ -182,6 +212,25 @@ std::string sequenceHtml(const nlohmann::json& document, const std::vector<std::
         html << "</tr>\n";
     }
     html << "</table>\n";
+    if (document["summary"].contains("validation")) {
+        const nlohmann::json& total = document["summary"]["validation"];
+        html << "<h2>Shadows against Embree</h2>\n<p>Flips (a static receiver's shadow state changed from one "
+             << "validated frame to the next where the ray-traced truth did not): " << fixed(total["flips"].get<double>(), 0)
+             << " of " << fixed(total["flip_tests"].get<double>(), 0) << " tests ("
+             << fixed(100.0 * total["flip_rate"].get<double>(), 4) << "%).</p>\n"
+             << "<table><tr><th>frame</th><th>time s</th><th>compared</th>"
+             << "<th>false shadow</th><th>false lit</th><th>misclassified outside band</th><th>flips</th></tr>\n";
+        for (const nlohmann::json& f : document["frames"]) {
+            if (!f["stats"].contains("validation")) continue;
+            const nlohmann::json& v = f["stats"]["validation"];
+            html << "<tr><td>" << f["frame"] << "</td><td>" << fixed(f["time_s"].get<double>(), 2) << "</td><td>"
+                 << v["compared"] << "</td><td>" << v["false_shadow"] << "</td><td>" << v["false_lit"] << "</td><td>"
+                 << fixed(100.0 * v["misclassified_outside_band"].get<double>(), 4) << "%</td><td>"
+                 << (v.contains("flips") ? std::to_string(v["flips"]["flips"].get<uint64_t>()) : std::string(""))
+                 << "</td></tr>\n";
+        }
+        html << "</table>\n";
+    }
     if (!frameImages.empty()) {
         html << "<h2>Frames</h2>\n<div class=\"frames\">\n";
         for (const std::string& image : frameImages) html << "<img src=\"" << escapeHtml(image) << "\" alt=\"" << escapeHtml(image) << "\">\n";

@@ -28,7 +28,8 @@ struct SequenceFrame {
 };
 
 // The sequence's summary: per pass (in frame order) and for the total, {"p50", "p95", "p99",
-// "max", "mean"} in ms.
+// "max", "mean"} in ms; where frames were validated, "validation": {"frames", "mean", "max"} of
+// their share misclassified outside the edge band.
 nlohmann::json sequenceSummaryJson(const std::vector<SequenceFrame>& frames);
 
 // frames.json: {"scene", "device", "fps", "seconds", "size", "settings", "passes" (in frame order), "summary",
@@ -37,7 +38,9 @@ nlohmann::json sequenceSummaryJson(const std::vector<SequenceFrame>& frames);
 nlohmann::json sequenceJson(const std::vector<SequenceFrame>& frames, const nlohmann::json& header);
 
 // frames.csv: frame, time_s, each pass's ms, total_ms, then the counters a frame's cost follows
-// (lights kept, shadow views rendered, shadow memory, draws, device memory).
+// (lights kept, shadow views rendered, shadow memory, draws, device memory), then for the frames
+// validated against Embree (a "validation" object in their stats) the shadow tests compared and
+// the share misclassified outside the edge band (empty cells for the others).
 std::string sequenceCsv(const std::vector<SequenceFrame>& frames);
 
 // frame_times.svg: the total GPU time per frame against time, with p50, p95 and p99 as dashed

@@ -50,6 +50,48 @@ TEST(PlayCli, TheWalkWritesAFramePerStepWithItsOwnPercentiles) {
     EXPECT_NE(readPng(dir + "/frame-0000.png").pixels, readPng(still).pixels);  // and the walk moved
 }
 
+// --validate-every 2 over three frames validates the first and the third; the third's counts are
+// validate --time 2's, to the pixel.
+TEST(PlayCli, ValidatedFramesCountWhatValidateCountsAtTheirTime) {
+    testing::TempFolder folder;
+    const std::string dir = folder.file("walk");
+    const testing::RunResult run = testing::runPunctual(
+        folder, cat("play --scene hall --fps 1 --seconds 2 --size 64x36 --validate-every 2 --out-dir ", quoted(dir)));
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json document = nlohmann::json::parse(testing::readText(dir + "/frames.json"));
+    ASSERT_EQ(document["frames"].size(), 3u);
+    EXPECT_TRUE(document["frames"][0]["stats"].contains("validation"));
+    EXPECT_FALSE(document["frames"][1]["stats"].contains("validation"));
+    ASSERT_TRUE(document["frames"][2]["stats"].contains("validation"));
+    EXPECT_EQ(document["summary"]["validation"]["frames"], 2);
+    EXPECT_FALSE(document["frames"][0]["stats"]["validation"].contains("flips"));  // no frame before it
+    EXPECT_GT(document["frames"][2]["stats"]["validation"]["flips"]["compared"].get<uint64_t>(), 100u);
+
+    const std::string validateDir = folder.file("validate");
+    ASSERT_EQ(testing::runPunctual(folder, cat("validate --time 2 --size 64x36 --out-dir ", quoted(validateDir))).exitCode, 0);
+    const nlohmann::json overall = nlohmann::json::parse(testing::readText(validateDir + "/report.json"))["overall"];
+    const nlohmann::json& played = document["frames"][2]["stats"]["validation"];
+    EXPECT_GT(played["compared"].get<uint64_t>(), 1000u);
+    for (const char* key : {"compared", "false_shadow", "false_lit", "edge_band"}) EXPECT_EQ(played[key], overall[key]) << key;
+    const std::string csv = testing::readText(dir + "/frames.csv");
+    EXPECT_NE(csv.find(",shadow_misclassified,shadow_flip_tests,shadow_flips\n"), std::string::npos);
+    EXPECT_NE(csv.find(",,,,\n2,"), std::string::npos) << csv;  // frame 1's empty validation cells, then frame 2
+}
+
+// A budget too small for every frame: one warning for the sequence, not one a frame, and each
+// frame's reduced views in its row.
+TEST(PlayCli, AShortBudgetWarnsOnceForTheSequence) {
+    testing::TempFolder folder;
+    const std::string dir = folder.file("walk");
+    const testing::RunResult run = testing::runPunctual(
+        folder, cat("play --scene hall --fps 1 --seconds 1 --size 160x90 --shadow-budget 1 --out-dir ", quoted(dir)));
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_EQ(testing::lineCount(run.err), 1u) << run.err;
+    EXPECT_NE(run.err.find("punctual: warning: shadows: in 2 of 2 frames, up to "), std::string::npos) << run.err;
+    const std::string csv = testing::readText(dir + "/frames.csv");
+    EXPECT_NE(csv.find("shadow_reduced_views"), std::string::npos);
+}
+
 // Without --seconds a file plays its animations' length: keyframes to 1.5 s at 2 fps are frames
 // at 0, 0.5, 1 and 1.5 s.
 TEST(PlayCli, AFilePlaysForItsAnimationsLength) {
@@ -72,6 +114,15 @@ TEST(PlayCli, AFilePlaysForItsAnimationsLength) {
     ASSERT_EQ(stillRun.exitCode, 0) << stillRun.err;
     EXPECT_EQ(stillRun.err, "");
     EXPECT_EQ(nlohmann::json::parse(testing::readText(dir + "/frames.json"))["frames"].size(), 2u);
+
+    // Validated, a still sequence compares every lit receiver and flips none: the same frame twice.
+    ASSERT_EQ(testing::runPunctual(folder, cat("play ", quoted(still), " --fps 1 --seconds 1 --size 48x32 --validate-every 1 "
+                                                                      "--out-dir ", quoted(dir)))
+                  .exitCode,
+              0);
+    const nlohmann::json validated = nlohmann::json::parse(testing::readText(dir + "/frames.json"));
+    EXPECT_GT(validated["summary"]["validation"]["flip_tests"].get<double>(), 100.0);
+    EXPECT_EQ(validated["summary"]["validation"]["flips"].get<double>(), 0.0);
 }
 
 TEST(PlayCli, BadInputFailsWithOneLineAndWritesNothing) {
@@ -88,6 +139,9 @@ TEST(PlayCli, BadInputFailsWithOneLineAndWritesNothing) {
         {"play --scene rooms --out-dir " + dir, "built-in rooms scene has no animation or path to take a length from"},
         {"play " + quoted(file) + " --out-dir " + dir, "has no animation or path to take a length from: give --seconds S"},
         {"play --scene hall --fps 240 --seconds 1000 --out-dir " + dir, "play renders at most 10000"},
+        {"play --scene hall --validate-every 0 --out-dir " + dir, "--validate-every: expected a whole number of frames"},
+        {"play --scene hall --validate-every 1.5 --out-dir " + dir, "--validate-every: expected a whole number of frames"},
+        {"play --scene hall --shadows off --validate-every 1 --out-dir " + dir, "--validate-every: compares shadows"},
     };
     for (const auto& [args, mention] : cases) testing::expectOneClearError(testing::runPunctual(folder, args), args, mention);
     testing::expectNothingLeftBehind(folder, "refused plays", {"still.gltf"});
