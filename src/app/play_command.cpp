@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <system_error>
 
@@ -149,6 +150,22 @@ nlohmann::json frameValidationJson(const Scene& scene, render::Renderer& rendere
     return json;
 }
 
+// The views whose tier (before the budget) differs from the previous frame's for the same light and
+// face, and `tiers` replaced by this frame's: what --shadow-hysteresis holds back.
+uint64_t countTierSwitches(const render::Renderer& renderer, std::map<std::pair<uint32_t, uint32_t>, uint32_t>& tiers) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> now;
+    uint64_t switches = 0;
+    for (const ShadowView& view : renderer.shadowPlan().views) {
+        if (view.isCascade) continue;
+        const std::pair<uint32_t, uint32_t> key{renderer.lights().sceneLightIndex[view.packedLight], view.face};
+        now[key] = view.demandedTier;
+        const auto before = tiers.find(key);
+        switches += before != tiers.end() && before->second != view.demandedTier;
+    }
+    tiers = std::move(now);
+    return switches;
+}
+
 // One line for the whole sequence where the shadow budget reduced some frame's views (render warns
 // per frame; a sequence would repeat it frame after frame).
 void warnAboutReducedFrames(const std::vector<SequenceFrame>& frames) {
@@ -199,6 +216,7 @@ int runPlayCommand(const std::vector<std::string>& args) {
     OutputFiles outputs;
     std::vector<std::string> frameImages;
     std::optional<reference::StabilityFrame> lastValidated;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> previousTiers;  // auto's tiers, for the next frame's hysteresis
     for (uint32_t i = 0; i < count; ++i) {
         const double time = double(i) / parsed.fps;
         options.time = moves ? std::optional<double>(time) : std::nullopt;
@@ -206,10 +224,15 @@ int runPlayCommand(const std::vector<std::string>& args) {
         const bool validated = parsed.validateEvery > 0 && i % parsed.validateEvery == 0;
         render::RenderSettings frameSettings = settings;
         frameSettings.collectShadowFactors = validated;
+        frameSettings.shadows.previousTiers = previousTiers;
         render::Renderer renderer(context, scene, frameSettings);
         const render::FrameResult result = renderer.render(options.frames);
         nlohmann::json stats = frameStatsJson(result, renderer, scene, context.deviceName(), options.frames);
         stats["shadows"] = shadowStatsJson(renderer);
+        // Each view's entry (render --stats lists them, 30 KB a frame on the hall) would make a
+        // long sequence's frames.json megabytes; the counts above it stay.
+        stats["shadows"].erase("views");
+        stats["shadows"]["tier_switches"] = countTierSwitches(renderer, previousTiers);
         if (validated) stats["validation"] = frameValidationJson(scene, renderer, lastValidated);
         frames.push_back({i, time, result.medianMs, std::move(stats)});
         if (parsed.saveFrames) {

@@ -154,6 +154,16 @@ const RenderOptionSpec kRenderOptions[] = {
      [](RenderOptions& o, const std::string& v, Notes&) {
          o.shadows.texelsPerPixel = parseFloat("--shadow-texels-per-pixel", v);
      }},
+    {"--shadow-hysteresis", "H",
+     "auto, in a sequence (play): keep a view's tier from the previous\nframe while its demand stays within 2^(1/2 + H) "
+     "of it; H octaves,\n0 to 2 (default 0: the nearest tier every frame)",
+     [](RenderOptions& o, const std::string& v, Notes&) {
+         const float octaves = parseFloat("--shadow-hysteresis", v);
+         if (!(octaves >= 0.0f && octaves <= 2.0f)) {
+             throw Error("--shadow-hysteresis", "expected octaves from 0 to 2, got '" + v + "'");
+         }
+         o.shadows.tierHysteresis = octaves;
+     }},
     {"--shadow-budget", "MiB", "the most memory auto or virtual resolution may give the shadow\natlas (default 64)",
      [](RenderOptions& o, const std::string& v, Notes&) {
          o.shadows.budgetBytes = uint64_t(parseWhole("--shadow-budget", v)) << 20;

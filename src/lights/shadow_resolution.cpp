@@ -141,4 +141,15 @@ uint32_t shadowTierFor(float demand, uint32_t minTier, uint32_t maxTier) {
     return tier;
 }
 
+uint32_t shadowTierWithHysteresis(float demand, uint32_t previousTier, float octaves, uint32_t minTier, uint32_t maxTier) {
+    const uint32_t nearest = shadowTierFor(demand, minTier, maxTier);
+    if (nearest == 0 || previousTier == 0 || !(octaves > 0.0f) || previousTier < minTier || previousTier > maxTier) {
+        return nearest;
+    }
+    // The band kept: demand / previous within [2^-(1/2 + h), 2^(1/2 + h)].
+    const float reach = std::exp2(0.5f + octaves);
+    const float tier = float(previousTier);
+    return demand >= tier / reach && demand <= tier * reach ? previousTier : nearest;
+}
+
 }  // namespace punctual

@@ -82,4 +82,12 @@ std::vector<float> shadowViewDemand(const ShadowPlan& plan, const FrameLights& l
 // 0 for a demand of 0.
 uint32_t shadowTierFor(float demand, uint32_t minTier, uint32_t maxTier);
 
+// The tier of a demand in a sequence whose previous frame gave the view `previousTier` (0: none),
+// with `octaves` of hysteresis (--shadow-hysteresis): the previous tier is kept while the demand
+// stays within 2^(1/2 + octaves) of it either way, so a demand that wanders about a tier's
+// boundary (a camera walking past the distance where the nearest tier changes) no longer
+// switches the view's resolution frame after frame; outside that band, or without hysteresis,
+// shadowTierFor. At 0 octaves the band is the nearest-tier band itself: the same tier.
+uint32_t shadowTierWithHysteresis(float demand, uint32_t previousTier, float octaves, uint32_t minTier, uint32_t maxTier);
+
 }  // namespace punctual

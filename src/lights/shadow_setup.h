@@ -12,6 +12,7 @@
 // layout keeps a cube array and needs a fixed resolution.
 #include <array>
 #include <cstdint>
+#include <map>
 #include <limits>
 #include <string>
 #include <utility>
@@ -48,6 +49,11 @@ struct ShadowSettings {
     float texelsPerPixel = 1.0f;
     uint32_t minTier = 16;     // auto: the smallest and largest tiers a view may get
     uint32_t maxTier = 2048;
+    // auto in a sequence (punctual play): octaves of hysteresis on each view's tier
+    // (--shadow-hysteresis; shadowTierWithHysteresis), and the tiers the previous frame gave,
+    // by (scene light index, face). Empty for a still frame.
+    float tierHysteresis = 0.0f;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> previousTiers;
     uint64_t budgetBytes = 64ull << 20;  // auto: the atlas's largest size (--shadow-budget MiB)
     uint32_t maxShadowedSpots = PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS;  // --shadowed S,P
     uint32_t maxShadowedPoints = PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS;

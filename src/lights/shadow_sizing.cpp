@@ -218,7 +218,13 @@ void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& li
     for (uint32_t v = 0; v < plan.views.size(); ++v) {
         ShadowView& view = plan.views[v];
         view.demand = demand[v];
-        view.demandedTier = shadowTierFor(demand[v] * settings.texelsPerPixel, settings.minTier, settings.maxTier);
+        uint32_t previous = 0;
+        if (!view.isCascade && !settings.previousTiers.empty()) {
+            const auto known = settings.previousTiers.find({lights.sceneLightIndex[view.packedLight], view.face});
+            if (known != settings.previousTiers.end()) previous = known->second;
+        }
+        view.demandedTier = shadowTierWithHysteresis(demand[v] * settings.texelsPerPixel, previous, settings.tierHysteresis,
+                                                     settings.minTier, settings.maxTier);
         // A view with no caster is lit everywhere: it needs no storage whatever its receivers. With
         // virtual pages only the cascades take squares of the atlas; the pages come after marking.
         const bool paged = settings.virtualPages() && !view.isCascade;

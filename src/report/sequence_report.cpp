@@ -63,6 +63,7 @@ constexpr CsvCounter kCsvCounters[] = {
     {"depth_draws", "/geometry/camera_draws/depth"},
     {"shadow_draws", "/geometry/shadow_draws/total"},
     {"shadow_views_rendered", "/shadows/views_rendered"},
+    {"shadow_tier_switches", "/shadows/tier_switches"},
     {"shadow_memory_bytes", "/shadows/memory_bytes"},
     {"device_bytes", "/memory/device_bytes"},
 };

@@ -92,6 +92,30 @@ TEST(PlayCli, AShortBudgetWarnsOnceForTheSequence) {
     EXPECT_NE(csv.find("shadow_reduced_views"), std::string::npos);
 }
 
+// Along the walk the views' tiers follow the camera's distance; with a whole octave of hysteresis
+// fewer of them switch from frame to frame, and the first frame (no previous tiers) is the same.
+TEST(PlayCli, HysteresisHoldsTheTiersBack) {
+    testing::TempFolder folder;
+    const auto switches = [&](const std::string& name, const std::string& extra) {
+        const std::string dir = folder.file(name);
+        const testing::RunResult run =
+            testing::runPunctual(folder, cat("play --scene hall --fps 2 --seconds 6 --size 320x180 --save-frames ", extra,
+                                             " --out-dir ", quoted(dir)));
+        EXPECT_EQ(run.exitCode, 0) << run.err;
+        uint64_t total = 0;
+        const nlohmann::json document = nlohmann::json::parse(testing::readText(dir + "/frames.json"));
+        for (const nlohmann::json& f : document["frames"]) {
+            total += f["stats"]["shadows"]["tier_switches"].get<uint64_t>();
+        }
+        return std::make_pair(total, dir);
+    };
+    const auto [free, freeDir] = switches("free", "");
+    const auto [held, heldDir] = switches("held", "--shadow-hysteresis 1");
+    EXPECT_GT(free, 100u);  // the walk does switch tiers (337 measured)
+    EXPECT_LT(held, free / 2) << free;
+    EXPECT_EQ(readPng(freeDir + "/frame-0000.png").pixels, readPng(heldDir + "/frame-0000.png").pixels);
+}
+
 // Without --seconds a file plays its animations' length: keyframes to 1.5 s at 2 fps are frames
 // at 0, 0.5, 1 and 1.5 s.
 TEST(PlayCli, AFilePlaysForItsAnimationsLength) {
@@ -142,6 +166,7 @@ TEST(PlayCli, BadInputFailsWithOneLineAndWritesNothing) {
         {"play --scene hall --validate-every 0 --out-dir " + dir, "--validate-every: expected a whole number of frames"},
         {"play --scene hall --validate-every 1.5 --out-dir " + dir, "--validate-every: expected a whole number of frames"},
         {"play --scene hall --shadows off --validate-every 1 --out-dir " + dir, "--validate-every: compares shadows"},
+        {"play --scene hall --shadow-hysteresis 3 --out-dir " + dir, "--shadow-hysteresis: expected octaves from 0 to 2"},
     };
     for (const auto& [args, mention] : cases) testing::expectOneClearError(testing::runPunctual(folder, args), args, mention);
     testing::expectNothingLeftBehind(folder, "refused plays", {"still.gltf"});
