@@ -182,6 +182,83 @@ void warnAboutReducedFrames(const std::vector<SequenceFrame>& frames) {
               "--shadow-budget (frames.csv's shadow_reduced_views counts them)");
 }
 
+// The frames of a sequence, one after another: the scene posed at the frame's time (a still
+// scene, the same every frame), rendered and timed, its statistics, and what the next frame needs
+// (the last validated frame, for the flips; auto's tiers, for the hysteresis).
+class SequencePlayer {
+public:
+    SequencePlayer(vk::Context& context, const RenderOptions& options, const render::RenderSettings& settings,
+                   const Scene& still, uint32_t validateEvery)
+        : context_(context), options_(options), settings_(settings), still_(still), validateEvery_(validateEvery) {}
+
+    // Frame `index` at `time` seconds; its image into `image`.
+    SequenceFrame play(uint32_t index, double time, ImageRgba8& image) {
+        const bool moves = still_.animationSeconds > 0.0;
+        options_.time = moves ? std::optional<double>(time) : std::nullopt;
+        const Scene scene = moves ? loadSceneForOptions(options_) : still_;
+        const bool validated = validateEvery_ > 0 && index % validateEvery_ == 0;
+        render::RenderSettings settings = settings_;
+        settings.collectShadowFactors = validated;
+        settings.shadows.previousTiers = previousTiers_;
+        render::Renderer renderer(context_, scene, settings);
+        render::FrameResult result = renderer.render(options_.frames);
+        nlohmann::json stats = frameStatsJson(result, renderer, scene, context_.deviceName(), options_.frames);
+        stats["shadows"] = shadowStatsJson(renderer);
+        // Each view's entry (render --stats lists them, 30 KB a frame on the hall) would make a
+        // long sequence's frames.json megabytes; the counts above it stay.
+        stats["shadows"].erase("views");
+        stats["shadows"]["tier_switches"] = countTierSwitches(renderer, previousTiers_);
+        if (validated) stats["validation"] = frameValidationJson(scene, renderer, lastValidated_);
+        image = std::move(result.image);
+        return {index, time, result.medianMs, std::move(stats)};
+    }
+
+private:
+    vk::Context& context_;
+    RenderOptions options_;
+    const render::RenderSettings& settings_;
+    const Scene& still_;
+    uint32_t validateEvery_;
+    std::optional<reference::StabilityFrame> lastValidated_;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> previousTiers_;
+};
+
+// frames.json's header: what was played, where, and how.
+nlohmann::json sequenceHeader(const Scene& scene, const vk::Context& context, const PlayArgs& parsed, double seconds,
+                              uint32_t count, const RenderOptions& options, const render::RenderSettings& settings) {
+    return {{"scene", scene.source},
+            {"device", context.deviceName()},
+            {"fps", parsed.fps},
+            {"seconds", seconds},
+            {"frame_count", count},
+            {"size", std::to_string(options.width) + "x" + std::to_string(options.height)},
+            {"settings",
+             {{"culling", render::methodName(settings.method)},
+              {"shadows", settings.shadows.enabled ? shadowResolutionName(settings.shadows) : "off"},
+              {"shadow_filter", shadowFilterName(settings.shadows.filter)},
+              {"shadow_hysteresis", settings.shadows.tierHysteresis},
+              {"timed_frames_each", options.frames}}}};
+}
+
+// Every file of the run, frames.json last: it lists them all, so the next run into DIR removes the
+// frames it does not write again.
+nlohmann::json commitSequence(const std::string& dir, OutputFiles& outputs, const std::vector<SequenceFrame>& frames,
+                              const nlohmann::json& header, const std::vector<std::string>& frameImages) {
+    const OutputFolderLayout& layout = sequenceFolderLayout();
+    nlohmann::json document = sequenceJson(frames, header);
+    outputs.add(dir + "/frames.csv", sequenceCsv(frames));
+    outputs.add(dir + "/frame_times.svg", frameTimesSvg(frames));
+    outputs.add(dir + "/index.html", sequenceHtml(document, frameImages));
+    const std::vector<std::string> files = outputFolderFiles(outputs, dir, layout);
+    document["files"] = files;
+    // Compact: a frame's statistics indented run to some 130 lines, a sequence's to tens of
+    // thousands (frames.csv is the file to read by eye).
+    outputs.add(dir + "/frames.json", document.dump() + "\n");
+    prepareOutputFolder(outputs, dir, layout, files);
+    outputs.commit();
+    return document;
+}
+
 }  // namespace
 
 int runPlayCommand(const std::vector<std::string>& args) {
@@ -191,17 +268,15 @@ int runPlayCommand(const std::vector<std::string>& args) {
         return 0;
     }
     const std::string dir = *parsed.outDir;
-    const OutputFolderLayout& layout = sequenceFolderLayout();
-    checkOutputFolder(dir, layout);
-    RenderOptions options = parseRenderOptions(parsed.renderArgs);
+    checkOutputFolder(dir, sequenceFolderLayout());
+    const RenderOptions options = parseRenderOptions(parsed.renderArgs);
     // As stored first: the length of its animations or path says whether it moves at all. A still
     // scene (a file without animations, a built-in scene without a path) is one scene for every
     // frame; a moving one is posed at each frame's time.
     const Scene still = loadSceneForOptions(options);
-    checkOutputFolder(dir, layout);  // again, now that the files the scene reads are known
-    const bool moves = still.animationSeconds > 0.0;
+    checkOutputFolder(dir, sequenceFolderLayout());  // again, now that the files the scene reads are known
     const double seconds = parsed.seconds.value_or(still.animationSeconds);
-    if (!parsed.seconds && !moves) {
+    if (!parsed.seconds && !(still.animationSeconds > 0.0)) {
         throw Error("--seconds", still.source + " has no animation or path to take a length from: give --seconds S");
     }
     const uint32_t count = frameCount(seconds, parsed.fps);
@@ -212,32 +287,16 @@ int runPlayCommand(const std::vector<std::string>& args) {
     if (parsed.validateEvery > 0 && !settings.shadows.enabled) {
         throw Error("--validate-every", "compares shadows with Embree: shadows must be on");
     }
+    SequencePlayer player(context, options, settings, still, parsed.validateEvery);
     std::vector<SequenceFrame> frames;
     OutputFiles outputs;
     std::vector<std::string> frameImages;
-    std::optional<reference::StabilityFrame> lastValidated;
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> previousTiers;  // auto's tiers, for the next frame's hysteresis
     for (uint32_t i = 0; i < count; ++i) {
-        const double time = double(i) / parsed.fps;
-        options.time = moves ? std::optional<double>(time) : std::nullopt;
-        const Scene scene = moves ? loadSceneForOptions(options) : still;
-        const bool validated = parsed.validateEvery > 0 && i % parsed.validateEvery == 0;
-        render::RenderSettings frameSettings = settings;
-        frameSettings.collectShadowFactors = validated;
-        frameSettings.shadows.previousTiers = previousTiers;
-        render::Renderer renderer(context, scene, frameSettings);
-        const render::FrameResult result = renderer.render(options.frames);
-        nlohmann::json stats = frameStatsJson(result, renderer, scene, context.deviceName(), options.frames);
-        stats["shadows"] = shadowStatsJson(renderer);
-        // Each view's entry (render --stats lists them, 30 KB a frame on the hall) would make a
-        // long sequence's frames.json megabytes; the counts above it stay.
-        stats["shadows"].erase("views");
-        stats["shadows"]["tier_switches"] = countTierSwitches(renderer, previousTiers);
-        if (validated) stats["validation"] = frameValidationJson(scene, renderer, lastValidated);
-        frames.push_back({i, time, result.medianMs, std::move(stats)});
+        ImageRgba8 image;
+        frames.push_back(player.play(i, double(i) / parsed.fps, image));
         if (parsed.saveFrames) {
             frameImages.push_back(frameImageName(i));
-            outputs.add(dir + "/" + frameImages.back(), encodePng(result.image));
+            outputs.add(dir + "/" + frameImages.back(), encodePng(image));
         }
     }
     warnAboutReducedFrames(frames);
@@ -245,28 +304,8 @@ int runPlayCommand(const std::vector<std::string>& args) {
         throw Error("vulkan", std::to_string(context.validationMessageCount()) +
                                   " validation message(s) (printed above); no output written");
     }
-
-    nlohmann::json header = {{"scene", still.source},
-                             {"device", context.deviceName()},
-                             {"fps", parsed.fps},
-                             {"seconds", seconds},
-                             {"frame_count", count},
-                             {"size", std::to_string(options.width) + "x" + std::to_string(options.height)},
-                             {"settings",
-                              {{"culling", render::methodName(settings.method)},
-                               {"shadows", settings.shadows.enabled ? shadowResolutionName(settings.shadows) : "off"},
-                               {"shadow_filter", shadowFilterName(settings.shadows.filter)},
-                               {"timed_frames_each", options.frames}}}};
-    nlohmann::json document = sequenceJson(frames, header);
-    outputs.add(dir + "/frames.csv", sequenceCsv(frames));
-    outputs.add(dir + "/frame_times.svg", frameTimesSvg(frames));
-    outputs.add(dir + "/index.html", sequenceHtml(document, frameImages));
-    const std::vector<std::string> files = outputFolderFiles(outputs, dir, layout);
-    document["files"] = files;
-    outputs.add(dir + "/frames.json", document.dump(2) + "\n");
-    prepareOutputFolder(outputs, dir, layout, files);
-    outputs.commit();
-
+    const nlohmann::json document =
+        commitSequence(dir, outputs, frames, sequenceHeader(still, context, parsed, seconds, count, options, settings), frameImages);
     const nlohmann::json& total = document["summary"]["total"];
     std::printf("play: %s, %u frames at %g fps over %g s; GPU ms per frame p50 %.2f, p95 %.2f, p99 %.2f, max %.2f\n",
                 still.source.c_str(), count, parsed.fps, seconds, total["p50"].get<double>(), total["p95"].get<double>(),

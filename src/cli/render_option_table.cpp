@@ -155,8 +155,8 @@ const RenderOptionSpec kRenderOptions[] = {
          o.shadows.texelsPerPixel = parseFloat("--shadow-texels-per-pixel", v);
      }},
     {"--shadow-hysteresis", "H",
-     "auto, in a sequence (play): keep a view's tier from the previous\nframe while its demand stays within 2^(1/2 + H) "
-     "of it; H octaves,\n0 to 2 (default 0: the nearest tier every frame)",
+     "auto, in a sequence (play): a view goes up to a finer tier at once\nbut keeps its finer tier from the previous "
+     "frame until its demand\nfalls below it / 2^(1/2 + H); H octaves, 0 to 2 (default 0: the\nnearest tier every frame)",
      [](RenderOptions& o, const std::string& v, Notes&) {
          const float octaves = parseFloat("--shadow-hysteresis", v);
          if (!(octaves >= 0.0f && octaves <= 2.0f)) {

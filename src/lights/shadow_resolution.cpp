@@ -146,10 +146,9 @@ uint32_t shadowTierWithHysteresis(float demand, uint32_t previousTier, float oct
     if (nearest == 0 || previousTier == 0 || !(octaves > 0.0f) || previousTier < minTier || previousTier > maxTier) {
         return nearest;
     }
-    // The band kept: demand / previous within [2^-(1/2 + h), 2^(1/2 + h)].
-    const float reach = std::exp2(0.5f + octaves);
-    const float tier = float(previousTier);
-    return demand >= tier / reach && demand <= tier * reach ? previousTier : nearest;
+    // Up at once (a view never gets coarser than its nearest tier: that would trade accuracy for
+    // stability); down only once the demand falls below previous / 2^(1/2 + h).
+    if (nearest >= previousTier) return nearest;
+    return demand >= float(previousTier) / std::exp2(0.5f + octaves) ? previousTier : nearest;
 }
-
 }  // namespace punctual

@@ -83,11 +83,13 @@ std::vector<float> shadowViewDemand(const ShadowPlan& plan, const FrameLights& l
 uint32_t shadowTierFor(float demand, uint32_t minTier, uint32_t maxTier);
 
 // The tier of a demand in a sequence whose previous frame gave the view `previousTier` (0: none),
-// with `octaves` of hysteresis (--shadow-hysteresis): the previous tier is kept while the demand
-// stays within 2^(1/2 + octaves) of it either way, so a demand that wanders about a tier's
-// boundary (a camera walking past the distance where the nearest tier changes) no longer
-// switches the view's resolution frame after frame; outside that band, or without hysteresis,
-// shadowTierFor. At 0 octaves the band is the nearest-tier band itself: the same tier.
+// with `octaves` of hysteresis (--shadow-hysteresis): a view goes up to a finer tier as soon as the
+// nearest tier is finer, but keeps its finer previous tier while the demand stays above
+// previous / 2^(1/2 + octaves), so that a demand that wanders about a tier's boundary (a camera
+// walking past the distance where the nearest tier changes) does not switch the view's
+// resolution back and forth. It never gives a view less than its nearest tier (measured: a
+// hysteresis that also held coarser tiers cost accuracy and flipped more, bench/RESULTS.md); it
+// costs memory instead. Without hysteresis or a previous tier, shadowTierFor.
 uint32_t shadowTierWithHysteresis(float demand, uint32_t previousTier, float octaves, uint32_t minTier, uint32_t maxTier);
 
 }  // namespace punctual

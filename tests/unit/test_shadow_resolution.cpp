@@ -157,19 +157,21 @@ TEST(ShadowResolution, TiersAreTheNearestPowerOfTwoInLogScale) {
     EXPECT_EQ(shadowTierFor(1e9f, 16, 2048), 2048u);  // clamped down to the largest
 }
 
-// With half an octave of hysteresis a tier of 1024 is kept while the demand stays within 2^1 of
-// it either way: 512 to 2048 (the nearest-tier band alone is 724 to 1448). Outside, or with no
-// previous tier or no hysteresis, the nearest tier.
-TEST(ShadowResolution, HysteresisKeepsTheTierWhileTheDemandStaysNearIt) {
-    EXPECT_EQ(shadowTierWithHysteresis(1500.0f, 1024, 0.5f, 16, 2048), 1024u);  // nearest: 2048
-    EXPECT_EQ(shadowTierWithHysteresis(2048.0f, 1024, 0.5f, 16, 2048), 1024u);  // the band's edge
-    EXPECT_EQ(shadowTierWithHysteresis(2049.0f, 1024, 0.5f, 16, 2048), 2048u);
-    EXPECT_EQ(shadowTierWithHysteresis(512.0f, 1024, 0.5f, 16, 2048), 1024u);   // nearest: 512
+// With half an octave of hysteresis a tier of 1024 goes up as soon as the nearest tier is finer,
+// and down only once the demand falls below 1024 / 2^1 = 512 (the nearest-tier band alone: 724).
+// Without a previous tier or hysteresis, the nearest tier.
+TEST(ShadowResolution, HysteresisGoesUpAtOnceAndDownLate) {
+    EXPECT_EQ(shadowTierWithHysteresis(1500.0f, 1024, 0.5f, 16, 2048), 2048u);  // up at once
+    EXPECT_EQ(shadowTierWithHysteresis(1448.0f, 1024, 0.5f, 16, 2048), 1024u);  // the nearest is 1024 itself
+    EXPECT_EQ(shadowTierWithHysteresis(700.0f, 1024, 0.5f, 16, 2048), 1024u);   // nearest 512: held
+    EXPECT_EQ(shadowTierWithHysteresis(512.0f, 1024, 0.5f, 16, 2048), 1024u);   // the band's edge
     EXPECT_EQ(shadowTierWithHysteresis(511.0f, 1024, 0.5f, 16, 2048), 512u);
-    EXPECT_EQ(shadowTierWithHysteresis(1500.0f, 1024, 0.0f, 16, 2048), 2048u);  // no hysteresis
-    EXPECT_EQ(shadowTierWithHysteresis(1500.0f, 0, 0.5f, 16, 2048), 2048u);     // no previous tier
+    EXPECT_EQ(shadowTierWithHysteresis(400.0f, 1024, 1.0f, 16, 2048), 1024u);   // a whole octave more: held to 362
+    EXPECT_EQ(shadowTierWithHysteresis(300.0f, 1024, 1.0f, 16, 2048), 256u);
+    EXPECT_EQ(shadowTierWithHysteresis(700.0f, 1024, 0.0f, 16, 2048), 512u);    // no hysteresis
+    EXPECT_EQ(shadowTierWithHysteresis(700.0f, 0, 0.5f, 16, 2048), 512u);       // no previous tier
     EXPECT_EQ(shadowTierWithHysteresis(0.0f, 1024, 0.5f, 16, 2048), 0u);        // no receiver: no storage
-    EXPECT_EQ(shadowTierWithHysteresis(1500.0f, 4096, 0.5f, 16, 2048), 2048u);  // a tier out of range is not kept
+    EXPECT_EQ(shadowTierWithHysteresis(700.0f, 4096, 0.5f, 16, 2048), 512u);    // a tier out of range is not kept
 }
 
 // ---- the atlas --------------------------------------------------------------------------------
