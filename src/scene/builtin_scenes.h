@@ -67,7 +67,7 @@ inline const BuiltinScene& parseBuiltinScene(const std::string& name) {
 inline Scene makeBuiltinScene(const BuiltinScene& scene, std::optional<uint64_t> triangles = std::nullopt,
                               std::optional<double> time = std::nullopt) {
     Scene made = scene.value(triangles.value_or(scene.defaultTriangles));
-    made.animationSeconds = scene.pathSeconds;
+    made.animationSeconds = double(scene.pathSeconds);
     if (time) {
         if (!scene.hasPath()) throw std::logic_error(std::string("built-in scene ") + scene.name + " has no path");
         scene.pose(made, *time);

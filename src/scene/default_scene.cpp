@@ -296,7 +296,7 @@ ScenePath hallWalk(const Scene& scene) {
         path.lights.push_back({i, linearTrack(times, {{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f},
                                                       {-1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}})});
     }
-    path.seconds = kWalkSeconds;
+    path.seconds = double(kWalkSeconds);
     return path;
 }
 

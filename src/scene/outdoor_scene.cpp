@@ -219,7 +219,7 @@ void poseOutdoorScene(Scene& scene, double time) {
     ScenePath path;
     path.eye = linearTrack({0.0f, kDriveSeconds}, {{0.0f, 1.7f, 0.0f}, {0.0f, 1.7f, -60.0f}});
     path.target = linearTrack({0.0f, kDriveSeconds}, {{-0.8f, 0.0f, -10.0f}, {-0.8f, 0.0f, -70.0f}});
-    path.seconds = kDriveSeconds;
+    path.seconds = double(kDriveSeconds);
     applyScenePath(scene, path, time);
 }
 
