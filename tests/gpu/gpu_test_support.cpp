@@ -65,18 +65,6 @@ void expectNothingLeftBehind(const TempFolder& folder, const std::string& args, 
     }
 }
 
-std::string base64(const std::string& bytes) {
-    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < bytes.size(); i += 3) {
-        uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
-        if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
-        if (i + 2 < bytes.size()) v |= uint8_t(bytes[i + 2]);
-        for (size_t k = 0; k < 4; ++k) out += i + k <= bytes.size() ? table[(v >> (18 - 6 * k)) & 63] : '=';
-    }
-    return out;
-}
-
 namespace {
 
 template <typename T>

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "base64.h"  // testing::base64, for the glTF files below
 #include "core/image.h"
 #include "image_test_support.h"
 #include "render/renderer.h"
@@ -93,8 +94,6 @@ void expectNothingLeftBehind(const TempFolder& folder, const std::string& args, 
 
 // ---- glTF files written by tests -----------------------------------------------------------------
 
-// Standard base64 (RFC 4648, with '=' padding), for data URIs.
-std::string base64(const std::string& bytes);
 
 // The "buffers", "bufferViews" and "accessors" members of a glTF file (no braces around them)
 // holding a 2 x 2 m quad in the XZ plane: corners (-1, 0, 1), (1, 0, 1), (1, 0, -1), (-1, 0, -1),

@@ -1,5 +1,7 @@
 #include "animated_gltf.h"
 
+#include "base64.h"
+
 #include <cstring>
 #include <fstream>
 
@@ -18,20 +20,6 @@ const char* typeName(size_t components) {
         case 4: return "VEC4";
         default: return "?";
     }
-}
-
-std::string base64Of(const std::vector<unsigned char>& bytes) {
-    static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < bytes.size(); i += 3) {
-        const uint32_t n = (uint32_t(bytes[i]) << 16) | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0u) |
-                           (i + 2 < bytes.size() ? uint32_t(bytes[i + 2]) : 0u);
-        out += kDigits[(n >> 18) & 63];
-        out += kDigits[(n >> 12) & 63];
-        out += i + 1 < bytes.size() ? kDigits[(n >> 6) & 63] : '=';
-        out += i + 2 < bytes.size() ? kDigits[n & 63] : '=';
-    }
-    return out;
 }
 
 }  // namespace
@@ -98,7 +86,7 @@ void AnimatedGltf::addChannel(size_t animation, int node, const std::string& pat
 
 std::string AnimatedGltf::text() const {
     json out = doc;
-    out["buffers"] = {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64Of(bin)}}};
+    out["buffers"] = {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}};
     return out.dump();
 }
 

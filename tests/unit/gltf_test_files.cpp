@@ -42,20 +42,6 @@ void writeFile(const fs::path& path, const std::vector<unsigned char>& bytes) {
     writeFile(path, bytes.data(), bytes.size());
 }
 
-std::string base64(const std::vector<unsigned char>& bytes) {
-    static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < bytes.size(); i += 3) {
-        const uint32_t chunk = (uint32_t(bytes[i]) << 16) | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0u) |
-                               (i + 2 < bytes.size() ? uint32_t(bytes[i + 2]) : 0u);
-        out += alphabet[(chunk >> 18) & 63];
-        out += alphabet[(chunk >> 12) & 63];
-        out += i + 1 < bytes.size() ? alphabet[(chunk >> 6) & 63] : '=';
-        out += i + 2 < bytes.size() ? alphabet[chunk & 63] : '=';
-    }
-    return out;
-}
-
 json bufferViewJson(size_t byteOffset, size_t byteLength) {
     return {{"buffer", 0}, {"byteOffset", byteOffset}, {"byteLength", byteLength}};
 }

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "base64.h"
+
 namespace punctual::unit_testing {
 
 // glTF accessor component types.
@@ -31,8 +33,8 @@ void writeFile(const std::filesystem::path& path, const void* data, size_t size)
 void writeFile(const std::filesystem::path& path, const std::string& text);
 void writeFile(const std::filesystem::path& path, const std::vector<unsigned char>& bytes);
 
-// Standard base64 with '=' padding, for data: URIs.
-std::string base64(const std::vector<unsigned char>& bytes);
+// Standard base64 with '=' padding, for data: URIs (tests/support/base64.h).
+using testing::base64;
 
 // A buffer view into buffer 0.
 nlohmann::json bufferViewJson(size_t byteOffset, size_t byteLength);
