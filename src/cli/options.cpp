@@ -98,16 +98,19 @@ void checkOptionCombinations(const RenderOptions& options, bool splitsAndLambda)
         throw Error("--scene", "a built-in scene and a scene file ('" + *options.scenePath +
                                    "') cannot both be given: choose one");
     }
-    if (options.time && !options.scenePath) {
-        const BuiltinScene& scene = options.sceneName ? parseBuiltinScene(*options.sceneName) : kDefaultBuiltinScene;
-        if (!scene.hasPath()) {
-            std::string withPaths;
-            for (const BuiltinScene& s : kBuiltinScenes) {
-                if (s.hasPath()) withPaths += std::string(withPaths.empty() ? "" : " and ") + s.name;
-            }
-            throw Error("--time", std::string("poses a scene file's animations or a built-in scene's path; ") + scene.name +
-                                      " has none (" + withPaths + " have)");
-        }
+    std::string withPaths;
+    for (const BuiltinScene& s : kBuiltinScenes) {
+        if (s.hasPath()) withPaths += std::string(withPaths.empty() ? "" : " and ") + s.name;
+    }
+    const BuiltinScene& builtin = options.sceneName ? parseBuiltinScene(*options.sceneName) : kDefaultBuiltinScene;
+    if (options.time && !options.scenePath && !builtin.hasPath()) {
+        throw Error("--time", std::string("poses a scene file's animations or a built-in scene's path; ") + builtin.name +
+                                  " has none (" + withPaths + " have)");
+    }
+    if (options.movingLights && (options.scenePath || !builtin.hasPath())) {
+        throw Error("--moving-lights", std::string("moves lights along a built-in scene's path (") + withPaths + "); " +
+                                           (options.scenePath ? "a scene file's animations decide what moves"
+                                                              : std::string(builtin.name) + " has no path"));
     }
     if (options.sceneTriangles && !(options.sceneName && parseBuiltinScene(*options.sceneName).sized())) {
         std::string sized;

@@ -19,6 +19,7 @@ struct RenderOptions {
     std::optional<std::string> sceneName;  // --scene NAME, a name of kBuiltinScenes; none: the default one
     std::optional<uint64_t> sceneTriangles;  // --scene-triangles N: the size of a sized built-in scene
     std::optional<double> time;            // --time T: seconds into the scene file's animations
+    std::optional<double> movingLights;    // --moving-lights F: the share of a built-in path's lights that move
     std::optional<LightCounts> lights;     // --lights S,P[,SEED]
     std::optional<LightRange> lightRange;  // --light-range R|auto (generated lights only)
     LightCapacity maxLights;               // --max-lights S,P

@@ -93,6 +93,15 @@ const RenderOptionSpec kRenderOptions[] = {
      "cameras, lights and\nmeshes alike; every animation from 0 at once) or a built-in scene's\npath (--scene: the walk, the drive); "
      "default: as stored",
      [](RenderOptions& o, const std::string& v, Notes&) { o.time = parseTime(v); }},
+    {"--moving-lights", "F",
+     "along a built-in scene's path, the share of its lamps that sway 1 m\nto either side (0 to 1: light floor(k / F) for k = 0, 1, ...; default\nthe path's own: the hall's 1/6, the street's none)",
+     [](RenderOptions& o, const std::string& v, Notes&) {
+         double share = 0.0;  // a double, as movingLights divides by it
+         if (!parseNumber(v, share) || !(share >= 0.0 && share <= 1.0)) {
+             throw Error("--moving-lights", "must be a share from 0 to 1, got '" + v + "'");
+         }
+         o.movingLights = share;
+     }},
     {"--max-lights", "S,P",
      "the light capacity: each frame keeps at most S spot and P point\nlights, the most important (default 64,32, "
      "the design notes'; up to\n16384,16384). The light lists hold one bit per light kept",

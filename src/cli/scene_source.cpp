@@ -16,7 +16,7 @@ Scene loadSceneForOptions(const RenderOptions& options) {
     Scene scene = options.scenePath ? loadGltf(*options.scenePath, load)
                                     : makeBuiltinScene(options.sceneName ? parseBuiltinScene(*options.sceneName)
                                                                                          : kDefaultBuiltinScene,
-                                                       options.sceneTriangles, options.time);
+                                                       options.sceneTriangles, options.time, options.movingLights);
     if (options.lights) {
         replaceLights(scene, options.lights->spot, options.lights->point, options.lights->seed,
                       options.lightRange.value_or(LightRange{}));

@@ -282,9 +282,9 @@ uint32_t appendBoxMesh(Scene& scene, const std::string& name, const glm::vec3& s
 // From the still view, down and to the left over the near crates, along the aisle between the
 // left colonnade (x = -15) and the middle one (x = -5) at 3.5-4.5 m, above every box there (the
 // near wall is 2.5 m high), turning towards the partition and the back wall. Keyframes every 3 s.
-// Every sixth lamp (16 of 96: spots and points alike) sways 1 m to +x and back and 1 m to -x and
-// back, as hanging lamps in a draught: shadows that move while the walls stand still.
-ScenePath hallWalk(const Scene& scene) {
+// Every sixth lamp (16 of 96: spots and points alike; --moving-lights F another share) sways 1 m
+// to +x and back and 1 m to -x and back (addSwayingLights).
+ScenePath hallWalk(const Scene& scene, std::optional<double> movingShare) {
     using default_scene::kWalkSeconds;
     ScenePath path;
     const std::vector<float> times = {0.0f, 3.0f, 6.0f, 9.0f, kWalkSeconds};
@@ -292,15 +292,14 @@ ScenePath hallWalk(const Scene& scene) {
                                    {-10.0f, 4.0f, 0.0f}, {-8.0f, 3.5f, -6.0f}});
     path.target = linearTrack(times, {{0.0f, 0.0f, 6.1f}, {-9.0f, 0.5f, 2.0f}, {-10.0f, 1.0f, -10.0f},
                                       {-4.0f, 1.0f, -12.0f}, {6.0f, 1.0f, -12.0f}});
-    for (uint32_t i = 0; i < scene.lights.size(); i += 6) {
-        path.lights.push_back({i, linearTrack(times, {{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f},
-                                                      {-1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}})});
-    }
     path.seconds = double(kWalkSeconds);
+    addSwayingLights(path, uint32_t(scene.lights.size()), movingShare.value_or(default_scene::kMovingLightShare));
     return path;
 }
 
-void poseDefaultScene(Scene& scene, double time) { applyScenePath(scene, hallWalk(scene), time); }
+void poseDefaultScene(Scene& scene, double time, std::optional<double> movingShare) {
+    applyScenePath(scene, hallWalk(scene, movingShare), time);
+}
 
 Scene makeDefaultScene() {
     Scene scene;

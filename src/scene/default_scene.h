@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include <optional>
+
 #include "scene/scene.h"
 
 namespace punctual {
@@ -20,14 +22,17 @@ constexpr float kDesignAspect = 16.0f / 9.0f;
 constexpr const char* kSource = "built-in default scene";
 // The walk's length (poseDefaultScene): 12 s, keyframes every 3.
 constexpr float kWalkSeconds = 12.0f;
+// The share of its lamps that sway along the walk (scene/scene_path.h, movingLights): every sixth.
+constexpr double kMovingLightShare = 1.0 / 6.0;
 }  // namespace default_scene
 
 Scene makeDefaultScene();
 
 // Poses the hall at `time` seconds of its walk (scene/scene_path.h): the camera walks down into
-// the hall and along its left aisle, and 16 of the 96 lamps sway 1 m either way. At 0, the still
-// hall; past kWalkSeconds, the walk's end.
-void poseDefaultScene(Scene& scene, double time);
+// the hall and along its left aisle, and 16 of the 96 lamps sway 1 m either way (`movingShare` of
+// them: movingLights, default kMovingLightShare). At 0, the still hall; past kWalkSeconds, the
+// walk's end.
+void poseDefaultScene(Scene& scene, double time, std::optional<double> movingShare = std::nullopt);
 
 // Appends an axis-aligned box of the given full `size`, centred on the origin of its own mesh
 // space, as a new mesh (24 vertices, one flat normal and a 0..1 UV square per face, 12

@@ -5,6 +5,8 @@
 // both ends texels of a useful size. Street lamps (16 spots) and bollards (16 points) light parts
 // of the street too. Like the hall (scene/default_scene.h) it needs no file and is identical bit
 // for bit on every run and platform: fixed positions, fixed-seed colours, no trigonometry.
+#include <optional>
+
 #include "scene/scene.h"
 
 namespace punctual {
@@ -23,7 +25,8 @@ constexpr float kDriveSeconds = 10.0f;
 Scene makeOutdoorScene();
 
 // Poses the street at `time` seconds of its drive (scene/scene_path.h): the camera moves 60 m
-// down the street at eye height, looking ahead; the lights stand still. At 0, the still street.
-void poseOutdoorScene(Scene& scene, double time);
+// down the street at eye height, looking ahead; the lights stand still (or `movingShare` of them
+// sway, scene/scene_path.h's addSwayingLights). At 0, the still street.
+void poseOutdoorScene(Scene& scene, double time, std::optional<double> movingShare = std::nullopt);
 
 }  // namespace punctual

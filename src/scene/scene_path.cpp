@@ -1,5 +1,7 @@
 #include "scene/scene_path.h"
 
+#include <cmath>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/box_layout.h"
@@ -21,6 +23,26 @@ KeyframeTrack linearTrack(std::vector<float> times, const std::vector<glm::vec3>
     track.times = std::move(times);
     for (const glm::vec3& v : values) track.values.insert(track.values.end(), {v.x, v.y, v.z});
     return track;
+}
+
+std::vector<uint32_t> movingLights(uint32_t lightCount, double share) {
+    std::vector<uint32_t> lights;
+    if (!(share > 0.0)) return lights;
+    for (uint32_t k = 0;; ++k) {
+        const double index = std::floor(double(k) / share + 1e-9);
+        if (index >= double(lightCount)) break;
+        lights.push_back(uint32_t(index));
+    }
+    return lights;
+}
+
+void addSwayingLights(ScenePath& path, uint32_t lightCount, double share) {
+    const float length = float(path.seconds);
+    const std::vector<float> times = {0.0f, 0.25f * length, 0.5f * length, 0.75f * length, length};
+    for (const uint32_t light : movingLights(lightCount, share)) {
+        path.lights.push_back({light, linearTrack(times, {{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f},
+                                                          {-1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}})});
+    }
 }
 
 void applyScenePath(Scene& scene, const ScenePath& path, double time) {

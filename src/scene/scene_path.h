@@ -25,6 +25,17 @@ struct ScenePath {
     double seconds = 0.0;   // the path's length: its last keyframe's time
 };
 
+// The lights that move when a share of them does (--moving-lights F): light floor(k / F) for
+// k = 0, 1, ... below `lightCount`, so F = 1/6 moves lights 0, 6, 12, ..., F = 1/4 lights 0, 4, 8,
+// ..., 1 all and 0 none. (A hair added before the floor keeps F = 0.1, which a double holds a
+// little above a tenth, at lights 0, 10, 20.)
+std::vector<uint32_t> movingLights(uint32_t lightCount, double share);
+
+// Adds to `path` (its `seconds` set) the sway of movingLights(lightCount, share): each 1 m to +x
+// and back, then 1 m to -x and back, keyframes at every quarter of the path, as hanging lamps in
+// a draught: shadows that move while the walls stand still.
+void addSwayingLights(ScenePath& path, uint32_t lightCount, double share);
+
 // A LINEAR track of 3-number keyframes.
 KeyframeTrack linearTrack(std::vector<float> times, const std::vector<glm::vec3>& values);
 

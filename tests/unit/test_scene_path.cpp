@@ -56,6 +56,45 @@ TEST(ScenePath, EverySixthLampSwaysAndTheOthersStandStill) {
     }
 }
 
+// movingLights: light floor(k / F), worked by hand: a sixth is 0, 6, ..., 90 (16 of 96); a
+// quarter 0, 4, ..., 92 (24); a tenth, held a little above 0.1 by a double, still 0, 10, 20; all
+// and none.
+TEST(ScenePath, AShareOfTheLightsMovesEveryOneOverItsLight) {
+    EXPECT_EQ(movingLights(13, 1.0 / 6.0), (std::vector<uint32_t>{0, 6, 12}));
+    EXPECT_EQ(movingLights(96, 1.0 / 6.0).size(), 16u);
+    EXPECT_EQ(movingLights(9, 0.25), (std::vector<uint32_t>{0, 4, 8}));
+    EXPECT_EQ(movingLights(96, 0.25).size(), 24u);
+    EXPECT_EQ(movingLights(25, 0.1), (std::vector<uint32_t>{0, 10, 20}));
+    EXPECT_EQ(movingLights(3, 1.0), (std::vector<uint32_t>{0, 1, 2}));
+    EXPECT_TRUE(movingLights(96, 0.0).empty());
+    EXPECT_TRUE(movingLights(0, 0.5).empty());
+    // 1/3: 3 k a hair below 3 k in a double's division would floor to 3 k - 1 without the hair.
+    EXPECT_EQ(movingLights(10, 1.0 / 3.0), (std::vector<uint32_t>{0, 3, 6, 9}));
+}
+
+// --moving-lights: a quarter of the hall's lamps sway at 3 s, the others stand; none, and the
+// hall's own sixth when not given; the street's lamps stand unless a share is given.
+TEST(ScenePath, TheMovingShareChoosesWhichLampsSway) {
+    const Scene still = makeDefaultScene();
+    auto swaying = [&](const Scene& at, const Scene& from) {
+        std::vector<uint32_t> moved;
+        for (uint32_t i = 0; i < from.lights.size(); ++i) {
+            if (at.lights[i].position != from.lights[i].position) moved.push_back(i);
+        }
+        return moved;
+    };
+    const BuiltinScene& hall = parseBuiltinScene("hall");
+    EXPECT_EQ(swaying(makeBuiltinScene(hall, std::nullopt, 3.0, 0.25), still), movingLights(96, 0.25));
+    EXPECT_TRUE(swaying(makeBuiltinScene(hall, std::nullopt, 3.0, 0.0), still).empty());
+    EXPECT_EQ(swaying(posed("hall", 3.0), still), movingLights(96, 1.0 / 6.0));
+    const BuiltinScene& street = parseBuiltinScene("outdoor");
+    const Scene streetStill = makeBuiltinScene(street);
+    EXPECT_TRUE(swaying(posed("outdoor", 2.5), streetStill).empty());
+    const std::vector<uint32_t> half = swaying(makeBuiltinScene(street, std::nullopt, 2.5, 0.5), streetStill);
+    EXPECT_EQ(half, movingLights(uint32_t(streetStill.lights.size()), 0.5));
+    EXPECT_FALSE(half.empty());
+}
+
 // The drive covers 60 m in 10 s down -z at eye height: at 5 s, 30 m.
 TEST(ScenePath, TheStreetsEyeDrivesDownTheStreet) {
     expectNear(posed("outdoor", 5.0).camera.position(), glm::vec3(0.0f, 1.7f, -30.0f));
