@@ -1,0 +1,153 @@
+#include "lights/shadow_atlas_cache.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/check.h"
+#include "core/error.h"
+
+namespace punctual {
+
+ShadowAtlasCache::ShadowAtlasCache(uint32_t maxSide) : maxSide_(maxSide) {}
+
+std::vector<size_t> ShadowAtlasCache::largestFirst(const std::vector<CachedViewRequest>& requests) {
+    std::vector<size_t> order;
+    for (size_t i = 0; i < requests.size(); ++i) {
+        if (requests[i].size > 0) order.push_back(i);
+    }
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        if (requests[a].size != requests[b].size) return requests[a].size > requests[b].size;
+        return requests[a].key < requests[b].key;
+    });
+    return order;
+}
+
+bool ShadowAtlasCache::allocate(uint32_t size, AtlasRect& rect) {
+    // The smallest free block at least `size` a side, top-left first.
+    auto found = free_.lower_bound(size);
+    while (found != free_.end() && found->second.empty()) ++found;
+    if (found == free_.end()) return false;
+    uint32_t side = found->first;
+    const auto [y, x] = *found->second.begin();
+    found->second.erase(found->second.begin());
+    // Split down to `size`: keep the top-left quarter, free the other three.
+    while (side > size) {
+        side /= 2;
+        free_[side].insert({y, x + side});
+        free_[side].insert({y + side, x});
+        free_[side].insert({y + side, x + side});
+    }
+    rect = {x, y, size};
+    return true;
+}
+
+void ShadowAtlasCache::release(const AtlasRect& rect) {
+    uint32_t side = rect.size;
+    uint32_t x = rect.x;
+    uint32_t y = rect.y;
+    // Merge with the buddies while all four quarters of the parent are free (roots sit at
+    // multiples of root_, so a parent inside a root is aligned to its own side).
+    while (side < root_) {
+        const uint32_t parentX = x & ~(2 * side - 1);
+        const uint32_t parentY = y & ~(2 * side - 1);
+        std::set<std::pair<uint32_t, uint32_t>>& blocks = free_[side];
+        const std::pair<uint32_t, uint32_t> quarters[4] = {
+            {parentY, parentX}, {parentY, parentX + side}, {parentY + side, parentX}, {parentY + side, parentX + side}};
+        bool allFree = true;
+        for (const auto& q : quarters) allFree = allFree && (q == std::pair{y, x} || blocks.count(q) > 0);
+        if (!allFree) break;
+        for (const auto& q : quarters) blocks.erase(q);
+        side *= 2;
+        x = parentX;
+        y = parentY;
+    }
+    free_[side].insert({y, x});
+}
+
+void ShadowAtlasCache::layOut(const std::vector<CachedViewRequest>& requests) {
+    entries_.clear();
+    free_.clear();
+    width_ = height_ = root_ = 0;
+    const std::vector<size_t> order = largestFirst(requests);
+    if (order.empty()) return;
+    root_ = requests[order.front()].size;
+    double texels = 0.0;
+    for (const size_t i : order) texels += double(requests[i].size) * double(requests[i].size);
+    // The grid: roots across (a power of two, as square as the device allows), rows as needed.
+    // With the slack where it fits the device, else without.
+    for (const double slack : {kSlack, 1.0}) {
+        const uint64_t roots = std::max<uint64_t>(1, uint64_t(std::ceil(texels * slack / (double(root_) * root_))));
+        uint64_t across = 1;
+        while (across * across < roots && uint64_t(root_) * across * 2 <= maxSide_) across *= 2;
+        const uint64_t rows = (roots + across - 1) / across;
+        if (uint64_t(root_) * rows <= maxSide_ && uint64_t(root_) * across <= maxSide_) {
+            width_ = uint32_t(root_ * across);
+            height_ = uint32_t(root_ * rows);
+            break;
+        }
+    }
+    if (width_ == 0) {
+        throw Error("--shadow-cache", "the shadow views (" + std::to_string(uint64_t(texels)) +
+                                          " texels) do not fit the device's largest 2D image (" + std::to_string(maxSide_) +
+                                          " texels a side)");
+    }
+    for (uint32_t y = 0; y < height_; y += root_) {
+        for (uint32_t x = 0; x < width_; x += root_) free_[root_].insert({y, x});
+    }
+    for (const size_t i : order) {
+        AtlasRect rect;
+        // Power-of-two squares, largest first, into blocks that hold them all: never fails.
+        PUNCTUAL_CHECK(allocate(requests[i].size, rect), "a fresh shadow cache layout must hold its views");
+        entries_[requests[i].key] = {rect, requests[i].signature};
+    }
+}
+
+ShadowAtlasCacheFrame ShadowAtlasCache::place(const std::vector<CachedViewRequest>& requests) {
+    std::map<ShadowViewKey, size_t> requested;  // the views with storage
+    for (size_t i = 0; i < requests.size(); ++i) {
+        if (requests[i].size == 0) continue;
+        PUNCTUAL_CHECK(requested.emplace(requests[i].key, i).second, "two shadow views with one cache key");
+    }
+    // Squares of views gone or resized go back first, so the new sizes can use them.
+    for (auto it = entries_.begin(); it != entries_.end();) {
+        const auto r = requested.find(it->first);
+        if (r == requested.end() || requests[r->second].size != it->second.rect.size) {
+            release(it->second.rect);
+            it = entries_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    ShadowAtlasCacheFrame frame;
+    std::set<ShadowViewKey> placedNow;
+    bool fits = width_ > 0 || requested.empty();
+    for (const size_t i : largestFirst(requests)) {
+        if (!fits) break;
+        const CachedViewRequest& request = requests[i];
+        if (entries_.count(request.key)) continue;
+        AtlasRect rect;
+        fits = request.size <= root_ && allocate(request.size, rect);
+        if (fits) {
+            entries_[request.key] = {rect, request.signature};
+            placedNow.insert(request.key);
+        }
+    }
+    if (!fits) {
+        layOut(requests);
+        frame.laidOut = true;
+    }
+    frame.layout.width = width_;
+    frame.layout.height = height_;
+    frame.layout.rects.resize(requests.size());
+    frame.kept.assign(requests.size(), false);
+    for (const auto& [key, i] : requested) {
+        Entry& entry = entries_.at(key);
+        frame.layout.rects[i] = entry.rect;
+        frame.kept[i] = !frame.laidOut && placedNow.count(key) == 0 && entry.signature == requests[i].signature;
+        entry.signature = requests[i].signature;
+    }
+    return frame;
+}
+
+}  // namespace punctual
