@@ -232,6 +232,11 @@ ShadowRead shadowReadOf(GpuPunctualLight light, vec3 toLight, vec3 position, vec
         read.biased = applyShadowBias(position, normal, toLight, texel, biasPenumbraAt(unbiasedView, read.resolution),
                                       frame.shadowBias);
         read.view = first + cubeFaceOfDirection(read.biased - lightPosition);
+        // Whole views: the face read may have another tier than the one that sized the bias, and
+        // its lookups are in its own texels (read with the other face's, near the edge a tap
+        // fell half a texel outside its square, into a neighbour's). Virtual levels follow the
+        // receiver's pixel, the same level on either face.
+        if (SHADOW_PAGES == PUNCTUAL_SHADOW_PAGES_OFF) read.resolution = shadowViews[read.view].texel.x;
     }
     read.hasMap = shadowViews[read.view].params.x >= 0.0;  // no caster in its frustum, or no storage: lit
     read.paged = SHADOW_PAGES != PUNCTUAL_SHADOW_PAGES_OFF;

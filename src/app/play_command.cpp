@@ -8,6 +8,7 @@
 #include <optional>
 #include <system_error>
 
+#include "cli/option_values.h"
 #include "cli/options.h"
 #include "cli/scene_source.h"
 #include "core/error.h"
@@ -21,6 +22,7 @@
 #include "report/frame_stats.h"
 #include "report/sequence_report.h"
 #include "render/renderer.h"
+#include "render/shadow_cache.h"
 #include "vk/context.h"
 
 namespace punctual::app {
@@ -30,7 +32,7 @@ using namespace report;
 namespace {
 
 constexpr const char* kUsage = R"(usage: punctual play [SCENE] [render options] --out-dir DIR [--fps F] [--seconds S]
-                     [--save-frames] [--validate-every K]
+                     [--save-frames] [--validate-every K] [--shadow-cache MODE]
 
 Renders a sequence: the scene posed every 1/F s from 0 to S (a glTF file's animations, or a
 built-in scene's path: the hall's walk, the street's drive), each frame rendered and timed as
@@ -48,6 +50,12 @@ pixels, false shadow, false lit and misclassified share outside the edge band jo
 from the second such frame on, the flips since the last: shadow tests on a static receiver, lit
 by a light that did not move, whose ray-traced truth is the same in both frames but whose GPU
 state changed (temporal instability: shimmer and popping).
+--shadow-cache MODE keeps shadow views from frame to frame (render/shadow_cache.h):
+{shadow-cache modes}With on, a view keeps the last frame's depth where its square, its light and its casters (their
+transforms, geometry and alpha test) are unchanged; only the others are cleared and drawn. Each
+row then counts the views kept and drawn (shadow_cache_kept_views, shadow_cache_drawn_views) and
+whether the cache laid its atlas out afresh; shadow memory is the cache's atlas. Whole views
+only (auto or a fixed --shadow-res, not virtual); the cube layout's faces are drawn every frame.
 --fps F is 0.1 to 240 frames a second (default 10); --seconds S defaults to the length of the
 file's animations or the scene's path. At most 10,000 frames. DIR is created if missing (its
 parent must exist); frames.json lists the files written, and a later run into DIR removes the
@@ -64,6 +72,7 @@ struct PlayArgs {
     std::optional<double> seconds;
     uint32_t validateEvery = 0;  // 0: no frame validated
     bool saveFrames = false;
+    render::ShadowCacheMode shadowCache = render::ShadowCacheMode::Off;
     bool help = false;
 };
 
@@ -100,6 +109,8 @@ PlayArgs parsePlayArgs(const std::vector<std::string>& args) {
             if (double(parsed.validateEvery) != std::stod(args[i])) {
                 throw Error("--validate-every", "expected a whole number of frames from 1 to 1e+06, got '" + args[i] + "'");
             }
+        } else if (arg == "--shadow-cache") {
+            parsed.shadowCache = parseVariant(render::kShadowCacheModes, value(i), "--shadow-cache").value;
         } else if (arg == "--save-frames") {
             parsed.saveFrames = true;
         } else if (arg == "--time") {
@@ -188,8 +199,12 @@ void warnAboutReducedFrames(const std::vector<SequenceFrame>& frames) {
 class SequencePlayer {
 public:
     SequencePlayer(vk::Context& context, const RenderOptions& options, const render::RenderSettings& settings,
-                   const Scene& still, uint32_t validateEvery)
-        : context_(context), options_(options), settings_(settings), still_(still), validateEvery_(validateEvery) {}
+                   const Scene& still, uint32_t validateEvery, render::ShadowCacheMode shadowCache)
+        : context_(context), options_(options), settings_(settings), still_(still), validateEvery_(validateEvery) {
+        if (shadowCache != render::ShadowCacheMode::Off && settings.shadows.enabled) {
+            shadowCache_.emplace(context, settings.shadows, shadowCache);
+        }
+    }
 
     // Frame `index` at `time` seconds; its image into `image`.
     SequenceFrame play(uint32_t index, double time, ImageRgba8& image) {
@@ -200,7 +215,7 @@ public:
         render::RenderSettings settings = settings_;
         settings.collectShadowFactors = validated;
         settings.shadows.previousTiers = previousTiers_;
-        render::Renderer renderer(context_, scene, settings);
+        render::Renderer renderer(context_, scene, settings, shadowCache_ ? &*shadowCache_ : nullptr);
         render::FrameResult result = renderer.render(options_.frames);
         nlohmann::json stats = frameStatsJson(result, renderer, scene, context_.deviceName(), options_.frames);
         stats["shadows"] = shadowStatsJson(renderer);
@@ -208,6 +223,12 @@ public:
         // long sequence's frames.json megabytes; the counts above it stay.
         stats["shadows"].erase("views");
         stats["shadows"]["tier_switches"] = countTierSwitches(renderer, previousTiers_);
+        if (const render::ShadowCacheFrame* cache = renderer.shadowCacheFrame()) {
+            stats["shadows"]["cache"] = {{"kept_views", cache->keptViews},     {"drawn_views", cache->drawnViews},
+                                         {"keepable_views", cache->keepableViews},
+                                         {"laid_out", cache->laidOut ? 1 : 0},       {"atlas_texels", cache->atlasTexels},
+                                         {"packed_texels", cache->packedTexels}, {"check_ms", cache->checkMs}};
+        }
         if (validated) stats["validation"] = frameValidationJson(scene, renderer, lastValidated_);
         image = std::move(result.image);
         return {index, time, result.medianMs, std::move(stats)};
@@ -221,6 +242,7 @@ private:
     uint32_t validateEvery_;
     std::optional<reference::StabilityFrame> lastValidated_;
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> previousTiers_;
+    std::optional<render::ShadowCache> shadowCache_;  // --shadow-cache on: kept from frame to frame
 };
 
 // frames.json's header: what was played, where, and how.
@@ -237,6 +259,7 @@ nlohmann::json sequenceHeader(const Scene& scene, const vk::Context& context, co
               {"shadows", settings.shadows.enabled ? shadowResolutionName(settings.shadows) : "off"},
               {"shadow_filter", shadowFilterName(settings.shadows.filter)},
               {"shadow_hysteresis", settings.shadows.tierHysteresis},
+              {"shadow_cache", render::kShadowCacheModes[size_t(parsed.shadowCache)].name},
               {"timed_frames_each", options.frames}}}};
 }
 
@@ -264,7 +287,11 @@ nlohmann::json commitSequence(const std::string& dir, OutputFiles& outputs, cons
 int runPlayCommand(const std::vector<std::string>& args) {
     const PlayArgs parsed = parsePlayArgs(args);
     if (parsed.help) {
-        std::fputs(kUsage, stdout);
+        std::string usage = kUsage;
+        const std::string marker = "{shadow-cache modes}";
+        usage.replace(usage.find(marker), marker.size(),
+                      variantHelp(render::kShadowCacheModes, render::ShadowCacheMode::Off, 2));
+        std::fputs(usage.c_str(), stdout);
         return 0;
     }
     const std::string dir = *parsed.outDir;
@@ -287,7 +314,7 @@ int runPlayCommand(const std::vector<std::string>& args) {
     if (parsed.validateEvery > 0 && !settings.shadows.enabled) {
         throw Error("--validate-every", "compares shadows with Embree: shadows must be on");
     }
-    SequencePlayer player(context, options, settings, still, parsed.validateEvery);
+    SequencePlayer player(context, options, settings, still, parsed.validateEvery, parsed.shadowCache);
     std::vector<SequenceFrame> frames;
     OutputFiles outputs;
     std::vector<std::string> frameImages;

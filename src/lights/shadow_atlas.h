@@ -20,6 +20,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 namespace punctual {
 
 struct AtlasRect {
@@ -35,6 +37,14 @@ struct AtlasLayout {
 
     uint64_t texels() const { return uint64_t(width) * height; }
 };
+
+// A square of the atlas in its UV (GpuShadowView::atlasRect): corner (xy) and side (zw). Sides and
+// corners are whole texels over a power-of-two width, so the shader's texel positions in a square
+// come out the same wherever the square lies (the cache moves squares: render/shadow_cache.h).
+inline glm::vec4 atlasRectInUv(const AtlasRect& rect, const AtlasLayout& atlas) {
+    const glm::vec2 atlasSize(float(atlas.width), float(atlas.height));
+    return glm::vec4(glm::vec2(float(rect.x), float(rect.y)) / atlasSize, glm::vec2(float(rect.size)) / atlasSize);
+}
 
 // Packs squares of the given sizes (each 0 or a power of two). Throws Error when they do not fit
 // in maxSide x maxSide.

@@ -149,11 +149,8 @@ void placeShadowPagePool(ShadowPlan& plan, ShadowPageAllocation& allocation, uin
         width *= 2;
     }
     // The views that keep a square (the cascades) find it in atlas UV: the atlas grew under them.
-    const glm::vec2 atlasSize(float(plan.atlas.width), float(plan.atlas.height));
     for (ShadowView& view : plan.views) {
-        if (view.rect.size == 0) continue;
-        view.gpu.atlasRect = glm::vec4(glm::vec2(float(view.rect.x), float(view.rect.y)) / atlasSize,
-                                       glm::vec2(float(view.rect.size)) / atlasSize);
+        if (view.rect.size > 0) view.gpu.atlasRect = atlasRectInUv(view.rect, plan.atlas);
     }
 }
 

@@ -83,9 +83,7 @@ void finishViews(ShadowPlan& plan, const FrameLights& lights, const ShadowSettin
         if (usesCubeArray(view, settings)) {
             view.gpu.atlasRect = glm::vec4(float(view.cubeLayer / 6), 0.0f, 0.0f, 0.0f);
         } else if (plan.atlas.width > 0) {
-            const glm::vec2 atlasSize(float(plan.atlas.width), float(plan.atlas.height));
-            view.gpu.atlasRect = glm::vec4(glm::vec2(float(view.rect.x), float(view.rect.y)) / atlasSize,
-                                           glm::vec2(float(view.rect.size)) / atlasSize);
+            view.gpu.atlasRect = atlasRectInUv(view.rect, plan.atlas);
         }
         view.gpu.texel = glm::vec4(resolution, 1.0f / resolution,
                                    settings.biasPenumbraTexels(view.resolution, !usesCubeArray(view, settings)), 0.0f);

@@ -24,6 +24,7 @@
 #include "render/frame_bindings.h"
 #include "render/pass_list.h"
 #include "render/scene_gpu.h"
+#include "render/shadow_cache.h"
 #include "render/shadow_maps.h"
 #include "render/shadow_pass.h"
 #include "render/tonemap_pass.h"
@@ -133,7 +134,7 @@ struct Renderer::Resources {
 
     // `inView`: the objects the camera's passes draw, ascending; `draws` is filled with their counts.
     Resources(vk::Context& context, const Scene& sceneData, const RenderSettings& settings, const FramePlan& plan,
-              CameraDraws& draws)
+              const ShadowCache* shadowCache, CameraDraws& draws)
         : scene(context, sceneData, plan.perObjectLists.counts),
           frameUniform(context, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload,
                        "frame"),
@@ -165,7 +166,7 @@ struct Renderer::Resources {
         if (!plan.lights.packed.empty()) {
             lights.write(plan.lights.packed.data(), plan.lights.packed.size() * sizeof(gpu::GpuPunctualLight));
         }
-        addPasses(context, sceneData, settings, plan, draws);
+        addPasses(context, sceneData, settings, plan, shadowCache, draws);
         bindPasses(context);
     }
 
@@ -173,7 +174,7 @@ struct Renderer::Resources {
     // camera's passes draw the objects in view only, each list in object order as before (so every
     // fragment is drawn in the same order: the same image).
     void addPasses(vk::Context& context, const Scene& sceneData, const RenderSettings& settings, const FramePlan& plan,
-                   CameraDraws& draws) {
+                   const ShadowCache* shadowCache, CameraDraws& draws) {
         const std::vector<gpu::CullLight> cullLights = viewCullLights(plan.lights, plan.view);
         const std::vector<uint32_t>& inView = plan.objectsInView;
         const LightGridLayout& gridLayout = plan.gridLayout;
@@ -211,7 +212,7 @@ struct Renderer::Resources {
             passes.add<ForwardPass>(context, radiance, depth->depth(), variant, backToFront(sceneData, blended, eye),
                                     &shadowPageMarks);
         }
-        shadows = passes.add<ShadowPass>(context, plan.shadows, settings.shadows);
+        shadows = passes.add<ShadowPass>(context, plan.shadows, settings.shadows, shadowCache);
         if (marking) marking->readUndrawnImages({&shadows->maps().atlas(), &shadows->maps().pointCubes()}, ShadowPass::kReadLayout);
         forward = passes.add<ForwardPass>(context, radiance, depth->depth(),
                                           forwardVariant(settings, gridLayout, false, false), unblended);
@@ -315,12 +316,13 @@ gpu::GpuFrame packFrame(const Scene& scene, const RenderSettings& settings, cons
 
 }  // namespace
 
-Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSettings& settings)
-    : context_(context), scene_(scene), settings_(settings) {
+Renderer::Renderer(vk::Context& context, const Scene& scene, const RenderSettings& settings, ShadowCache* shadowCache)
+    : context_(context), scene_(scene), settings_(settings), shadowCache_(settings.shadows.enabled ? shadowCache : nullptr) {
     validateRenderSettings(settings);
     checkCameraPrecision(scene.camera, settings.height, scene.source);
     plan_ = planFrame(context, scene, settings);
-    resources_ = std::make_unique<Resources>(context, scene, settings, plan_, cameraDraws_);
+    if (shadowCache_) shadowCache_->prepare(plan_.shadows, scene, plan_.lights);
+    resources_ = std::make_unique<Resources>(context, scene, settings, plan_, shadowCache_, cameraDraws_);
     Resources& r = *resources_;
     const gpu::GpuFrame frame = packFrame(scene, settings, plan_, pageAllocation_);
     r.frameUniform.write(&frame, sizeof(frame));
@@ -567,10 +569,13 @@ Renderer::ShadowPageDrawCounts Renderer::shadowPageDraws() const {
     return {shadows.pageDraws(), shadows.pageInstances(), shadows.pagesDrawn()};
 }
 
+const ShadowCacheFrame* Renderer::shadowCacheFrame() const { return shadowCache_ ? &shadowCache_->lastFrame() : nullptr; }
+
 ShadowDraws Renderer::shadowDraws() const {
     ShadowDraws draws;
-    for (const ShadowView& view : plan_.shadows.views) {
-        if (!view.rendered()) continue;
+    for (uint32_t v = 0; v < plan_.shadows.views.size(); ++v) {
+        const ShadowView& view = plan_.shadows.views[v];
+        if (!view.rendered() || (shadowCache_ && shadowCache_->kept(v))) continue;
         draws.total += view.casters.size();
         draws.maxPerView = std::max<uint64_t>(draws.maxPerView, view.casters.size());
         draws.triangles += trianglesOf(scene_, view.casters);

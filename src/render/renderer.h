@@ -84,9 +84,16 @@ struct FrameResult {
     std::vector<PassTimings> framesMs; // every timed frame
 };
 
+class ShadowCache;
+struct ShadowCacheFrame;
+
 class Renderer {
 public:
-    Renderer(vk::Context& context, const Scene& scene, const RenderSettings& settings);
+    // With `shadowCache` (render/shadow_cache.h; made with settings.shadows, outliving the
+    // renderer), the shadow stage draws into the cache's maps and keeps the views whose depth
+    // the last renderer given it left unchanged.
+    Renderer(vk::Context& context, const Scene& scene, const RenderSettings& settings,
+             ShadowCache* shadowCache = nullptr);
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -126,7 +133,10 @@ public:
     uint64_t deviceMemoryBytes() const { return deviceMemory().total(); }
     DeviceMemory deviceMemory() const;
     const CameraDraws& cameraDraws() const { return cameraDraws_; }
+    // The views drawn (with a shadow cache, not the views it kept).
     ShadowDraws shadowDraws() const;
+    // What the shadow cache kept this frame; nullptr without one.
+    const ShadowCacheFrame* shadowCacheFrame() const;
     // Virtual shadow pages: the allocation (no pages otherwise) and what made it.
     const ShadowPageAllocation& shadowPages() const { return pageAllocation_; }
     const ShadowPageStats& shadowPageStats() const { return pageStats_; }
@@ -173,6 +183,7 @@ private:
     CameraDraws cameraDraws_;
     ShadowPageAllocation pageAllocation_;
     ShadowPageStats pageStats_;
+    ShadowCache* shadowCache_;
     std::unique_ptr<Resources> resources_;
 };
 

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <utility>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "gpu_types.h"
 #include "render/frame_bindings.h"
@@ -29,10 +31,11 @@ constexpr uint32_t kObjectIndexOffset = offsetof(ShadowDrawConstants, objectInde
 
 }  // namespace
 
-ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings)
+ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings,
+                       const ShadowCache* cache)
     : plan_(plan),
       settings_(settings),
-      maps_(context, plan, settings),
+      cache_(cache),
       views_(context, std::max<size_t>(plan.views.size(), 1) * sizeof(gpu::GpuShadowView),
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload, "shadow views"),
       pageViews_(context, std::max<size_t>(plan.views.size(), 1) * sizeof(gpu::GpuVirtualShadowView),
@@ -45,6 +48,7 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
         throw Error("--shadow-res virtual", "the device (" + context.deviceName() +
                                                 ") lacks shaderClipDistance, which drawing casters into pages needs");
     }
+    if (!cache_) ownMaps_.emplace(context, plan, settings);
     uploadViews();
     // No pages until the renderer allocates them (virtual mode), and none at all otherwise.
     setUnallocatedPages(unallocatedPageViews(ShadowPageMarkLayout::of(plan), {}));
@@ -57,6 +61,8 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
     passDesc.depthInitialLayout = kDrawLayout;
     passDesc.depthFinalLayout = kDrawLayout;
     renderPass_ = context.objects().renderPass(passDesc);
+    passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_LOAD;
+    keepingRenderPass_ = context.objects().renderPass(passDesc);
     createTargets(context);
 }
 
@@ -82,7 +88,7 @@ void ShadowPass::createTargets(const vk::Context& context) {
         return targets_.back();
     };
     if (plan.atlas.width > 0) {
-        Target& atlas = addTarget(maps_.atlas(), 0, plan.atlas.width, plan.atlas.height);
+        Target& atlas = addTarget(maps().atlas(), 0, plan.atlas.width, plan.atlas.height);
         for (uint32_t i = 0; i < plan.views.size(); ++i) {
             const ShadowView& view = plan.views[i];
             if (view.rendered() && view.rect.size > 0) atlas.planViews.push_back(i);
@@ -92,7 +98,7 @@ void ShadowPass::createTargets(const vk::Context& context) {
         for (uint32_t i = 0; i < plan.views.size(); ++i) {
             const ShadowView& view = plan.views[i];
             if (!view.isPoint) continue;
-            Target& face = addTarget(maps_.pointCubes(), view.cubeLayer, plan.cubeResolution, plan.cubeResolution);
+            Target& face = addTarget(maps().pointCubes(), view.cubeLayer, plan.cubeResolution, plan.cubeResolution);
             if (view.rendered()) face.planViews.push_back(i);
         }
     }
@@ -109,7 +115,8 @@ void ShadowPass::setUnallocatedPages(const std::vector<gpu::GpuVirtualShadowView
 }
 
 void ShadowPass::usePages(const vk::Context& context, const ShadowPageAllocation& allocation, ShadowPageDraws draws) {
-    maps_ = ShadowMaps(context, plan_, settings_);
+    PUNCTUAL_CHECK(!cache_, "virtual pages are not cached");
+    ownMaps_.emplace(context, plan_, settings_);
     createTargets(context);
     uploadViews();  // the cascades' squares moved with the grown atlas
     setUnallocatedPages(allocation.views);
@@ -137,11 +144,11 @@ void ShadowPass::addBindings(BindingTable& table) const {
                     pageViews_);
     table.addBuffer(PUNCTUAL_BINDING_SHADOW_PAGE_TABLE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
                     pageTable_);
-    table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(), maps_.atlas(),
+    const ShadowMaps& maps = this->maps();
+    table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS, VK_SHADER_STAGE_FRAGMENT_BIT, maps.sampler(), maps.atlas(), kReadLayout);
+    table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH, VK_SHADER_STAGE_FRAGMENT_BIT, maps.depthSampler(), maps.atlas(),
                    kReadLayout);
-    table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.depthSampler(),
-                   maps_.atlas(), kReadLayout);
-    table.addImage(PUNCTUAL_BINDING_POINT_SHADOWS, VK_SHADER_STAGE_FRAGMENT_BIT, maps_.sampler(), maps_.pointCubes(),
+    table.addImage(PUNCTUAL_BINDING_POINT_SHADOWS, VK_SHADER_STAGE_FRAGMENT_BIT, maps.sampler(), maps.pointCubes(),
                    kReadLayout);
 }
 
@@ -272,43 +279,74 @@ void ShadowPass::drawPages(const FrameContext& frame) const {
 
 std::vector<ImageUse> ShadowPass::imageUses() const {
     // Both maps every frame, rendered or placeholders: the forward pass reads them either way.
-    return {{&maps_.atlas(), VK_IMAGE_LAYOUT_UNDEFINED, kReadLayout},
-            {&maps_.pointCubes(), VK_IMAGE_LAYOUT_UNDEFINED, kReadLayout}};
+    // (UNDEFINED: the pass asks nothing of the layout it finds. A cached atlas is the exception the
+    // layout check cannot see: its barrier names the layout the cache knows the last frame left,
+    // ShadowCache::atlasLayoutBefore, which every frame of these passes leaves it in.)
+    return {{&maps().atlas(), VK_IMAGE_LAYOUT_UNDEFINED, kReadLayout},
+            {&maps().pointCubes(), VK_IMAGE_LAYOUT_UNDEFINED, kReadLayout}};
+}
+
+void ShadowPass::recordView(const FrameContext& frame, uint32_t index) const {
+    const ShadowView& view = plan_.views[index];
+    if (view.isPoint && settings_.pointLayout == PointShadowLayout::Cube) {
+        drawView(frame, view, view.gpu.viewProjection, view.casters);  // the whole face; beginRenderPass set its viewport
+        return;
+    }
+    // The view's square of the atlas: the viewport maps its clip space onto the square, the
+    // scissor keeps every fragment inside it.
+    const VkViewport viewport{float(view.rect.x), float(view.rect.y), float(view.rect.size), float(view.rect.size), 0.0f, 1.0f};
+    const VkRect2D scissor{{int32_t(view.rect.x), int32_t(view.rect.y)}, {view.rect.size, view.rect.size}};
+    vkCmdSetViewport(frame.cmd, 0, 1, &viewport);
+    vkCmdSetScissor(frame.cmd, 0, 1, &scissor);
+    drawView(frame, view, view.gpu.viewProjection, view.casters);
+}
+
+void ShadowPass::recordAtlas(const FrameContext& frame, const Target& atlas) const {
+    VkClearValue clear{};
+    clear.depthStencil = {1.0f, 0};
+    const bool keeping = cache_ && cache_->anyKept();
+    vk::beginRenderPass(frame.cmd, keeping ? keepingRenderPass_ : renderPass_, atlas.framebuffer, atlas.width,
+                        atlas.height, {&clear, 1});
+    for (const uint32_t index : atlas.planViews) {
+        if (keeping) {
+            if (cache_->kept(index)) continue;
+            // Cleared as the whole atlas is otherwise, to the same 1.0: the same depth drawn over it.
+            const AtlasRect& rect = plan_.views[index].rect;
+            const VkClearAttachment attachment{VK_IMAGE_ASPECT_DEPTH_BIT, 0, clear};
+            const VkClearRect square{{{int32_t(rect.x), int32_t(rect.y)}, {rect.size, rect.size}}, 0, 1};
+            vkCmdClearAttachments(frame.cmd, 1, &attachment, 1, &square);
+        }
+        recordView(frame, index);
+    }
+    if (plan_.atlas.width > 0) drawPages(frame);
+    vkCmdEndRenderPass(frame.cmd);
 }
 
 void ShadowPass::record(const FrameContext& frame) const {
     const VkCommandBuffer cmd = frame.cmd;
-    const std::array<const vk::Image*, 2> images = {&maps_.atlas(), &maps_.pointCubes()};
-    for (const vk::Image* image : images) {
-        // Last frame's contents are not needed: every read texel is cleared or rendered below.
-        vk::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_UNDEFINED, kDrawLayout,
-                         VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+    const ShadowMaps& maps = this->maps();
+    // Last frame's contents are not needed (every read texel is cleared or rendered below), except
+    // the cached atlas's, which keeps the layout the last frame left it in.
+    const VkImageLayout atlasBefore = cache_ ? cache_->atlasLayoutBefore() : VK_IMAGE_LAYOUT_UNDEFINED;
+    const std::array<std::pair<const vk::Image*, VkImageLayout>, 2> images = {
+        {{&maps.atlas(), atlasBefore}, {&maps.pointCubes(), VK_IMAGE_LAYOUT_UNDEFINED}}};
+    for (const auto& [image, before] : images) {
+        vk::imageBarrier(cmd, *image, before, kDrawLayout, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
                          VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
     }
     VkClearValue clear{};
     clear.depthStencil = {1.0f, 0};
     for (const Target& target : targets_) {
-        vk::beginRenderPass(cmd, renderPass_, target.framebuffer, target.width, target.height, {&clear, 1});
-        for (uint32_t index : target.planViews) {
-            const ShadowView& view = plan_.views[index];
-            if (view.isPoint && settings_.pointLayout == PointShadowLayout::Cube) {
-                drawView(frame, view, view.gpu.viewProjection, view.casters);  // the whole face; beginRenderPass set its viewport
-                continue;
-            }
-            // The view's square of the atlas: the viewport maps its clip space onto the square, the
-            // scissor keeps every fragment inside it.
-            const VkViewport viewport{float(view.rect.x), float(view.rect.y), float(view.rect.size),
-                                      float(view.rect.size), 0.0f, 1.0f};
-            const VkRect2D scissor{{int32_t(view.rect.x), int32_t(view.rect.y)}, {view.rect.size, view.rect.size}};
-            vkCmdSetViewport(cmd, 0, 1, &viewport);
-            vkCmdSetScissor(cmd, 0, 1, &scissor);
-            drawView(frame, view, view.gpu.viewProjection, view.casters);
+        if (&target == &targets_.front() && plan_.atlas.width > 0) {
+            recordAtlas(frame, target);
+            continue;
         }
-        if (&target == &targets_.front() && plan_.atlas.width > 0) drawPages(frame);
+        vk::beginRenderPass(cmd, renderPass_, target.framebuffer, target.width, target.height, {&clear, 1});
+        for (const uint32_t index : target.planViews) recordView(frame, index);
         vkCmdEndRenderPass(cmd);
     }
-    for (const vk::Image* image : images) {
+    for (const auto& [image, before] : images) {
         vk::imageBarrier(cmd, *image, kDrawLayout, kReadLayout, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
                          VK_ACCESS_SHADER_READ_BIT);

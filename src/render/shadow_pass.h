@@ -22,6 +22,7 @@
 #include "lights/shadow_page_allocation.h"
 #include "lights/shadow_setup.h"
 #include "render/pass.h"
+#include "render/shadow_cache.h"
 #include "render/shadow_maps.h"
 #include "vk/buffer.h"
 #include "vk/handle.h"
@@ -30,8 +31,10 @@ namespace punctual::render {
 
 class ShadowPass final : public Pass {
 public:
-    // `plan` must outlive the pass.
-    ShadowPass(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings);
+    // `plan` must outlive the pass. With `cache` (prepared with `plan`; it outlives the pass too),
+    // the views draw into the cache's maps, and those it keeps are neither cleared nor drawn.
+    ShadowPass(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings,
+               const ShadowCache* cache = nullptr);
 
     const char* name() const override { return "shadows"; }
     void addBindings(BindingTable& table) const override;
@@ -43,7 +46,7 @@ public:
     // filtering reads across face edges), and leaves both images in kReadLayout for the forward
     // pass.
     void record(const FrameContext& frame) const override;
-    uint64_t memoryBytes() const override { return maps_.allocatedBytes() + pageViews_.size() + pageTable_.size(); }
+    uint64_t memoryBytes() const override { return maps().allocatedBytes() + pageViews_.size() + pageTable_.size(); }
 
     // Virtual pages: the records the marking pass reads before any page is allocated (each view's
     // marks and coarsening; every lookup lit).
@@ -64,7 +67,7 @@ public:
     static constexpr VkImageLayout kDrawLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     static constexpr VkImageLayout kReadLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 
-    const ShadowMaps& maps() const { return maps_; }
+    const ShadowMaps& maps() const { return cache_ ? cache_->maps() : *ownMaps_; }
 
 private:
     struct Target {
@@ -83,9 +86,15 @@ private:
     std::optional<bool> casterIsMasked(const FrameContext& frame, uint32_t object) const;
     void createTargets(const vk::Context& context);
     void uploadViews();  // every plan view's GpuShadowView into views_
+    // Begins the atlas's render pass and draws its views: all of them on a cleared atlas, or with
+    // the cache keeping some, the others each cleared in its square and drawn.
+    void recordAtlas(const FrameContext& frame, const Target& atlas) const;
+    // Draws plan view `index` into the target begun.
+    void recordView(const FrameContext& frame, uint32_t index) const;
     const ShadowPlan& plan_;
     ShadowSettings settings_;
-    ShadowMaps maps_;
+    const ShadowCache* cache_;
+    std::optional<ShadowMaps> ownMaps_;  // without a cache
     vk::Buffer views_;  // GpuShadowView per plan view (one slot when there are none)
     vk::Buffer pageViews_;  // GpuVirtualShadowView per plan view (one slot when there are none)
     vk::Buffer pageTable_;  // the page table's entries (one word when there are none)
@@ -93,6 +102,7 @@ private:
     ShadowPageDraws pageDraws_;
     // The render pass, layout and pipelines: the context's object cache (vk/object_cache.h) owns them.
     VkRenderPass renderPass_ = VK_NULL_HANDLE;
+    VkRenderPass keepingRenderPass_ = VK_NULL_HANDLE;  // the cache's: loads the atlas, clears nothing
     VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
     struct Pipelines {
         VkPipeline opaque = VK_NULL_HANDLE;  // depth only, no fragment shader

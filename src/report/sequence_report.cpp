@@ -64,6 +64,9 @@ constexpr CsvCounter kCsvCounters[] = {
     {"shadow_draws", "/geometry/shadow_draws/total"},
     {"shadow_views_rendered", "/shadows/views_rendered"},
     {"shadow_tier_switches", "/shadows/tier_switches"},
+    {"shadow_cache_kept_views", "/shadows/cache/kept_views"},  // --shadow-cache on: 0 without
+    {"shadow_cache_drawn_views", "/shadows/cache/drawn_views"},
+    {"shadow_cache_laid_out", "/shadows/cache/laid_out"},
     {"shadow_memory_bytes", "/shadows/memory_bytes"},
     {"device_bytes", "/memory/device_bytes"},
 };

@@ -1,0 +1,179 @@
+// Shadow caching (render/shadow_cache.h, issue 34): along the hall's walk with a quarter of its
+// lamps swaying, the cache keeps exactly the views whose square, matrix and casters are last
+// frame's (an oracle that compares the plans themselves, not their hashes), and its frames are
+// bit for bit the frames of the same squares all drawn; a caster that moves redraws only the
+// views it is or was in; and the command line refuses what it cannot cache, in one line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/image.h"
+#include "gpu_test_support.h"
+#include "render/renderer.h"
+#include "render/shadow_cache.h"
+#include "scene/builtin_scenes.h"
+
+namespace punctual {
+namespace {
+
+using testing::cat;
+using testing::quoted;
+
+// What a view's depth is made of, compared whole: its square's side, its matrix's bits, its
+// casters and each caster's model matrix and mesh.
+struct ViewContents {
+    uint32_t size = 0;
+    glm::mat4 viewProjection{0.0f};
+    std::vector<uint32_t> casters;
+    std::vector<glm::mat4> models;
+    std::vector<uint32_t> meshes;
+    bool operator==(const ViewContents& o) const {
+        return size == o.size && std::memcmp(&viewProjection, &o.viewProjection, sizeof(glm::mat4)) == 0 &&
+               casters == o.casters && meshes == o.meshes &&
+               std::memcmp(models.data(), o.models.data(), models.size() * sizeof(glm::mat4)) == 0 &&
+               models.size() == o.models.size();
+    }
+};
+using FrameContents = std::map<std::pair<uint32_t, uint32_t>, ViewContents>;  // by (scene light, face)
+
+FrameContents contentsOf(const render::Renderer& renderer, const Scene& scene) {
+    FrameContents contents;
+    const ShadowPlan& plan = renderer.shadowPlan();
+    for (const ShadowView& view : plan.views) {
+        if (view.isCascade || !view.rendered()) continue;
+        ViewContents c{view.rect.size, view.gpu.viewProjection, view.casters, {}, {}};
+        for (const uint32_t object : view.casters) {
+            c.models.push_back(scene.objects[object].model);
+            c.meshes.push_back(scene.objects[object].mesh);
+        }
+        contents[{renderer.lights().sceneLightIndex[view.packedLight], view.face}] = c;
+    }
+    return contents;
+}
+
+// The views the oracle keeps: rendered now and last frame with the same contents, where the cache
+// did not lay its atlas out afresh. Checks the cache kept exactly those, and returns how many.
+size_t expectKeptAsTheOracleSays(const render::Renderer& renderer, const render::ShadowCache& cache,
+                                 const FrameContents& before, const FrameContents& now) {
+    size_t kept = 0;
+    const ShadowPlan& plan = renderer.shadowPlan();
+    for (uint32_t v = 0; v < plan.views.size(); ++v) {
+        const ShadowView& view = plan.views[v];
+        if (view.isCascade || !view.rendered()) continue;
+        const std::pair<uint32_t, uint32_t> key{renderer.lights().sceneLightIndex[view.packedLight], view.face};
+        const auto previous = before.find(key);
+        const bool expected = !cache.lastFrame().laidOut && previous != before.end() && previous->second == now.at(key);
+        EXPECT_EQ(cache.kept(v), expected) << "light " << key.first << " face " << key.second;
+        kept += expected;
+    }
+    return kept;
+}
+
+Scene hallAt(double time, double movingShare) {
+    return makeBuiltinScene(parseBuiltinScene("hall"), std::nullopt, time, movingShare);
+}
+
+TEST(ShadowCache, TheWalkKeepsWhatTheOracleKeepsAndDrawsTheSameFrames) {
+    auto context = testing::makeValidatedContext();
+    const render::RenderSettings settings = testing::renderSettings(192, 108);
+    render::ShadowCache keeping(*context, settings.shadows, render::ShadowCacheMode::On);
+    render::ShadowCache redrawing(*context, settings.shadows, render::ShadowCacheMode::Redraw);
+    FrameContents before;
+    size_t kept = 0;
+    size_t drawn = 0;
+    for (const double time : {2.0, 2.25, 2.5, 2.75, 3.0}) {
+        const Scene scene = hallAt(time, 0.25);
+        render::Renderer cached(*context, scene, settings, &keeping);
+        const ImageRgba8 image = cached.render().image;
+        const FrameContents now = contentsOf(cached, scene);
+        kept += expectKeptAsTheOracleSays(cached, keeping, before, now);
+        drawn += keeping.lastFrame().drawnViews;
+        EXPECT_EQ(keeping.lastFrame().keptViews + keeping.lastFrame().drawnViews, cached.shadowPlan().viewsRendered);
+        before = now;
+        render::Renderer all(*context, scene, settings, &redrawing);
+        EXPECT_EQ(all.render().image.pixels, image.pixels) << "at " << time << " s";
+        EXPECT_EQ(redrawing.lastFrame().keptViews, 0u);
+    }
+    EXPECT_GT(kept, 100u);  // most views keep their depth
+    EXPECT_GT(drawn, 0u);   // and the swaying lamps' do not
+    testing::expectNoValidationMessages(*context);
+}
+
+// One crate moves 0.4 m between two frames of a still camera and still lights: the views it was or
+// is a caster of are drawn again, and only those.
+TEST(ShadowCache, AMovingCasterRedrawsOnlyTheViewsItTouches) {
+    auto context = testing::makeValidatedContext();
+    const render::RenderSettings settings = testing::renderSettings(192, 108);
+    render::ShadowCache cache(*context, settings.shadows);
+    const Scene still = hallAt(1.0, 0.0);
+    Scene moved = still;
+    // The first object that some views draw and others do not.
+    render::Renderer first(*context, still, settings, &cache);
+    first.render();
+    const FrameContents before = contentsOf(first, still);
+    std::map<uint32_t, size_t> viewsOf;
+    for (const auto& [key, c] : before) {
+        for (const uint32_t object : c.casters) ++viewsOf[object];
+    }
+    uint32_t object = 0;
+    for (const auto& [o, count] : viewsOf) {
+        if (count >= 2 && count + 10 < before.size()) {
+            object = o;
+            break;
+        }
+    }
+    ASSERT_GT(viewsOf[object], 0u);
+    moved.objects[object].model = glm::translate(glm::mat4(1.0f), glm::vec3(0.4f, 0.0f, 0.0f)) * moved.objects[object].model;
+    moved.objects[object].worldBounds = moved.meshes[moved.objects[object].mesh].localBounds.transformed(moved.objects[object].model);
+    render::Renderer second(*context, moved, settings, &cache);
+    second.render();
+    const FrameContents now = contentsOf(second, moved);
+    ASSERT_FALSE(cache.lastFrame().laidOut);
+    const size_t kept = expectKeptAsTheOracleSays(second, cache, before, now);
+    size_t touched = 0;  // the views the crate is a caster of in either frame
+    for (const auto& [key, c] : now) {
+        const auto& was = before.count(key) ? before.at(key).casters : std::vector<uint32_t>{};
+        touched += std::count(c.casters.begin(), c.casters.end(), object) > 0 || std::count(was.begin(), was.end(), object) > 0;
+    }
+    EXPECT_EQ(cache.lastFrame().drawnViews, touched);
+    EXPECT_EQ(kept + touched, now.size());
+    EXPECT_GE(touched, 2u);
+    testing::expectNoValidationMessages(*context);
+}
+
+TEST(ShadowCache, PlayCachedIsPlayRedrawnBitForBit) {
+    testing::TempFolder folder;
+    const std::string common = " --scene hall --moving-lights 0.25 --fps 4 --seconds 1 --size 96x54 --save-frames --out-dir ";
+    const std::string on = folder.file("on");
+    const std::string redraw = folder.file("redraw");
+    ASSERT_EQ(testing::runPunctual(folder, cat("play --shadow-cache on", common, quoted(on))).exitCode, 0);
+    ASSERT_EQ(testing::runPunctual(folder, cat("play --shadow-cache redraw", common, quoted(redraw))).exitCode, 0);
+    for (const char* frame : {"frame-0000.png", "frame-0002.png", "frame-0004.png"}) {
+        EXPECT_EQ(readPng(on + "/" + frame).pixels, readPng(redraw + "/" + frame).pixels) << frame;
+    }
+    const nlohmann::json document = nlohmann::json::parse(testing::readText(on + "/frames.json"));
+    EXPECT_EQ(document["settings"]["shadow_cache"], "on");
+    EXPECT_EQ(document["frames"][0]["stats"]["shadows"]["cache"]["laid_out"], 1);
+    EXPECT_GT(document["frames"][4]["stats"]["shadows"]["cache"]["kept_views"].get<int>(), 0);
+    EXPECT_NE(testing::readText(on + "/frames.csv").find("shadow_cache_kept_views"), std::string::npos);
+}
+
+TEST(ShadowCache, WhatCannotBeCachedIsRefusedInOneLine) {
+    testing::TempFolder folder;
+    const std::string dir = quoted(folder.file("out"));
+    testing::expectOneClearError(testing::runPunctual(folder, "play --shadow-cache sometimes --out-dir " + dir),
+                                 "play --shadow-cache sometimes", "--shadow-cache: expected off, on or redraw, got 'sometimes'");
+    testing::expectOneClearError(
+        testing::runPunctual(folder, "play --shadow-res virtual --shadow-cache on --seconds 1 --size 64x36 --out-dir " + dir),
+        "play --shadow-res virtual --shadow-cache on", "--shadow-cache: caches whole views");
+    testing::expectNothingLeftBehind(folder, "refused caches");
+}
+
+}  // namespace
+}  // namespace punctual
