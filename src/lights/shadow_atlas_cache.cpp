@@ -9,7 +9,8 @@
 
 namespace punctual {
 
-ShadowAtlasCache::ShadowAtlasCache(uint32_t maxSide) : maxSide_(maxSide) {}
+ShadowAtlasCache::ShadowAtlasCache(uint32_t maxSide, uint32_t largestView)
+    : maxSide_(maxSide), largestView_(largestView) {}
 
 std::vector<size_t> ShadowAtlasCache::largestFirst(const std::vector<CachedViewRequest>& requests) {
     std::vector<size_t> order;
@@ -65,13 +66,52 @@ void ShadowAtlasCache::release(const AtlasRect& rect) {
     free_[side].insert({y, x});
 }
 
+bool ShadowAtlasCache::evictForBlock(uint32_t size, const std::set<ShadowViewKey>& placedNow,
+                                     std::vector<ShadowViewKey>& evicted) {
+    // Each view lies inside one aligned block of side `size` (when no larger), or covers whole ones.
+    const uint32_t across = width_ / size;
+    const uint32_t rows = height_ / size;
+    std::vector<uint64_t> held(size_t(across) * rows, 0);
+    std::vector<bool> barred(held.size(), false);
+    for (const auto& [key, entry] : entries_) {
+        const AtlasRect& r = entry.rect;
+        const bool movable = r.size <= size && placedNow.count(key) == 0;
+        for (uint32_t y = r.y / size; y < (r.y + r.size + size - 1) / size; ++y) {
+            for (uint32_t x = r.x / size; x < (r.x + r.size + size - 1) / size; ++x) {
+                const size_t block = size_t(y) * across + x;
+                held[block] += uint64_t(r.size) * r.size;
+                barred[block] = barred[block] || !movable;
+            }
+        }
+    }
+    size_t best = held.size();
+    for (size_t block = 0; block < held.size(); ++block) {
+        if (!barred[block] && (best == held.size() || held[block] < held[best])) best = block;
+    }
+    if (best == held.size()) return false;
+    const uint32_t bx = uint32_t(best % across) * size;
+    const uint32_t by = uint32_t(best / across) * size;
+    for (auto it = entries_.begin(); it != entries_.end();) {
+        const AtlasRect& r = it->second.rect;
+        if (r.x >= bx && r.x < bx + size && r.y >= by && r.y < by + size) {
+            evicted.push_back(it->first);
+            release(r);
+            it = entries_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    return true;
+}
+
 void ShadowAtlasCache::layOut(const std::vector<CachedViewRequest>& requests) {
     entries_.clear();
     free_.clear();
     width_ = height_ = root_ = 0;
     const std::vector<size_t> order = largestFirst(requests);
     if (order.empty()) return;
-    root_ = requests[order.front()].size;
+    const uint32_t largest = requests[order.front()].size;
+    root_ = std::max(largest, std::min(2 * largest, largestView_));
     double texels = 0.0;
     for (const size_t i : order) texels += double(requests[i].size) * double(requests[i].size);
     // The grid: roots across (a power of two, as square as the device allows), rows as needed.
@@ -121,19 +161,38 @@ ShadowAtlasCacheFrame ShadowAtlasCache::place(const std::vector<CachedViewReques
     }
     ShadowAtlasCacheFrame frame;
     std::set<ShadowViewKey> placedNow;
-    bool fits = width_ > 0 || requested.empty();
+    double texels = 0.0;
+    for (const auto& [key, i] : requested) texels += double(requests[i].size) * double(requests[i].size);
+    bool fits = requested.empty() || (width_ > 0 && texels <= double(width_) * double(height_));
+    // The views without a square, largest first; a view moved out of a block joins them, in its
+    // place in that order (it is no larger than the block that moved it).
+    std::vector<size_t> pending;
     for (const size_t i : largestFirst(requests)) {
-        if (!fits) break;
-        const CachedViewRequest& request = requests[i];
-        if (entries_.count(request.key)) continue;
+        if (!entries_.count(requests[i].key)) pending.push_back(i);
+    }
+    for (size_t p = 0; fits && p < pending.size(); ++p) {
+        const CachedViewRequest& request = requests[pending[p]];
         AtlasRect rect;
-        fits = request.size <= root_ && allocate(request.size, rect);
+        fits = request.size <= root_;
+        if (fits && !allocate(request.size, rect)) {
+            std::vector<ShadowViewKey> evicted;
+            fits = evictForBlock(request.size, placedNow, evicted) && allocate(request.size, rect);
+            for (const ShadowViewKey& key : evicted) {
+                const size_t moved = requested.at(key);
+                const auto at = std::upper_bound(pending.begin() + ptrdiff_t(p) + 1, pending.end(), moved, [&](size_t a, size_t b) {
+                    return requests[a].size != requests[b].size ? requests[a].size > requests[b].size : requests[a].key < requests[b].key;
+                });
+                pending.insert(at, moved);
+                ++frame.moved;
+            }
+        }
         if (fits) {
             entries_[request.key] = {rect, request.signature};
             placedNow.insert(request.key);
         }
     }
     if (!fits) {
+        frame.moved = 0;
         layOut(requests);
         frame.laidOut = true;
     }

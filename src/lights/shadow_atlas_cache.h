@@ -11,12 +11,17 @@
 // free block into quarters until one is s (each quarter aligned to its own side); a freed block
 // merges with its three buddies into their parent when all four are free. Power-of-two squares
 // placed from largest to smallest never leave a hole that way, so a layout made afresh always
-// fits what its roots hold; later frames' changes can fragment it, and a request that finds no
-// block lays every view out afresh (all of them drawn that frame).
+// fits what its roots hold. Later frames' changes fragment it: a request that finds no free block
+// then takes the aligned block of its side whose views hold the fewest texels, and those views
+// move (drawn again this frame, where they find room). Only when the views' texels outgrow the
+// grid, a view outgrows the roots or no block can be emptied (each holds part of a larger view,
+// or of one placed this frame) is every view laid out afresh (all of them drawn that frame).
 //
-// Laying out afresh sizes the grid for kSlack times the views' texels, so that views growing a
-// tier find room without a new layout: memory traded for frames that keep their views (both are
-// reported, bench/RESULTS.md "Frames in motion, second part").
+// Laying out afresh makes the roots twice the largest view's side (up to the largest a view can
+// take), so a view growing a tier past the others still finds a block, and sizes the grid for
+// kSlack times the views' texels, so that views growing a tier find room without a new layout:
+// memory traded for frames that keep their views (both are reported, bench/RESULTS.md "Frames in
+// motion, second part").
 #include <compare>
 #include <cstddef>
 #include <cstdint>
@@ -49,12 +54,14 @@ struct ShadowAtlasCacheFrame {
     AtlasLayout layout;        // the cache's atlas: its size, and each request's square (request order)
     std::vector<bool> kept;    // per request: its square holds last frame's depth of the same signature
     bool laidOut = false;      // every view placed afresh this frame (first frame, or no block found)
+    uint32_t moved = 0;        // views moved out of a block another view needed (drawn again)
 };
 
 class ShadowAtlasCache {
 public:
-    // `maxSide`: the device's largest 2D image side.
-    explicit ShadowAtlasCache(uint32_t maxSide);
+    // `maxSide`: the device's largest 2D image side; `largestView`: the largest side a view can take
+    // (auto's largest tier, or the fixed resolution).
+    ShadowAtlasCache(uint32_t maxSide, uint32_t largestView);
 
     // Places this frame's views: each keeps its square while its size does, and is kept (not drawn)
     // where its signature is also unchanged. Views of earlier frames that are not requested give
@@ -72,12 +79,17 @@ private:
     // Block (x, y) of side `size`, free or taken.
     bool allocate(uint32_t size, AtlasRect& rect);
     void release(const AtlasRect& rect);
+    // Empties the aligned block of side `size` whose views (none of `placedNow`, none larger) hold
+    // the fewest texels, top-left first among equals: those views lose their squares and are
+    // returned. False where every block holds part of a larger or just placed view.
+    bool evictForBlock(uint32_t size, const std::set<ShadowViewKey>& placedNow, std::vector<ShadowViewKey>& evicted);
     // Every requested view placed afresh in a grid sized for them (kSlack).
     void layOut(const std::vector<CachedViewRequest>& requests);
     // The requests with storage, largest first (then by key): the order that never fragments.
     static std::vector<size_t> largestFirst(const std::vector<CachedViewRequest>& requests);
 
     uint32_t maxSide_;
+    uint32_t largestView_;
     uint32_t width_ = 0;
     uint32_t height_ = 0;
     uint32_t root_ = 0;  // the side of the grid's root squares

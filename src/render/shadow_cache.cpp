@@ -23,7 +23,8 @@ ShadowCache::ShadowCache(const vk::Context& context, const ShadowSettings& setti
     : context_(context),
       settings_(settings),
       keep_(mode == ShadowCacheMode::On),
-      atlas_(ShadowMaps::memoryLimits(context, settings).atlasSide) {
+      atlas_(ShadowMaps::memoryLimits(context, settings).atlasSide,
+             settings.autoResolution() ? settings.maxTier : settings.resolution) {
     PUNCTUAL_CHECK(mode != ShadowCacheMode::Off, "a shadow cache that is off is no cache");
     if (settings.virtualPages()) {
         throw Error("--shadow-cache", "caches whole views (--shadow-res auto or N); virtual pages are allocated afresh "
@@ -51,7 +52,10 @@ void ShadowCache::prepare(ShadowPlan& plan, const Scene& scene, const FrameLight
         view.rect = placed.layout.rects[v];
         view.gpu.atlasRect = atlasRectInUv(view.rect, plan.atlas);
     }
-    const MapsShape shape{plan.atlas.width, plan.atlas.height, plan.cubeResolution, plan.shadowedPoints};
+    // (The cube array's layers count the shadowed points only where it exists; otherwise it is a
+    // placeholder whatever the points.)
+    const MapsShape shape{plan.atlas.width, plan.atlas.height, plan.cubeResolution,
+                          plan.cubeResolution > 0 ? plan.shadowedPoints : 0};
     const bool madeAnew = !maps_ || shape != shape_;
     if (madeAnew) {
         maps_.emplace(context_, plan, settings_);
@@ -67,6 +71,7 @@ void ShadowCache::prepare(ShadowPlan& plan, const Scene& scene, const FrameLight
         (kept_[v] ? frame_.keptViews : frame_.drawnViews)++;
     }
     frame_.laidOut = placed.laidOut || madeAnew;
+    frame_.movedViews = placed.moved;
     frame_.atlasTexels = plan.atlas.texels();
     frame_.checkMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

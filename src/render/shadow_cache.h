@@ -57,6 +57,7 @@ struct ShadowCacheFrame {
     uint32_t drawnViews = 0;    // rendered views drawn
     uint32_t keepableViews = 0; // rendered views whose depth could have been kept (redraw: drawn anyway)
     bool laidOut = false;       // every view placed afresh (first frame, maps made anew, no block left)
+    uint32_t movedViews = 0;    // views moved out of a block another needed (drawn, not kept)
     uint64_t atlasTexels = 0;   // the cache's atlas
     uint64_t packedTexels = 0;  // the frame's own packing (--shadow-cache off)
     double checkMs = 0.0;       // CPU: fingerprints, signatures and placement

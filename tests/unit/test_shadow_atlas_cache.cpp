@@ -25,7 +25,7 @@ void expectRect(const AtlasRect& rect, uint32_t x, uint32_t y, uint32_t size) {
 // 1024^2 = 1,048,576: a 2 x 1 grid, 2048 x 1024. Largest first: the 1024 in the first root, the
 // 512s (by key: lights 1, 2) in the second's top half, the 256 under the first 512.
 TEST(ShadowAtlasCache, AFreshLayoutPlacesLargestFirstIntoBuddyBlocks) {
-    ShadowAtlasCache cache(16384);
+    ShadowAtlasCache cache(16384, 1024);
     const ShadowAtlasCacheFrame frame = cache.place({view(3, 256), view(2, 512), view(0, 1024), view(1, 512)});
     EXPECT_TRUE(frame.laidOut);
     EXPECT_EQ(frame.layout.width, 2048u);
@@ -38,7 +38,7 @@ TEST(ShadowAtlasCache, AFreshLayoutPlacesLargestFirstIntoBuddyBlocks) {
 }
 
 TEST(ShadowAtlasCache, UnchangedViewsKeepTheirSquaresAndTheirDepth) {
-    ShadowAtlasCache cache(16384);
+    ShadowAtlasCache cache(16384, 1024);
     const std::vector<CachedViewRequest> views = {view(0, 1024), view(1, 512), view(2, 512), view(3, 256)};
     const ShadowAtlasCacheFrame first = cache.place(views);
     const ShadowAtlasCacheFrame second = cache.place(views);
@@ -60,7 +60,7 @@ TEST(ShadowAtlasCache, UnchangedViewsKeepTheirSquaresAndTheirDepth) {
 // buddy) and takes the smallest free block that fits, the 256 beside view 3's under it; the others
 // neither move nor are drawn.
 TEST(ShadowAtlasCache, AViewThatChangesSizeMovesAloneAndIsDrawnAgain) {
-    ShadowAtlasCache cache(16384);
+    ShadowAtlasCache cache(16384, 1024);
     std::vector<CachedViewRequest> views = {view(0, 1024), view(1, 512), view(2, 512), view(3, 256)};
     cache.place(views);
     views[1].size = 256;
@@ -75,7 +75,7 @@ TEST(ShadowAtlasCache, AViewThatChangesSizeMovesAloneAndIsDrawnAgain) {
 // Views gone give their blocks back, and the four quarters of a block merge: after the 512s and
 // the 256 leave, a second 1024 fits the second root without a new layout.
 TEST(ShadowAtlasCache, FreedBlocksMergeWithTheirBuddies) {
-    ShadowAtlasCache cache(16384);
+    ShadowAtlasCache cache(16384, 1024);
     cache.place({view(0, 1024), view(1, 512), view(2, 512), view(3, 256)});
     const ShadowAtlasCacheFrame frame = cache.place({view(0, 1024), view(4, 1024)});
     EXPECT_FALSE(frame.laidOut);
@@ -83,10 +83,64 @@ TEST(ShadowAtlasCache, FreedBlocksMergeWithTheirBuddies) {
     expectRect(frame.layout.rects[1], 1024, 0, 1024);
 }
 
+// Roots are twice the largest view's side, up to the largest a view can take: four views of 512
+// where 2048 is possible lay out on roots of 1024 (4 x 512^2 x 1.25 = 1.25 roots: 2 x 1), and one
+// growing to 1024 finds a block there, moving nothing.
+TEST(ShadowAtlasCache, RootsLeaveRoomForAViewToGrowATier) {
+    ShadowAtlasCache cache(16384, 2048);
+    std::vector<CachedViewRequest> views = {view(0, 512), view(1, 512), view(2, 512), view(3, 512)};
+    const ShadowAtlasCacheFrame first = cache.place(views);
+    EXPECT_EQ(first.layout.width, 2048u);
+    EXPECT_EQ(first.layout.height, 1024u);
+    views[3].size = 1024;
+    const ShadowAtlasCacheFrame grown = cache.place(views);
+    EXPECT_FALSE(grown.laidOut);
+    EXPECT_EQ(grown.kept, (std::vector<bool>{true, true, true, false}));
+    expectRect(grown.layout.rects[3], 1024, 0, 1024);
+}
+
+// A full grid (a device of 2048 a side: four roots of 1024) with 256-texel holes in four different
+// 512 blocks: a new 512 takes the block whose views hold the fewest texels, top-left first (the
+// one with three views left, at (1024, 0)), and those three move into the three holes left, top
+// to bottom; every other view keeps its square and its depth.
+TEST(ShadowAtlasCache, AViewWithoutAFreeBlockMovesTheFewestTexels) {
+    ShadowAtlasCache cache(2048, 1024);
+    std::vector<CachedViewRequest> views = {view(100, 1024)};
+    for (uint32_t i = 0; i < 32; ++i) views.push_back(view(i, 256));  // the second and third roots, in Z order
+    const ShadowAtlasCacheFrame first = cache.place(views);
+    ASSERT_EQ(first.layout.width, 2048u);
+    ASSERT_EQ(first.layout.height, 2048u);
+    expectRect(first.layout.rects[1 + 5], 1792, 0, 256);
+    expectRect(first.layout.rects[1 + 21], 768, 1024, 256);
+    // Lights 0, 5, 16 and 21 leave (one hole in each of four 512 blocks); a 1024 fills the last root.
+    std::vector<CachedViewRequest> next;
+    for (const CachedViewRequest& v : views) {
+        if (v.key.light != 0 && v.key.light != 5 && v.key.light != 16 && v.key.light != 21) next.push_back(v);
+    }
+    next.push_back(view(101, 1024));
+    EXPECT_FALSE(cache.place(next).laidOut);
+    next.push_back(view(102, 512));  // 4 Mi texels in all: the grid, exactly
+    const ShadowAtlasCacheFrame frame = cache.place(next);
+    EXPECT_FALSE(frame.laidOut);
+    EXPECT_EQ(frame.moved, 3u);
+    expectRect(frame.layout.rects.back(), 1024, 0, 512);
+    size_t kept = 0;
+    for (size_t i = 0; i < next.size(); ++i) {
+        const uint32_t light = next[i].key.light;
+        if (light == 1) expectRect(frame.layout.rects[i], 1792, 0, 256);
+        if (light == 2) expectRect(frame.layout.rects[i], 0, 1024, 256);
+        if (light == 3) expectRect(frame.layout.rects[i], 768, 1024, 256);
+        const bool moved = light == 1 || light == 2 || light == 3 || light == 102;
+        EXPECT_EQ(frame.kept[i], !moved) << light;
+        kept += frame.kept[i];
+    }
+    EXPECT_EQ(kept, next.size() - 4);
+}
+
 // No block for a request: a view larger than the roots, or more texels than the grid holds. Every
 // view is placed afresh and drawn.
 TEST(ShadowAtlasCache, ARequestWithoutABlockLaysEveryViewOutAfresh) {
-    ShadowAtlasCache cache(16384);
+    ShadowAtlasCache cache(16384, 2048);
     cache.place({view(0, 512), view(1, 512)});
     const ShadowAtlasCacheFrame larger = cache.place({view(0, 512), view(1, 2048)});
     EXPECT_TRUE(larger.laidOut);
@@ -103,7 +157,7 @@ TEST(ShadowAtlasCache, ARequestWithoutABlockLaysEveryViewOutAfresh) {
 }
 
 TEST(ShadowAtlasCache, ViewsTooLargeForTheDeviceAreRefusedInOneLine) {
-    ShadowAtlasCache cache(4096);
+    ShadowAtlasCache cache(4096, 1024);
     std::vector<CachedViewRequest> many;
     for (uint32_t i = 0; i < 17; ++i) many.push_back(view(i, 1024));  // 17 roots: more than 4 x 4
     try {
@@ -123,7 +177,7 @@ TEST(ShadowAtlasCache, ViewsTooLargeForTheDeviceAreRefusedInOneLine) {
 // every square lies in the atlas, aligned to its own side, and overlaps no other; a view is kept
 // only where its size and signature are last frame's; and most views are kept.
 TEST(ShadowAtlasCache, SquaresNeverOverlapOverALongRandomSequence) {
-    ShadowAtlasCache cache(16384);
+    ShadowAtlasCache cache(16384, 1024);
     uint64_t state = 12345;
     auto next = [&](uint32_t n) {
         state = state * 6364136223846793005ull + 1442695040888963407ull;
