@@ -16,6 +16,7 @@ packages=(
   libmeshoptimizer-dev                                       # glTF buffer views compressed with EXT_meshopt_compression
   python3-matplotlib                                         # charts in bench/
   chromium                                                   # the browser test opens the HTML reports (tests/browser)
+  ffmpeg                                                     # play --video encodes the frames (H.264)
 )
 # The sanitizer build (scripts/test-sanitized.sh) needs nothing more: GCC's ASan and UBSan
 # runtimes come with build-essential.

@@ -21,6 +21,7 @@
 #include "bench/bench_rows.h"
 #include "bench/bench_run.h"
 #include "core/error.h"
+#include "core/run_program.h"
 #include "core/output_files.h"
 #include "core/output_folder.h"
 #include "lights/shadow_filters.h"
@@ -160,11 +161,11 @@ int runCompare(const BenchArgs& args) {
     }
     if (access("/usr/bin/python3", X_OK) != 0) throw Error("--compare", "needs /usr/bin/python3 (apt-get install python3)");
     const std::string script = bench::benchScriptDir() + "/compare_runs.py";
-    const int status = bench::runProgram("/usr/bin/python3", {script, args.compare->first, args.compare->second, *args.outDir});
+    const int status = runProgram("/usr/bin/python3", {script, args.compare->first, args.compare->second, *args.outDir});
     // Status 1: bad input, which the script has named in its one line (file and problem).
     if (status == 1) return 1;
     if (status != 0) {
-        bench::endAsTheChildEnded(status);
+        endAsTheChildEnded(status);
         throw Error("--compare", script + " exited with status " + std::to_string(status));
     }
     std::printf("bench: compared %s with %s; wrote %s/compare.html\n", args.compare->first.c_str(),

@@ -21,6 +21,7 @@
 #include "reference/shadow_validation.h"
 #include "report/frame_stats.h"
 #include "report/sequence_report.h"
+#include "report/sequence_video.h"
 #include "render/renderer.h"
 #include "render/shadow_cache.h"
 #include "vk/context.h"
@@ -32,7 +33,7 @@ using namespace report;
 namespace {
 
 constexpr const char* kUsage = R"(usage: punctual play [SCENE] [render options] --out-dir DIR [--fps F] [--seconds S]
-                     [--save-frames] [--validate-every K] [--shadow-cache MODE]
+                     [--save-frames] [--video] [--validate-every K] [--shadow-cache MODE]
 
 Renders a sequence: the scene posed every 1/F s from 0 to S (a glTF file's animations, or a
 built-in scene's path: the hall's walk, the street's drive), each frame rendered and timed as
@@ -44,6 +45,8 @@ built-in scene's path: the hall's walk, the street's drive), each frame rendered
   DIR/frame_times.svg  the total GPU time per frame, with its p50, p95 and p99
   DIR/index.html       all of it on one page
   DIR/frame-NNNN.png   with --save-frames: every frame
+  DIR/frames.mp4       with --video: the frames as an H.264 video at F frames a second (needs
+                       ffmpeg on PATH: Debian's ffmpeg package), shown on the page
 With --validate-every K, every K-th frame (the first included) also has its shadows compared with
 Embree's ray-cast visibility, as `punctual validate` compares them: each such frame's compared
 pixels, false shadow, false lit and misclassified share outside the edge band join its row; and
@@ -72,6 +75,7 @@ struct PlayArgs {
     std::optional<double> seconds;
     uint32_t validateEvery = 0;  // 0: no frame validated
     bool saveFrames = false;
+    bool video = false;
     render::ShadowCacheMode shadowCache = render::ShadowCacheMode::Off;
     bool help = false;
 };
@@ -113,6 +117,8 @@ PlayArgs parsePlayArgs(const std::vector<std::string>& args) {
             parsed.shadowCache = parseVariant(render::kShadowCacheModes, value(i), "--shadow-cache").value;
         } else if (arg == "--save-frames") {
             parsed.saveFrames = true;
+        } else if (arg == "--video") {
+            parsed.video = true;
         } else if (arg == "--time") {
             throw Error("--time", "play sets each frame's time itself (--fps F, --seconds S)");
         } else if (arg == "--out" || arg == "--stats" || arg == "--heatmap" || arg == "--shadow-density" ||
@@ -153,9 +159,15 @@ nlohmann::json frameValidationJson(const Scene& scene, render::Renderer& rendere
                            {"edge_band", c.edgeBand},
                            {"misclassified_outside_band", c.misclassifiedOutsideBand()}};
     reference::StabilityFrame frame = reference::stabilityFrame(scene, factors, validation);
+    std::optional<uint32_t> sun;
+    if (validation.sun) sun = validation.sun->sceneLight;
+    reference::recordMapResolutions(frame, renderer.shadowPlan(), renderer.lights().sceneLightIndex, sun);
     if (previous) {
         const reference::ShadowFlips flips = reference::countShadowFlips(*previous, frame);
-        json["flips"] = {{"compared", flips.compared}, {"flips", flips.flips}, {"rate", flips.rate()}};
+        json["flips"] = {{"compared", flips.compared},
+                         {"flips", flips.flips},
+                         {"rate", flips.rate()},
+                         {"where_maps_resized", flips.flipsWhereMapsResized}};
     }
     previous = std::move(frame);
     return json;
@@ -266,12 +278,12 @@ nlohmann::json sequenceHeader(const Scene& scene, const vk::Context& context, co
 // Every file of the run, frames.json last: it lists them all, so the next run into DIR removes the
 // frames it does not write again.
 nlohmann::json commitSequence(const std::string& dir, OutputFiles& outputs, const std::vector<SequenceFrame>& frames,
-                              const nlohmann::json& header, const std::vector<std::string>& frameImages) {
+                              const nlohmann::json& header, const std::vector<std::string>& frameImages, bool video) {
     const OutputFolderLayout& layout = sequenceFolderLayout();
     nlohmann::json document = sequenceJson(frames, header);
     outputs.add(dir + "/frames.csv", sequenceCsv(frames));
     outputs.add(dir + "/frame_times.svg", frameTimesSvg(frames));
-    outputs.add(dir + "/index.html", sequenceHtml(document, frameImages));
+    outputs.add(dir + "/index.html", sequenceHtml(document, frameImages, video));
     const std::vector<std::string> files = outputFolderFiles(outputs, dir, layout);
     document["files"] = files;
     // Compact: a frame's statistics indented run to some 130 lines, a sequence's to tens of
@@ -318,26 +330,33 @@ int runPlayCommand(const std::vector<std::string>& args) {
     std::vector<SequenceFrame> frames;
     OutputFiles outputs;
     std::vector<std::string> frameImages;
+    std::optional<SequenceVideo> video;  // checked for ffmpeg before the first frame
+    if (parsed.video) video.emplace();
     for (uint32_t i = 0; i < count; ++i) {
         ImageRgba8 image;
         frames.push_back(player.play(i, double(i) / parsed.fps, image));
+        if (!parsed.saveFrames && !video) continue;
+        std::string png = encodePng(image);
+        if (video) video->addFrame(png);
         if (parsed.saveFrames) {
             frameImages.push_back(frameImageName(i));
-            outputs.add(dir + "/" + frameImages.back(), encodePng(image));
+            outputs.add(dir + "/" + frameImages.back(), std::move(png));
         }
     }
+    if (video) outputs.add(dir + "/frames.mp4", video->encode(parsed.fps));
     warnAboutReducedFrames(frames);
     if (context.validationMessageCount() > 0) {
         throw Error("vulkan", std::to_string(context.validationMessageCount()) +
                                   " validation message(s) (printed above); no output written");
     }
     const nlohmann::json document =
-        commitSequence(dir, outputs, frames, sequenceHeader(still, context, parsed, seconds, count, options, settings), frameImages);
+        commitSequence(dir, outputs, frames, sequenceHeader(still, context, parsed, seconds, count, options, settings), frameImages,
+                       parsed.video);
     const nlohmann::json& total = document["summary"]["total"];
     std::printf("play: %s, %u frames at %g fps over %g s; GPU ms per frame p50 %.2f, p95 %.2f, p99 %.2f, max %.2f\n",
                 still.source.c_str(), count, parsed.fps, seconds, total["p50"].get<double>(), total["p95"].get<double>(),
                 total["p99"].get<double>(), total["max"].get<double>());
-    std::printf("wrote %s/index.html, frames.csv and frames.json\n", dir.c_str());
+    std::printf("wrote %s/index.html, frames.csv%s and frames.json\n", dir.c_str(), parsed.video ? ", frames.mp4" : "");
     return 0;
 }
 

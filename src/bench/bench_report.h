@@ -12,15 +12,6 @@ namespace punctual::bench {
 // time), else bench/ beside the working directory.
 std::string benchScriptDir();
 
-// Runs `program` with `args` (no shell), its output passed through; returns its exit status
-// (127 when it could not be started).
-// SIGINT and SIGQUIT are the child's while it runs (this process ignores them, as system() does).
-int runProgram(const std::string& program, const std::vector<std::string>& args);
-
-// For a child's status of 128 + N (it ended on signal N, or exited so after handling it): ends
-// this process by signal N too. Returns `status` for any other.
-int endAsTheChildEnded(int status);
-
 // Whether /usr/bin/python3 can import matplotlib. When it cannot, `why` gets one line saying
 // what to install.
 bool chartsAvailable(std::string& why);

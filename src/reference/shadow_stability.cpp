@@ -64,15 +64,34 @@ StabilityFrame stabilityFrame(const Scene& scene, const ShadowFactorImage& facto
     return frame;
 }
 
+void recordMapResolutions(StabilityFrame& frame, const ShadowPlan& plan, const std::vector<uint32_t>& sceneLightIndex,
+                          std::optional<uint32_t> sunLight) {
+    frame.mapResolutions.clear();
+    for (const ShadowView& view : plan.views) {
+        if (view.isCascade && !sunLight) continue;
+        const uint32_t light = view.isCascade ? *sunLight : sceneLightIndex.at(view.packedLight);
+        frame.mapResolutions[light].push_back(view.resolution);
+    }
+}
+
 ShadowFlips countShadowFlips(const StabilityFrame& previous, const StabilityFrame& current) {
     PUNCTUAL_CHECK(previous.width == current.width && previous.height == current.height, "frames of different sizes");
     // The lights present in both frames that did not move.
-    std::vector<std::pair<const std::vector<PixelVerdict>*, const std::vector<PixelVerdict>*>> lights;
+    struct Compared {
+        const std::vector<PixelVerdict>* before;
+        const std::vector<PixelVerdict>* now;
+        bool resized;  // its maps' resolutions differ between the frames
+    };
+    std::vector<Compared> lights;
     for (const auto& [index, verdicts] : current.verdicts) {
         const auto before = previous.verdicts.find(index);
         if (before == previous.verdicts.end() || index >= current.lights.size() || index >= previous.lights.size()) continue;
         if (!sameLight(previous.lights[index], current.lights[index])) continue;
-        lights.emplace_back(&before->second, &verdicts);
+        const auto sizesBefore = previous.mapResolutions.find(index);
+        const auto sizesNow = current.mapResolutions.find(index);
+        const bool resized = sizesBefore != previous.mapResolutions.end() && sizesNow != current.mapResolutions.end() &&
+                             sizesBefore->second != sizesNow->second;
+        lights.push_back({&before->second, &verdicts, resized});
     }
     ShadowFlips flips;
     const size_t pixels = size_t(current.width) * current.height;
@@ -86,13 +105,15 @@ ShadowFlips countShadowFlips(const StabilityFrame& previous, const StabilityFram
         const float depth = -(current.view * glm::vec4(p, 1.0f)).z;
         const float tolerance = 2.0f * gpu::screenPixelWorldSize(depth, current.pixelSpanAtUnitDepth);
         if (!(glm::length(previous.positions[size_t(j)] - p) <= tolerance)) continue;
-        for (const auto& [before, now] : lights) {
-            const PixelVerdict a = (*before)[size_t(j)];
-            const PixelVerdict b = (*now)[i];
+        for (const Compared& light : lights) {
+            const PixelVerdict a = (*light.before)[size_t(j)];
+            const PixelVerdict b = (*light.now)[i];
             if (a == PixelVerdict::NotCompared || b == PixelVerdict::NotCompared || rayLit(a) != rayLit(b)) continue;
-            if (!uniformAround(previous, *before, size_t(j))) continue;
+            if (!uniformAround(previous, *light.before, size_t(j))) continue;
             ++flips.compared;
-            flips.flips += gpuLit(a) != gpuLit(b);
+            const bool flipped = gpuLit(a) != gpuLit(b);
+            flips.flips += flipped;
+            flips.flipsWhereMapsResized += flipped && light.resized;
         }
     }
     return flips;

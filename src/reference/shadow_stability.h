@@ -17,11 +17,13 @@
 // Generalises the cascades study's shimmer count (bench "failures") to every light and mode.
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "metrics/shadow_factor_image.h"
+#include "lights/shadow_setup.h"
 #include "reference/shadow_validation.h"
 #include "scene/scene.h"
 
@@ -38,13 +40,26 @@ struct StabilityFrame {
     std::vector<uint8_t> covered;
     std::map<uint32_t, std::vector<PixelVerdict>> verdicts;  // by scene light index (the sun's included)
     std::vector<Light> lights;                               // the scene's, to tell which moved
+    // By scene light index: its views' resolutions (a spot's one, a point's six faces, the sun's
+    // cascades), to tell the flips that come with a resized map (recordMapResolutions; empty: not
+    // told).
+    std::map<uint32_t, std::vector<uint32_t>> mapResolutions;
 };
 
 StabilityFrame stabilityFrame(const Scene& scene, const ShadowFactorImage& factors, const ShadowValidation& validation);
 
+// Fills frame.mapResolutions from the frame's shadow plan (`sceneLightIndex`: FrameLights's, from
+// packed light to scene light; the sun's cascades under `sunLight`, the scene's directional light).
+void recordMapResolutions(StabilityFrame& frame, const ShadowPlan& plan, const std::vector<uint32_t>& sceneLightIndex,
+                          std::optional<uint32_t> sunLight);
+
 struct ShadowFlips {
     uint64_t compared = 0;  // (pixel, light) tests on the same static point with an unchanged truth
     uint64_t flips = 0;     // of them, where the GPU's state changed
+    // Of the flips, those of a light whose maps changed resolution between the frames (a tier or,
+    // for the sun, a cascade refitted): the rest flipped under maps of the same size, where the
+    // texels slid (a cascade following the camera) or the samples moved across a texel's error.
+    uint64_t flipsWhereMapsResized = 0;
 
     double rate() const { return compared ? double(flips) / double(compared) : 0.0; }
 };

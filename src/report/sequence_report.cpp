@@ -91,16 +91,18 @@ nlohmann::json sequenceSummaryJson(const std::vector<SequenceFrame>& frames) {
     std::vector<double> misclassified;
     double flipTests = 0.0;
     double flips = 0.0;
+    double resizedFlips = 0.0;
     for (const SequenceFrame& f : frames) {
         if (!f.stats.contains("validation")) continue;
         misclassified.push_back(counter(f.stats, "/validation/misclassified_outside_band"));
         flipTests += counter(f.stats, "/validation/flips/compared");
         flips += counter(f.stats, "/validation/flips/flips");
+        resizedFlips += counter(f.stats, "/validation/flips/where_maps_resized");
     }
     if (!misclassified.empty()) {
         const nlohmann::json s = spread(misclassified);
         summary["validation"] = {{"frames", misclassified.size()}, {"mean", s["mean"]}, {"max", s["max"]},
-                                 {"flip_tests", flipTests}, {"flips", flips},
+                                 {"flip_tests", flipTests}, {"flips", flips}, {"flips_where_maps_resized", resizedFlips},
                                  {"flip_rate", flipTests > 0.0 ? flips / flipTests : 0.0}};
     }
     return summary;
@@ -195,7 +197,7 @@ std::string frameTimesSvg(const std::vector<SequenceFrame>& frames) {
     return svg.str();
 }
 
-std::string sequenceHtml(const nlohmann::json& document, const std::vector<std::string>& frameImages) {
+std::string sequenceHtml(const nlohmann::json& document, const std::vector<std::string>& frameImages, bool video) {
     std::ostringstream html;
     html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>punctual play</title>\n"
          << "<style>body{font-family:sans-serif} table{border-collapse:collapse} td,th{border:1px solid #aaa;"
@@ -206,6 +208,7 @@ std::string sequenceHtml(const nlohmann::json& document, const std::vector<std::
          << escapeHtml(document.value("device", "")) << ". Settings: " << escapeHtml(document.value("settings", nlohmann::json()).dump())
          << ". Per-frame figures: <a href=\"frames.csv\">frames.csv</a>, <a href=\"frames.json\">frames.json</a>.</p>\n"
          << "<p><img src=\"frame_times.svg\" alt=\"GPU time per frame\"></p>\n"
+         << (video ? "<p><video src=\"frames.mp4\" controls loop muted></video></p>\n" : "")
          << "<table><tr><th>pass</th><th>p50 ms</th><th>p95 ms</th><th>p99 ms</th><th>max ms</th><th>mean ms</th></tr>\n";
     std::vector<std::string> passes = document.value("passes", std::vector<std::string>{});
     passes.push_back("total");
@@ -245,7 +248,7 @@ std::string sequenceHtml(const nlohmann::json& document, const std::vector<std::
 }
 
 const OutputFolderLayout& sequenceFolderLayout() {
-    static const OutputFolderLayout layout{"frames.json", {"frames.json", "frames.csv", "frame_times.svg", "index.html", "frame-*.png"}, {}};
+    static const OutputFolderLayout layout{"frames.json", {"frames.json", "frames.csv", "frame_times.svg", "index.html", "frame-*.png", "frames.mp4"}, {}};
     return layout;
 }
 

@@ -47,12 +47,12 @@ std::string sequenceCsv(const std::vector<SequenceFrame>& frames);
 // lines and labels.
 std::string frameTimesSvg(const std::vector<SequenceFrame>& frames);
 
-// index.html: the header, the percentile table, the chart, and the frames (frame-NNNN.png) where
-// `frameImages` names them.
-std::string sequenceHtml(const nlohmann::json& document, const std::vector<std::string>& frameImages);
+// index.html: the header, the percentile table, the chart, the video (frames.mp4) where `video`,
+// and the frames (frame-NNNN.png) where `frameImages` names them.
+std::string sequenceHtml(const nlohmann::json& document, const std::vector<std::string>& frameImages, bool video = false);
 
-// The play command's folder: frames.json (the manifest), frames.csv, frame_times.svg, index.html
-// and frame-*.png.
+// The play command's folder: frames.json (the manifest), frames.csv, frame_times.svg, index.html,
+// frame-*.png and frames.mp4.
 const OutputFolderLayout& sequenceFolderLayout();
 
 // "frame-0007.png".

@@ -4,10 +4,12 @@
 // and bad input fails with one line and writes nothing.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 #include "animated_gltf.h"
 #include "core/image.h"
+#include "core/run_program.h"
 #include "gpu_test_support.h"
 #include "report/sequence_report.h"
 
@@ -171,6 +173,35 @@ TEST(PlayCli, BadInputFailsWithOneLineAndWritesNothing) {
     };
     for (const auto& [args, mention] : cases) testing::expectOneClearError(testing::runPunctual(folder, args), args, mention);
     testing::expectNothingLeftBehind(folder, "refused plays", {"still.gltf"});
+}
+
+// --video: where ffmpeg is on PATH, the frames as an MP4 (an ISO media file: "ftyp" at byte 4),
+// listed in frames.json and shown on the page; where it is not, one line naming ffmpeg before
+// anything is rendered, and nothing written.
+TEST(PlayCli, AVideoIsEncodedWhereFfmpegIsAndRefusedWhereItIsNot) {
+    testing::TempFolder folder;
+    const std::string dir = folder.file("walk");
+    const std::string args = cat("play --scene hall --fps 2 --seconds 1 --size 64x36 --video --out-dir ", quoted(dir));
+    if (!findOnPath("ffmpeg").empty()) {
+        const testing::RunResult run = testing::runPunctual(folder, args);
+        ASSERT_EQ(run.exitCode, 0) << run.err;
+        const std::string video = testing::readText(dir + "/frames.mp4");
+        ASSERT_GT(video.size(), 8u);
+        EXPECT_EQ(video.substr(4, 4), "ftyp");
+        const nlohmann::json document = nlohmann::json::parse(testing::readText(dir + "/frames.json"));
+        EXPECT_NE(document["files"].dump().find("frames.mp4"), std::string::npos);
+        EXPECT_NE(testing::readText(dir + "/index.html").find("<video src=\"frames.mp4\""), std::string::npos);
+        std::filesystem::remove_all(dir);
+    } else {
+        GTEST_LOG_(INFO) << "ffmpeg is not on PATH: only its absence is tested";
+    }
+    // Without ffmpeg on PATH (an empty folder as PATH: the shell that runs punctual is /bin/sh).
+    const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+    ::setenv("PATH", folder.path().c_str(), 1);
+    const testing::RunResult refused = testing::runPunctual(folder, args);
+    ::setenv("PATH", path.c_str(), 1);
+    testing::expectOneClearError(refused, args, "--video: needs ffmpeg on PATH");
+    testing::expectNothingLeftBehind(folder, "refused video");
 }
 
 }  // namespace

@@ -105,5 +105,38 @@ TEST(ShadowStability, PixelsReprojectIntoTheOtherCamera) {
     EXPECT_EQ(flips.flips, 0u);
 }
 
+// Flips are told apart by whether the light's maps changed resolution between the frames: the
+// point light's six faces, one of them a tier finer in the second frame, make both flips "resized";
+// with the same faces, neither is. recordMapResolutions reads them from the plan.
+TEST(ShadowStability, FlipsUnderAResizedMapAreToldApart) {
+    const StabilityFrame before = planeFrame(glm::vec3(0.0f, 0.0f, 5.0f), PixelVerdict::AgreeLit);
+    StabilityFrame after = before;
+    after.verdicts[0][5] = PixelVerdict::FalseShadow;
+    after.verdicts[0][40] = PixelVerdict::FalseShadow;
+    ShadowPlan plan;
+    for (uint32_t face = 0; face < 6; ++face) {
+        ShadowView view;
+        view.isPoint = true;
+        view.face = face;
+        view.packedLight = 0;
+        view.resolution = 256;
+        plan.views.push_back(view);
+    }
+    StabilityFrame first = before;
+    recordMapResolutions(first, plan, {0u}, std::nullopt);
+    EXPECT_EQ(first.mapResolutions.at(0), std::vector<uint32_t>(6, 256u));
+    StabilityFrame same = after;
+    recordMapResolutions(same, plan, {0u}, std::nullopt);
+    ShadowFlips flips = countShadowFlips(first, same);
+    EXPECT_EQ(flips.flips, 2u);
+    EXPECT_EQ(flips.flipsWhereMapsResized, 0u);
+    plan.views[3].resolution = 512;
+    StabilityFrame resized = after;
+    recordMapResolutions(resized, plan, {0u}, std::nullopt);
+    flips = countShadowFlips(first, resized);
+    EXPECT_EQ(flips.flips, 2u);
+    EXPECT_EQ(flips.flipsWhereMapsResized, 2u);
+}
+
 }  // namespace
 }  // namespace punctual::reference
