@@ -1,12 +1,11 @@
 #include "lights/shadow_view_signature.h"
 
-#include <algorithm>
-#include <cstring>
+#include "core/byte_words.h"
 
 namespace punctual {
 namespace {
 
-// 64-bit FNV-1a over 8-byte words (the last one zero-padded).
+// 64-bit FNV-1a over 64-bit words.
 class WordHash {
 public:
     void add(uint64_t word) {
@@ -14,13 +13,7 @@ public:
         hash_ *= 0x100000001b3ull;
     }
     void addBytes(const void* data, size_t size) {
-        add(size);
-        const auto* bytes = static_cast<const unsigned char*>(data);
-        for (size_t offset = 0; offset < size; offset += 8) {
-            uint64_t word = 0;
-            std::memcpy(&word, bytes + offset, std::min<size_t>(8, size - offset));
-            add(word);
-        }
+        addBytesAsWords(data, size, [&](uint64_t word) { add(word); });
     }
     template <typename T>
     void addValue(const T& value) {

@@ -6,6 +6,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "core/byte_words.h"
 #include "core/check.h"
 #include "vk/descriptors.h"
 
@@ -25,15 +26,8 @@ public:
             add(uint64_t(handle));  // 32-bit builds: non-dispatchable handles are 64-bit integers
         }
     }
-    // Plain bytes, eight to a word, after their count (so that "ab" + "c" and "a" + "bc" differ).
     void addBytes(const void* data, size_t size) {
-        add(size);
-        const auto* bytes = static_cast<const unsigned char*>(data);
-        for (size_t offset = 0; offset < size; offset += 8) {
-            uint64_t word = 0;
-            std::memcpy(&word, bytes + offset, std::min<size_t>(8, size - offset));
-            add(word);
-        }
+        addBytesAsWords(data, size, [&](uint64_t word) { add(word); });
     }
     // SPIR-V as its size and a 64-bit FNV-1a hash of its words: the whole module would make each
     // key about 100 KiB (the forward shader).
