@@ -72,6 +72,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
         render::RenderSettings settings = renderSettingsFrom(options);
         settings.method = method;
         settings.collectShadowFactors = options.shadows.enabled;
+        // Every method plans the same shadows: a budget that reduced views is said once, by the first.
+        settings.warnReducedShadows = !headerPrinted;
         render::Renderer renderer(context, scene, settings);
         if (!headerPrinted) {
             // The same lights are shadowed for every method: said once, above the table.

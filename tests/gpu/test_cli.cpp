@@ -172,6 +172,16 @@ TEST(Cli, CompareShowsEveryMethodSideBySide) {
     }
 }
 
+// A budget that reduces views reduces them for every method alike: compare says so once, not once
+// a method.
+TEST(Cli, CompareWarnsOnceAboutTheShadowBudget) {
+    testing::TempFolder folder;
+    const RunResult run = runPunctual(folder, "compare --size 160x90 --shadow-budget 1");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_EQ(testing::lineCount(run.err), 1u) << run.err;
+    EXPECT_NE(run.err.find("to fit --shadow-budget 1"), std::string::npos) << run.err;
+}
+
 TEST(Cli, HelpExitsZero) {
     testing::TempFolder folder;
     const RunResult run = runPunctual(folder, "render --help");
