@@ -6,7 +6,7 @@ index.html and failures.html, validate's report.html (two scenes) and play's ind
 
 Writes the pages into a temporary folder (or DIR, kept) with a small bench: the 2:1 mix series
 (charts, images) and the failure study (failures.html's charts) at --quick and a tiny size, then
-validate runs of the hall and the outdoor scene, then play along the hall's walk with its frames.
+validate runs of the hall and the outdoor scene, then play along the hall's walk with its frames (and its video, where ffmpeg is installed).
 Exits 0 when every page is clean, 1 with every
 problem listed otherwise, and 77 (skipped) with one line saying why where Chromium is missing or
 does not start; Chromium is tried first, so a skip costs no bench.
@@ -14,6 +14,7 @@ does not start; Chromium is tried first, so a skip costs no bench.
 
 import argparse
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -53,7 +54,10 @@ def write_pages(punctual, folder):
         pages.append(os.path.join(validate, "report.html"))
     # A sequence: its chart (SVG) and its saved frames.
     play = os.path.join(folder, "play")
-    run([punctual, "play", "--scene", "hall", "--fps", "0.5", "--size", SIZE, "--save-frames", "--out-dir", play])
+    # With its video where ffmpeg is installed (play --video needs it on PATH).
+    video = ["--video"] if shutil.which("ffmpeg") else []
+    run([punctual, "play", "--scene", "hall", "--fps", "0.5", "--size", SIZE, "--save-frames", *video,
+         "--out-dir", play])
     pages.append(os.path.join(play, "index.html"))
     return pages
 
