@@ -236,10 +236,14 @@ public:
         stats["shadows"].erase("views");
         stats["shadows"]["tier_switches"] = countTierSwitches(renderer, previousTiers_);
         if (const render::ShadowCacheFrame* cache = renderer.shadowCacheFrame()) {
-            stats["shadows"]["cache"] = {{"kept_views", cache->keptViews},     {"drawn_views", cache->drawnViews},
-                                         {"keepable_views", cache->keepableViews}, {"moved_views", cache->movedViews},
-                                         {"laid_out", cache->laidOut ? 1 : 0},       {"atlas_texels", cache->atlasTexels},
-                                         {"packed_texels", cache->packedTexels}, {"check_ms", cache->checkMs}};
+            stats["shadows"]["cache"] = {{"kept_views", cache->keptViews},
+                                         {"drawn_views", cache->drawnViews},
+                                         {"keepable_views", cache->keepableViews},
+                                         {"moved_views", cache->movedViews},
+                                         {"laid_out", cache->laidOut ? 1 : 0},  // a number: frames.csv's counters read numbers
+                                         {"atlas_texels", cache->atlasTexels},
+                                         {"packed_texels", cache->packedTexels},
+                                         {"check_ms", cache->checkMs}};
         }
         if (validated) stats["validation"] = frameValidationJson(scene, renderer, lastValidated_);
         image = std::move(result.image);

@@ -72,7 +72,8 @@ public:
     ShadowCache& operator=(const ShadowCache&) = delete;
 
     // Moves the plan's atlas views into the cache's atlas (plan.atlas, each view's rect and atlas
-    // UV) and decides which keep their depth; makes the maps anew when their shape changed.
+    // UV) and decides which keep their depth; makes the maps anew when their shape changed. One
+    // renderer at a time: the last one given the cache must be gone (its frames done) first.
     void prepare(ShadowPlan& plan, const Scene& scene, const FrameLights& lights);
 
     const ShadowMaps& maps() const { return *maps_; }

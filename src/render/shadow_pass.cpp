@@ -318,7 +318,7 @@ void ShadowPass::recordAtlas(const FrameContext& frame, const Target& atlas) con
         }
         recordView(frame, index);
     }
-    if (plan_.atlas.width > 0) drawPages(frame);
+    drawPages(frame);
     vkCmdEndRenderPass(frame.cmd);
 }
 
