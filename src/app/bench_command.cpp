@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/option_values.h"
 #include "cli/options.h"
 #include "cli/output_paths.h"
 #include "cli/scene_source.h"
@@ -107,10 +108,7 @@ uint64_t parseCount(const std::string& option, const std::string& text, uint64_t
 
 BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
     BenchArgs parsed;
-    auto value = [&](size_t& i) -> const std::string& {
-        if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error(args[i], "needs a value");
-        return args[++i];
-    };
+    auto value = [&](size_t& i) -> const std::string& { return optionValue(args, i); };
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
         if (arg == "--help" || arg == "-h") {

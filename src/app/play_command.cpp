@@ -93,10 +93,7 @@ double parseNumberIn(const std::string& option, const std::string& text, double 
 
 PlayArgs parsePlayArgs(const std::vector<std::string>& args) {
     PlayArgs parsed;
-    const auto value = [&](size_t& i) -> const std::string& {
-        if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error(args[i], "needs a value");
-        return args[++i];
-    };
+    const auto value = [&](size_t& i) -> const std::string& { return optionValue(args, i); };
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
         if (arg == "--help" || arg == "-h") {

@@ -8,6 +8,7 @@
 
 #include <tbb/task_arena.h>
 
+#include "cli/option_values.h"
 #include "cli/options.h"
 #include "cli/output_paths.h"
 #include "cli/scene_source.h"
@@ -81,8 +82,7 @@ int runReferenceCommand(const std::vector<std::string>& args) {
         if (args[i] == "--no-shadows") {
             shadows = false;
         } else if (args[i] == "--shadows") {
-            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--shadows", "needs a value");
-            const std::string& value = args[++i];
+            const std::string& value = optionValue(args, i);
             if (value != "on" && value != "off") throw Error("--shadows", "expected on or off, got '" + value + "'");
             shadows = value == "on";
         } else {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <system_error>
 
+#include "cli/option_values.h"
 #include "cli/options.h"
 #include "cli/output_paths.h"
 #include "app/reference_command.h"
@@ -72,13 +73,11 @@ ValidateArgs parseValidateArgs(const std::vector<std::string>& args) {
             parsed.help = true;
             return parsed;
         } else if (args[i] == "--out-dir") {
-            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--out-dir", "needs a value");
-            parsed.outDir = args[++i];
+            parsed.outDir = optionValue(args, i);
         } else if (args[i] == "--export-exr") {
             parsed.exportExr = true;
         } else if (args[i] == "--edge-band-px") {
-            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error("--edge-band-px", "needs a value");
-            parsed.edgeBandPixels = parseEdgeBandPixels(args[++i]);
+            parsed.edgeBandPixels = parseEdgeBandPixels(optionValue(args, i));
         } else if (args[i] == "--out" || args[i] == "--stats" || args[i] == "--heatmap") {
             throw Error(args[i], "not an option of validate (it writes into --out-dir)");
         } else {

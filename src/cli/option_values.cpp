@@ -6,6 +6,11 @@
 
 namespace punctual::cli {
 
+const std::string& optionValue(const std::vector<std::string>& args, size_t& i) {
+    if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error(args[i], "needs a value");
+    return args[++i];
+}
+
 uint32_t parseWhole(const std::string& option, const std::string& text) {
     uint32_t value = 0;
     if (!parseNumber(text, value)) throw Error(option, "expected a whole number, got '" + text + "'");

@@ -3,6 +3,7 @@
 // characters) and refused in one line naming the option. Shared by the render option table
 // (cli/render_option_table.cpp) and the commands' own options.
 #include <charconv>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -20,6 +21,11 @@ bool parseNumber(const std::string& text, T& value) {
     const auto [end, ec] = std::from_chars(first, last, value);
     return ec == std::errc() && end == last && !text.empty();
 }
+
+// The value after the option args[i], with i moved onto it. An option's value never starts with
+// "--": `--heatmap --out x.png` is a missing value, not a heat map written to a file called
+// "--out". Throws Error(args[i], "needs a value").
+const std::string& optionValue(const std::vector<std::string>& args, size_t& i);
 
 // A whole number. Options that are render settings take any: their ranges are checked in one
 // place, validateRenderSettings (render/render_settings.h), once every option is read.

@@ -133,12 +133,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         const std::string& arg = args[i];
         if (const RenderOptionSpec* spec = findRenderOption(arg)) {
             std::string value;
-            if (spec->valueName) {
-                // An option's value never starts with "--": `--heatmap --out x.png` is a missing
-                // value, not a heat map written to a file called "--out".
-                if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0) throw Error(arg, "needs a value");
-                value = args[++i];
-            }
+            if (spec->valueName) value = optionValue(args, i);
             spec->apply(options, value, notes);
         } else if (!arg.empty() && arg[0] == '-') {
             throw Error(arg, "unknown option (see punctual render --help)");
