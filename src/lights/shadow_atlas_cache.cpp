@@ -8,6 +8,14 @@
 #include "core/error.h"
 
 namespace punctual {
+namespace {
+
+// The order views are placed in: largest first, then by key (deterministic).
+bool placedBefore(const CachedViewRequest& a, const CachedViewRequest& b) {
+    return a.size != b.size ? a.size > b.size : a.key < b.key;
+}
+
+}  // namespace
 
 ShadowAtlasCache::ShadowAtlasCache(uint32_t maxSide, uint32_t largestView)
     : maxSide_(maxSide), largestView_(largestView) {}
@@ -17,10 +25,7 @@ std::vector<size_t> ShadowAtlasCache::largestFirst(const std::vector<CachedViewR
     for (size_t i = 0; i < requests.size(); ++i) {
         if (requests[i].size > 0) order.push_back(i);
     }
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        if (requests[a].size != requests[b].size) return requests[a].size > requests[b].size;
-        return requests[a].key < requests[b].key;
-    });
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return placedBefore(requests[a], requests[b]); });
     return order;
 }
 
@@ -179,9 +184,8 @@ ShadowAtlasCacheFrame ShadowAtlasCache::place(const std::vector<CachedViewReques
             fits = evictForBlock(request.size, placedNow, evicted) && allocate(request.size, rect);
             for (const ShadowViewKey& key : evicted) {
                 const size_t moved = requested.at(key);
-                const auto at = std::upper_bound(pending.begin() + ptrdiff_t(p) + 1, pending.end(), moved, [&](size_t a, size_t b) {
-                    return requests[a].size != requests[b].size ? requests[a].size > requests[b].size : requests[a].key < requests[b].key;
-                });
+                const auto at = std::upper_bound(pending.begin() + ptrdiff_t(p) + 1, pending.end(), moved,
+                                                 [&](size_t a, size_t b) { return placedBefore(requests[a], requests[b]); });
                 pending.insert(at, moved);
                 ++frame.moved;
             }
