@@ -56,11 +56,13 @@ void ShadowCache::prepare(ShadowPlan& plan, const Scene& scene, const FrameLight
     // placeholder whatever the points.)
     const MapsShape shape{plan.atlas.width, plan.atlas.height, plan.cubeResolution,
                           plan.cubeResolution > 0 ? plan.shadowedPoints : 0};
-    const bool madeAnew = !maps_ || shape != shape_;
+    const bool madeAnew = !maps_ || !shape.sameAtlas(shape_);
     if (madeAnew) {
         maps_.emplace(context_, plan, settings_);
-        shape_ = shape;
+    } else if (!shape.sameCubes(shape_)) {
+        maps_->remakePointCubes(context_, plan, settings_);  // drawn every frame: nothing kept there
     }
+    shape_ = shape;
     atlasLayoutBefore_ = madeAnew ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     kept_.assign(plan.views.size(), false);
     for (size_t v = 0; v < plan.views.size(); ++v) {

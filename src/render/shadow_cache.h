@@ -86,13 +86,17 @@ public:
     const ShadowCacheFrame& lastFrame() const { return frame_; }
 
 private:
-    // What the maps' images are sized by: made anew when it changes.
+    // What the maps' images are sized by: each made anew when its own changes (the atlas's
+    // squares are kept only while the atlas is).
     struct MapsShape {
         uint32_t atlasWidth = 0;
         uint32_t atlasHeight = 0;
         uint32_t cubeResolution = 0;
         uint32_t shadowedPoints = 0;
-        bool operator==(const MapsShape&) const = default;
+        bool sameAtlas(const MapsShape& o) const { return atlasWidth == o.atlasWidth && atlasHeight == o.atlasHeight; }
+        bool sameCubes(const MapsShape& o) const {
+            return cubeResolution == o.cubeResolution && shadowedPoints == o.shadowedPoints;
+        }
     };
     const vk::Context& context_;
     ShadowSettings settings_;

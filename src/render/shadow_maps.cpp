@@ -90,9 +90,7 @@ ShadowMaps::ShadowMaps(const vk::Context& context, const ShadowPlan& plan, const
     atlas_ = plan.atlas.width > 0
                  ? depthImage(context, depthFormat, plan.atlas.width, plan.atlas.height, 1, false, "shadow atlas")
                  : depthImage(context, depthFormat, 1, 1, 1, false, "shadow atlas (placeholder)");
-    pointCubes_ = plan.cubeResolution > 0 ? depthImage(context, depthFormat, plan.cubeResolution, plan.cubeResolution,
-                                                       6 * plan.shadowedPoints, true, "point shadow cubes")
-                                          : depthImage(context, depthFormat, 1, 1, 6, true, "point shadow cubes (placeholder)");
+    remakePointCubes(context, plan, settings);
 
     // Compare sampler: bilinear, so one tap is the hardware's 2x2 PCF; outside the map is "far"
     // (the white border), i.e. lit.
@@ -116,6 +114,13 @@ ShadowMaps::ShadowMaps(const vk::Context& context, const ShadowPlan& plan, const
     VkSampler depthSampler = VK_NULL_HANDLE;
     vk::check(vkCreateSampler(context.device(), &info, nullptr, &depthSampler), "vkCreateSampler");
     depthSampler_ = vk::Handle<VkSampler>(context.device(), depthSampler, vkDestroySampler);
+}
+
+void ShadowMaps::remakePointCubes(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings) {
+    const VkFormat depthFormat = format(settings.format);
+    pointCubes_ = plan.cubeResolution > 0 ? depthImage(context, depthFormat, plan.cubeResolution, plan.cubeResolution,
+                                                       6 * plan.shadowedPoints, true, "point shadow cubes")
+                                          : depthImage(context, depthFormat, 1, 1, 6, true, "point shadow cubes (placeholder)");
 }
 
 uint64_t ShadowMaps::allocatedBytes() const {

@@ -29,6 +29,9 @@ public:
         return format == ShadowFormat::D16 ? VK_FORMAT_D16_UNORM : VK_FORMAT_D32_SFLOAT;
     }
 
+    // The cube array anew for `plan` (its points' count or side changed), the atlas kept.
+    void remakePointCubes(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings);
+
     const vk::Image& atlas() const { return atlas_; }
     const vk::Image& pointCubes() const { return pointCubes_; }
     VkSampler sampler() const { return sampler_; }

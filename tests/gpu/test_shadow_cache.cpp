@@ -17,6 +17,7 @@
 #include "gpu_test_support.h"
 #include "render/renderer.h"
 #include "render/shadow_cache.h"
+#include "report/sequence_report.h"
 #include "scene/builtin_scenes.h"
 
 namespace punctual {
@@ -162,6 +163,33 @@ TEST(ShadowCache, PlayCachedIsPlayRedrawnBitForBit) {
     EXPECT_EQ(document["frames"][0]["stats"]["shadows"]["cache"]["laid_out"], 1);
     EXPECT_GT(document["frames"][4]["stats"]["shadows"]["cache"]["kept_views"].get<int>(), 0);
     EXPECT_NE(testing::readText(on + "/frames.csv").find("shadow_cache_kept_views"), std::string::npos);
+}
+
+// The cube layout: its faces are drawn every frame, its spots kept. Where the shadowed points'
+// count changes, the cube array alone is made anew (the shadow memory changes), the atlas and its
+// kept squares stay, and the frames are still redraw's.
+TEST(ShadowCache, ANewCubeArrayKeepsTheAtlas) {
+    testing::TempFolder folder;
+    const std::string common =
+        " --scene hall --shadow-res 256 --point-shadow-layout cube --fps 2 --seconds 2 --size 96x54 --save-frames --out-dir ";
+    const std::string on = folder.file("on");
+    const std::string redraw = folder.file("redraw");
+    ASSERT_EQ(testing::runPunctual(folder, cat("play --validate --shadow-cache on", common, quoted(on))).exitCode, 0);
+    ASSERT_EQ(testing::runPunctual(folder, cat("play --shadow-cache redraw", common, quoted(redraw))).exitCode, 0);
+    const nlohmann::json document = nlohmann::json::parse(testing::readText(on + "/frames.json"));
+    size_t cubeArraysRemade = 0;
+    for (size_t i = 0; i < document["frames"].size(); ++i) {
+        const nlohmann::json& shadows = document["frames"][i]["stats"]["shadows"];
+        EXPECT_EQ(shadows["cache"]["laid_out"], i == 0 ? 1 : 0) << "frame " << i;
+        if (i > 0) {
+            EXPECT_GT(shadows["cache"]["kept_views"].get<int>(), 0) << "frame " << i;
+            const nlohmann::json& before = document["frames"][i - 1]["stats"]["shadows"];
+            cubeArraysRemade += shadows["memory_bytes"] != before["memory_bytes"];
+        }
+        const std::string frame = report::frameImageName(uint32_t(i));
+        EXPECT_EQ(readPng(on + "/" + frame).pixels, readPng(redraw + "/" + frame).pixels) << frame;
+    }
+    EXPECT_GT(cubeArraysRemade, 0u);  // the walk changes the shadowed points' count
 }
 
 TEST(ShadowCache, WhatCannotBeCachedIsRefusedInOneLine) {
