@@ -29,6 +29,9 @@ struct ShadowDrawConstants {
 };
 constexpr uint32_t kObjectIndexOffset = offsetof(ShadowDrawConstants, objectIndex);
 
+// Every texel a view does not draw: depth 1, the far plane (lit).
+constexpr VkClearValue kClearToFar{.depthStencil = {1.0f, 0}};
+
 }  // namespace
 
 ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings,
@@ -302,8 +305,7 @@ void ShadowPass::recordView(const FrameContext& frame, uint32_t index) const {
 }
 
 void ShadowPass::recordAtlas(const FrameContext& frame, const Target& atlas) const {
-    VkClearValue clear{};
-    clear.depthStencil = {1.0f, 0};
+    const VkClearValue clear = kClearToFar;
     const bool keeping = cache_ && cache_->anyKept();
     vk::beginRenderPass(frame.cmd, keeping ? keepingRenderPass_ : renderPass_, atlas.framebuffer, atlas.width,
                         atlas.height, {&clear, 1});
@@ -335,8 +337,7 @@ void ShadowPass::record(const FrameContext& frame) const {
                          VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
     }
-    VkClearValue clear{};
-    clear.depthStencil = {1.0f, 0};
+    const VkClearValue clear = kClearToFar;
     for (const Target& target : targets_) {
         if (&target == &targets_.front() && plan_.atlas.width > 0) {
             recordAtlas(frame, target);
