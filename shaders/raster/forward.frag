@@ -88,7 +88,6 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_INDICES) readonly buffe
 // (gpu_types.h): several of those may land on one pixel, so they add up atomically.
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_LIGHT_STATS) buffer LightStatsBlock { uint lightStatWords[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_VIEWS) readonly buffer ShadowViewBlock { GpuShadowView shadowViews[]; };
-layout(set = 0, binding = PUNCTUAL_BINDING_SHADOW_ATLAS) uniform sampler2DShadow shadowAtlas;
 layout(set = 0, binding = PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH) uniform sampler2D shadowAtlasDepth;
 layout(set = 0, binding = PUNCTUAL_BINDING_POINT_SHADOWS) uniform samplerCubeArrayShadow pointShadows;
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_DEBUG) writeonly buffer ShadowDebugBlock { uint shadowDebug[]; };

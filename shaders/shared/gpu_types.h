@@ -42,9 +42,10 @@
 #define PUNCTUAL_BINDING_LIGHT_STATS 9
 #define PUNCTUAL_BINDING_CULL_LIGHTS 10   // CullLight per packed light: view-space culling shapes (culling.h)
 #define PUNCTUAL_BINDING_SHADOW_VIEWS 11  // GpuShadowView per rendered shadow view
-#define PUNCTUAL_BINDING_SHADOW_ATLAS 12 // sampler2DShadow: every spot view and point slice (lights/shadow_atlas.h)
+// (12: the atlas through a compare sampler, until its lookups gathered raw depths; see shadows.h's
+// bilinearCompare.)
 #define PUNCTUAL_BINDING_POINT_SHADOWS 13 // samplerCubeArrayShadow: one cube per shadowed point (cube layout)
-#define PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH 14 // sampler2D: the atlas's raw depths, gathered for receiver-plane compares
+#define PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH 14 // sampler2D: every spot view and point slice's raw depths (lights/shadow_atlas.h), gathered
 #define PUNCTUAL_BINDING_SHADOW_DEBUG 15  // validation: per-pixel surface and shadow factors (see below)
 // Per pixel, the float bits of the nearest (first width x height words) and the farthest (the next
 // width x height) depth of the alphaMode BLEND surfaces in front of the opaque ones; 0 and

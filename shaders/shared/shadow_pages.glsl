@@ -117,15 +117,11 @@ vec4 virtualGather(PageBlock block, ivec2 corner) {
     return textureGather(shadowAtlasDepth, vec2(atlas) / frame.shadowAtlasSize, 0);
 }
 
-// The hardware's bilinear compare (a sampler2DShadow tap) at `position` (texels of the block's
-// level), from the four raw depths around it: lit where the reference is no deeper than the
-// caster (VK_COMPARE_OP_LESS_OR_EQUAL, shadow_maps.cpp), weighted by the position's fractions.
+// The hardware's bilinear compare at `position` (texels of the block's level), from the four raw
+// depths around it (bilinearCompare, shadows.h).
 float virtualBilinearCompare(PageBlock block, vec2 position, float reference) {
-    vec2 corner = clamp(floor(position + 0.5), vec2(1.0), vec2(float(block.last)));
-    vec2 f = clamp(position + 0.5 - corner, vec2(0.0), vec2(1.0));  // the sample's place between the four texel centres
-    vec4 casters = virtualGather(block, ivec2(corner));
-    vec4 lit = vec4(greaterThanEqual(casters, vec4(reference)));
-    return mix(mix(lit.w, lit.z, f.x), mix(lit.x, lit.y, f.x), f.y);
+    vec2 corner = bilinearCorner(position, float(block.last + 1));
+    return bilinearCompare(virtualGather(block, ivec2(corner)), reference, bilinearFraction(position, corner));
 }
 
 #else  // the build without virtual pages: stubs (SHADOW_PAGES is PUNCTUAL_SHADOW_PAGES_OFF there)

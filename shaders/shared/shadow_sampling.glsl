@@ -66,6 +66,16 @@ struct ShadowRead {
     bool paged;        // read through the page table (virtual pages; never a cascade), else the view's square
 };
 
+// A bilinear compare at `position` (texels of the view's square, `resolution` a side), from one
+// gather of the four raw depths around it (bilinearCompare, shadows.h): in the view's own texels,
+// so that where its square lies cannot round it (the gather's corner is half a texel from any
+// change of texels).
+float atlasBilinearCompare(GpuShadowView view, vec2 position, float resolution, float reference) {
+    vec2 corner = bilinearCorner(position, resolution);
+    vec4 casters = textureGather(shadowAtlasDepth, view.atlasRect.xy + corner / resolution * view.atlasRect.zw, 0);
+    return bilinearCompare(casters, reference, bilinearFraction(position, corner));
+}
+
 // Filters the view's square of the atlas around `uv` (the view's own UV, 0..1 across its square),
 // or with virtual pages its level, each tap a bilinear compare through the page table.
 // Samples are clamped half a texel inside the square, so a bilinear tap never reads a neighbour's
@@ -94,7 +104,7 @@ float filterAtlas(ShadowRead read, GpuShadowView view, vec2 uv, float reference,
         if (paged) {
             sum += s.z * virtualBilinearCompare(block, tap * read.resolution, reference);
         } else {
-            sum += s.z * texture(shadowAtlas, vec3(view.atlasRect.xy + tap * view.atlasRect.zw, reference));
+            sum += s.z * atlasBilinearCompare(view, tap * read.resolution, read.resolution, reference);
         }
         weights += s.z;
     }

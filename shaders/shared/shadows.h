@@ -128,6 +128,35 @@ PUNCTUAL_FN vec2 receiverPlaneDepthSlope(mat4 viewProjection, vec3 position, vec
     return vec2(ds.z, dt.z) * inverse(uvJacobian);
 }
 
+// A bilinear compare (the hardware's sampler2DShadow tap) in the shader, from the four raw depths
+// around the sample point (one textureGather), so that it depends only on the sample's place in
+// its own view's texels: the hardware tap takes the atlas's UV, into which the view's square
+// enters in floating point, and so rounds differently where the square lies elsewhere (the shadow
+// cache's atlas). `position` is the sample point in texels of a square `side` texels wide (texel
+// i's centre at i + 1/2). The four texels nearest it are corner - 1 and corner on each axis, the
+// corner they share being floor(position + 1/2), kept in [1, side - 1] so that the four stay in
+// the square (clamp to edge).
+PUNCTUAL_FN vec2 bilinearCorner(vec2 position, float side) {
+    return clamp(floor(position + 0.5f), vec2(1.0f), vec2(side - 1.0f));
+}
+
+// The sample's place between the four texel centres around `corner` (0 at corner - 1's centre,
+// corner - 1/2; 1 at corner's, corner + 1/2), each axis in [0, 1].
+PUNCTUAL_FN vec2 bilinearFraction(vec2 position, vec2 corner) {
+    return clamp(position + 0.5f - corner, vec2(0.0f), vec2(1.0f));
+}
+
+// The four compares weighted by the fractions `f`: each is 1 (lit) where the reference is no
+// deeper than the caster (VK_COMPARE_OP_LESS_OR_EQUAL, as the compare sampler), `casters` in
+// textureGather's order (u0, v1), (u1, v1), (u1, v0), (u0, v0).
+PUNCTUAL_FN float bilinearCompare(vec4 casters, float reference, vec2 f) {
+    float u0v1 = reference <= casters.x ? 1.0f : 0.0f;
+    float u1v1 = reference <= casters.y ? 1.0f : 0.0f;
+    float u1v0 = reference <= casters.z ? 1.0f : 0.0f;
+    float u0v0 = reference <= casters.w ? 1.0f : 0.0f;
+    return mix(mix(u0v0, u1v0, f.x), mix(u0v1, u1v1, f.x), f.y);
+}
+
 PUNCTUAL_NAMESPACE_END
 
 #endif

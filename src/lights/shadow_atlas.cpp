@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "lights/shadow_drawing_tiles.h"
 
 namespace punctual {
 namespace {
@@ -101,6 +102,11 @@ AtlasLayout packShadowAtlas(const std::vector<uint32_t>& sizes, uint32_t maxSide
     layout.width = width;
     layout.height = uint32_t(packShelves(sizes, order, width, &layout.rects));
     return layout;
+}
+
+uint64_t drawingSquareTexels(const std::vector<uint32_t>& sizes) {
+    const uint64_t side = sizes.empty() ? 0 : drawingTileSide(*std::max_element(sizes.begin(), sizes.end()));
+    return side * side;
 }
 
 }  // namespace punctual

@@ -4,8 +4,9 @@
 //
 // Why an atlas rather than one array per tier: one texture and one sampler binding whatever the
 // tiers (the shader maps a view's UV into its rectangle, no per-tier descriptors to choose
-// between per pixel), one render pass whose viewport moves from view to view, and storage that
-// is exactly the sum of the views' squares, rounded up to whole pages (below). URP and Godot store
+// between per pixel), and storage that is exactly the sum of the views' squares, rounded up to
+// whole pages (below), plus one drawing square: each view is drawn at its origin and copied into
+// its square, so that where a square lies cannot round its depth (render/shadow_pass.h). URP and Godot store
 // their punctual shadows the same way. A cube map cannot live in an atlas, so the cube layout
 // keeps its cube array and exists only with a fixed resolution (--shadow-res N).
 //
@@ -52,5 +53,10 @@ AtlasLayout packShadowAtlas(const std::vector<uint32_t>& sizes, uint32_t maxSide
 
 // Whether packShadowAtlas(sizes, maxSide) fits, without throwing.
 bool shadowAtlasFits(const std::vector<uint32_t>& sizes, uint32_t maxSide);
+
+// Texels of the drawing square the shadow pass draws each of these squares in before copying it
+// into the atlas (lights/shadow_drawing_tiles.h): the largest side's tile, squared (0 for none).
+// Every memory limit counts it with the atlas.
+uint64_t drawingSquareTexels(const std::vector<uint32_t>& sizes);
 
 }  // namespace punctual

@@ -136,7 +136,7 @@ uint64_t cubeArrayBytes(const ShadowPlan& plan, const ShadowSettings& settings, 
 
 uint64_t shadowMapBytes(const ShadowPlan& plan, const ShadowSettings& settings, uint32_t resolution) {
     const std::vector<uint32_t> sizes = fixedAtlasSizes(plan, settings, resolution);
-    const uint64_t atlas = packShadowAtlas(sizes, std::numeric_limits<uint32_t>::max()).texels();
+    const uint64_t atlas = packShadowAtlas(sizes, std::numeric_limits<uint32_t>::max()).texels() + drawingSquareTexels(sizes);
     return atlas * settings.texelBytes() + cubeArrayBytes(plan, settings, resolution);
 }
 

@@ -47,7 +47,7 @@ std::vector<uint32_t> shadowViewRanks(const ShadowPlan& plan, const Scene& scene
                                       const glm::vec3& cameraPosition);
 
 // Bytes of the fixed-mode maps of `plan` at `resolution` texels a side: the atlas (spots and
-// slices) and the cube array. A lower bound of what the device allocates (it may pad).
+// slices) with its drawing square, and the cube array. A lower bound of what the device allocates (it may pad).
 uint64_t shadowMapBytes(const ShadowPlan& plan, const ShadowSettings& settings, uint32_t resolution);
 
 // The resolutions the rendered views of `plan` use, largest first, each with how many views use

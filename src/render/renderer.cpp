@@ -13,6 +13,7 @@
 #include "culling.h"
 #include "gpu_types.h"
 #include "lights/cascade_setup.h"
+#include "lights/shadow_drawing_tiles.h"
 #include "lights/shadow_page_allocation.h"
 #include "lights/shadow_sizing.h"
 #include "lights/view_objects.h"
@@ -212,7 +213,7 @@ struct Renderer::Resources {
             passes.add<ForwardPass>(context, radiance, depth->depth(), variant, backToFront(sceneData, blended, eye),
                                     &shadowPageMarks);
         }
-        shadows = passes.add<ShadowPass>(context, plan.shadows, settings.shadows, shadowCache);
+        shadows = passes.add<ShadowPass>(context, plan.shadows, sceneData, settings.shadows, shadowCache);
         if (marking) marking->readUndrawnImages({&shadows->maps().atlas(), &shadows->maps().pointCubes()}, ShadowPass::kReadLayout);
         forward = passes.add<ForwardPass>(context, radiance, depth->depth(),
                                           forwardVariant(settings, gridLayout, false, false), unblended);
@@ -576,8 +577,10 @@ ShadowDraws Renderer::shadowDraws() const {
     for (uint32_t v = 0; v < plan_.shadows.views.size(); ++v) {
         const ShadowView& view = plan_.shadows.views[v];
         if (!view.rendered() || (shadowCache_ && shadowCache_->kept(v))) continue;
-        draws.total += view.casters.size();
-        draws.maxPerView = std::max<uint64_t>(draws.maxPerView, view.casters.size());
+        // A view larger than the drawing square draws each caster in the tiles it reaches.
+        const uint64_t viewDraws = drawingTileDraws(view, scene_);
+        draws.total += viewDraws;
+        draws.maxPerView = std::max<uint64_t>(draws.maxPerView, viewDraws);
         draws.triangles += trianglesOf(scene_, view.casters);
     }
     return draws;

@@ -61,11 +61,12 @@ struct DeviceMemory {
     uint64_t total() const { return scene + shadows + lightGrid + frame; }
 };
 
-// What the shadow passes draw: each rendered view's casters, one draw each.
+// What the shadow passes draw: each rendered view's casters, one draw each (in each drawing tile
+// they reach, for a view larger than the drawing square: lights/shadow_drawing_tiles.h).
 struct ShadowDraws {
     uint64_t total = 0;
     uint64_t maxPerView = 0;
-    uint64_t triangles = 0;  // summed over the rendered views
+    uint64_t triangles = 0;  // summed over the rendered views, each view's casters once
 };
 
 // Virtual shadow pages (--shadow-res virtual): what the marking frames found and the allocation did.

@@ -10,7 +10,10 @@
 namespace punctual::render {
 namespace {
 
-constexpr VkImageUsageFlags kUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+// Drawn (pages and cube faces), copied into (the atlas's views, from the shadow pass's drawing
+// square) and sampled.
+constexpr VkImageUsageFlags kUsage =
+    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
 
 vk::Image depthImage(const vk::Context& context, VkFormat format, uint32_t width, uint32_t height, uint32_t layers,
                      bool cube, const char* name) {
@@ -92,7 +95,8 @@ ShadowMaps::ShadowMaps(const vk::Context& context, const ShadowPlan& plan, const
                  : depthImage(context, depthFormat, 1, 1, 1, false, "shadow atlas (placeholder)");
     remakePointCubes(context, plan, settings);
 
-    // Compare sampler: bilinear, so one tap is the hardware's 2x2 PCF; outside the map is "far"
+    // Compare sampler (the cube array's; the atlas is gathered raw, shadows.h's bilinearCompare):
+    // bilinear, so one tap is the hardware's 2x2 PCF; outside the map is "far"
     // (the white border), i.e. lit.
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = VK_FILTER_LINEAR;

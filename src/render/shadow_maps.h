@@ -35,7 +35,8 @@ public:
     const vk::Image& atlas() const { return atlas_; }
     const vk::Image& pointCubes() const { return pointCubes_; }
     VkSampler sampler() const { return sampler_; }
-    // Non-compare sampler: textureGather of raw depths (receiver-plane compares, one per texel).
+    // Non-compare sampler: textureGather of the atlas's raw depths (every atlas lookup compares in
+    // the shader: receiver-plane compares per texel, bilinear compares per tap).
     VkSampler depthSampler() const { return depthSampler_; }
     // Device memory of the two images, placeholders included.
     uint64_t allocatedBytes() const;

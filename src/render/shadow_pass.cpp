@@ -34,8 +34,8 @@ constexpr VkClearValue kClearToFar{.depthStencil = {1.0f, 0}};
 
 }  // namespace
 
-ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings,
-                       const ShadowCache* cache)
+ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const Scene& scene,
+                       const ShadowSettings& settings, const ShadowCache* cache)
     : plan_(plan),
       settings_(settings),
       cache_(cache),
@@ -64,9 +64,34 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
     passDesc.depthInitialLayout = kDrawLayout;
     passDesc.depthFinalLayout = kDrawLayout;
     renderPass_ = context.objects().renderPass(passDesc);
-    passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_LOAD;
-    keepingRenderPass_ = context.objects().renderPass(passDesc);
     createTargets(context);
+    createDrawingSquare(context, scene);
+}
+
+void ShadowPass::createDrawingSquare(const vk::Context& context, const Scene& scene) {
+    uint32_t side = 0;
+    drawingTiles_.assign(plan_.views.size(), {});
+    for (uint32_t v = 0; v < plan_.views.size(); ++v) {
+        const ShadowView& view = plan_.views[v];
+        if (!view.rendered() || view.rect.size == 0) continue;  // no square: a cube face, or virtual pages
+        side = std::max(side, drawingTileSide(view.rect.size));
+        drawingTiles_[v] = drawingTiles(view, scene);
+    }
+    if (side == 0) return;
+    vk::ImageDesc desc;
+    desc.format = ShadowMaps::format(settings_.format);
+    desc.width = side;
+    desc.height = side;
+    desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    desc.debugName = "shadow drawing square";
+    drawingSquare_.emplace(context, desc);
+    const VkImageView view = drawingSquare_->view();
+    drawingFramebuffer_ = vk::createFramebuffer(context.device(), renderPass_, {&view, 1}, side, side);
+}
+
+uint64_t ShadowPass::memoryBytes() const {
+    return maps().allocatedBytes() + (drawingSquare_ ? drawingSquare_->allocatedBytes() : 0) + pageViews_.size() +
+           pageTable_.size();
 }
 
 void ShadowPass::createTargets(const vk::Context& context) {
@@ -148,7 +173,6 @@ void ShadowPass::addBindings(BindingTable& table) const {
     table.addBuffer(PUNCTUAL_BINDING_SHADOW_PAGE_TABLE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
                     pageTable_);
     const ShadowMaps& maps = this->maps();
-    table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS, VK_SHADER_STAGE_FRAGMENT_BIT, maps.sampler(), maps.atlas(), kReadLayout);
     table.addImage(PUNCTUAL_BINDING_SHADOW_ATLAS_DEPTH, VK_SHADER_STAGE_FRAGMENT_BIT, maps.depthSampler(), maps.atlas(),
                    kReadLayout);
     table.addImage(PUNCTUAL_BINDING_POINT_SHADOWS, VK_SHADER_STAGE_FRAGMENT_BIT, maps.sampler(), maps.pointCubes(),
@@ -289,69 +313,110 @@ std::vector<ImageUse> ShadowPass::imageUses() const {
             {&maps().pointCubes(), VK_IMAGE_LAYOUT_UNDEFINED, kReadLayout}};
 }
 
-void ShadowPass::recordView(const FrameContext& frame, uint32_t index) const {
+void ShadowPass::recordAtlasView(const FrameContext& frame, uint32_t index) const {
     const ShadowView& view = plan_.views[index];
-    if (view.isPoint && settings_.pointLayout == PointShadowLayout::Cube) {
-        drawView(frame, view, view.gpu.viewProjection, view.casters);  // the whole face; beginRenderPass set its viewport
-        return;
-    }
-    // The view's square of the atlas: the viewport maps its clip space onto the square, the
-    // scissor keeps every fragment inside it.
-    const VkViewport viewport{float(view.rect.x), float(view.rect.y), float(view.rect.size), float(view.rect.size), 0.0f, 1.0f};
-    const VkRect2D scissor{{int32_t(view.rect.x), int32_t(view.rect.y)}, {view.rect.size, view.rect.size}};
-    vkCmdSetViewport(frame.cmd, 0, 1, &viewport);
-    vkCmdSetScissor(frame.cmd, 0, 1, &scissor);
-    drawView(frame, view, view.gpu.viewProjection, view.casters);
+    for (const DrawingTile& tile : drawingTiles_[index]) recordDrawingTile(frame, view, tile);
+}
+
+void ShadowPass::recordDrawingTile(const FrameContext& frame, const ShadowView& view, const DrawingTile& tile) const {
+    const VkCommandBuffer cmd = frame.cmd;
+    const uint32_t side = drawingTileSide(view.rect.size);
+    const glm::uvec2 origin = glm::uvec2(tile.column, tile.row) * side;  // the tile's texel in the view
+    // The tile cleared to the far plane (every texel no caster draws: lit), and the view drawn
+    // through a viewport moved so that the tile's texels fall on the drawing square's (the scissor
+    // beginRenderPass sets keeps the rest out).
+    const VkClearValue clear = kClearToFar;
+    vk::beginRenderPass(cmd, renderPass_, drawingFramebuffer_, side, side, {&clear, 1});
+    const VkViewport viewport{-float(origin.x), -float(origin.y), float(view.rect.size), float(view.rect.size), 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    drawView(frame, view, view.gpu.viewProjection, tile.casters);
+    vkCmdEndRenderPass(cmd);
+    vk::imageBarrier(cmd, *drawingSquare_, kDrawLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    VkImageCopy copy{};
+    copy.srcSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+    copy.dstSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+    copy.dstOffset = {int32_t(view.rect.x + origin.x), int32_t(view.rect.y + origin.y), 0};
+    copy.extent = {side, side, 1};
+    vkCmdCopyImage(cmd, drawingSquare_->handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, maps().atlas().handle(),
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    // The next view's clear and draw wait for this copy's reads (an execution dependency).
+    vk::imageBarrier(cmd, *drawingSquare_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, kDrawLayout,
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                     VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                     VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+}
+
+VkImageLayout ShadowPass::atlasLayoutBefore() const {
+    // A cached atlas keeps the squares it does not draw, in the layout the last frame left it in;
+    // otherwise nothing of the last frame is needed.
+    return cache_ ? cache_->atlasLayoutBefore() : VK_IMAGE_LAYOUT_UNDEFINED;
 }
 
 void ShadowPass::recordAtlas(const FrameContext& frame, const Target& atlas) const {
-    const VkClearValue clear = kClearToFar;
-    const bool keeping = cache_ && cache_->anyKept();
-    vk::beginRenderPass(frame.cmd, keeping ? keepingRenderPass_ : renderPass_, atlas.framebuffer, atlas.width,
-                        atlas.height, {&clear, 1});
-    for (const uint32_t index : atlas.planViews) {
-        if (keeping) {
-            if (cache_->kept(index)) continue;
-            // Cleared as the whole atlas is otherwise, to the same 1.0: the same depth drawn over it.
-            const AtlasRect& rect = plan_.views[index].rect;
-            const VkClearAttachment attachment{VK_IMAGE_ASPECT_DEPTH_BIT, 0, clear};
-            const VkClearRect square{{{int32_t(rect.x), int32_t(rect.y)}, {rect.size, rect.size}}, 0, 1};
-            vkCmdClearAttachments(frame.cmd, 1, &attachment, 1, &square);
-        }
-        recordView(frame, index);
+    const VkCommandBuffer cmd = frame.cmd;
+    const vk::Image& image = maps().atlas();
+    const VkImageLayout before = atlasLayoutBefore();
+    if (pageDraws_.draws.empty()) {
+        vk::imageBarrier(cmd, image, before, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    } else {
+        // Virtual pages: the pool is cleared and the pages drawn in place (each slot's own page),
+        // then the cascades' squares are copied in beside it.
+        vk::imageBarrier(cmd, image, before, kDrawLayout, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+                         VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                         VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+        const VkClearValue clear = kClearToFar;
+        vk::beginRenderPass(cmd, renderPass_, atlas.framebuffer, atlas.width, atlas.height, {&clear, 1});
+        drawPages(frame);
+        vkCmdEndRenderPass(cmd);
+        vk::imageBarrier(cmd, image, kDrawLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
     }
-    drawPages(frame);
-    vkCmdEndRenderPass(frame.cmd);
+    if (!atlas.planViews.empty()) {
+        vk::imageBarrier(cmd, *drawingSquare_, VK_IMAGE_LAYOUT_UNDEFINED, kDrawLayout, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                         VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                         VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+    }
+    for (const uint32_t index : atlas.planViews) {
+        if (!cache_ || !cache_->kept(index)) recordAtlasView(frame, index);
+    }
+    vk::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kReadLayout, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                     VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
 void ShadowPass::record(const FrameContext& frame) const {
     const VkCommandBuffer cmd = frame.cmd;
-    const ShadowMaps& maps = this->maps();
-    // Last frame's contents are not needed (every read texel is cleared or rendered below), except
-    // the cached atlas's, which keeps the layout the last frame left it in.
-    const VkImageLayout atlasBefore = cache_ ? cache_->atlasLayoutBefore() : VK_IMAGE_LAYOUT_UNDEFINED;
-    const std::array<std::pair<const vk::Image*, VkImageLayout>, 2> images = {
-        {{&maps.atlas(), atlasBefore}, {&maps.pointCubes(), VK_IMAGE_LAYOUT_UNDEFINED}}};
-    for (const auto& [image, before] : images) {
-        vk::imageBarrier(cmd, *image, before, kDrawLayout, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
-                         VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-                         VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-    }
+    const vk::Image& cubes = maps().pointCubes();
+    // Last frame's faces are not needed: each is cleared and drawn below.
+    vk::imageBarrier(cmd, cubes, VK_IMAGE_LAYOUT_UNDEFINED, kDrawLayout, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+                     VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                     VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
     const VkClearValue clear = kClearToFar;
+    const bool hasAtlas = plan_.atlas.width > 0;
     for (const Target& target : targets_) {
-        if (&target == &targets_.front() && plan_.atlas.width > 0) {
+        if (&target == &targets_.front() && hasAtlas) {
             recordAtlas(frame, target);
             continue;
         }
+        // The whole face; beginRenderPass sets its viewport.
         vk::beginRenderPass(cmd, renderPass_, target.framebuffer, target.width, target.height, {&clear, 1});
-        for (const uint32_t index : target.planViews) recordView(frame, index);
+        for (const uint32_t index : target.planViews) {
+            const ShadowView& view = plan_.views[index];
+            drawView(frame, view, view.gpu.viewProjection, view.casters);
+        }
         vkCmdEndRenderPass(cmd);
     }
-    for (const auto& [image, before] : images) {
-        vk::imageBarrier(cmd, *image, kDrawLayout, kReadLayout, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-                         VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-                         VK_ACCESS_SHADER_READ_BIT);
+    // The placeholder atlas (no view has storage) only moves into the layout the forward pass reads.
+    if (!hasAtlas) {
+        vk::imageBarrier(cmd, maps().atlas(), atlasLayoutBefore(), kReadLayout, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+                         VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     }
+    vk::imageBarrier(cmd, cubes, kDrawLayout, kReadLayout, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                     VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                     VK_ACCESS_SHADER_READ_BIT);
 }
 
 }  // namespace punctual::render

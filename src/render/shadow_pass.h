@@ -1,9 +1,19 @@
 #pragma once
 // The raster shadow stage: renders every shadow view of the plan with casters into its square of
 // the atlas, or its face of the cube array (ShadowMaps), and binds them, with the views'
-// records, for the forward pass. The atlas is cleared once and every view drawn in one render
-// pass, its viewport and scissor moving from square to square; each cube face is its own target.
-// A view without casters or storage draws nothing (the shader never reads it).
+// records, for the forward pass. Each cube face is its own target. A view without casters or
+// storage draws nothing (the shader never reads it).
+//
+// An atlas view is drawn at the origin of the drawing square (an image of the largest view's
+// side, at most 1024 texels; a larger view is drawn tile by tile: lights/shadow_drawing_tiles.h)
+// and copied into its square. Where a view lies then does not change one bit of its depth:
+// the rasterizer evaluates coverage and depth from window coordinates, in floating point, and a
+// square elsewhere rounds them otherwise (lavapipe evaluates each depth plane from the
+// framebuffer's origin). So the shadow cache's atlas, which places views where they were last
+// frame, gives the frames of the frame's own packing bit for bit (render/shadow_cache.h), and a
+// packer's change moves squares without changing images. The cost: one copy of each drawn view's
+// texels and the drawing square's memory; and on a GPU the copy waits for its draw and the next
+// draw for the copy (one square; more squares in turn would overlap them, for their memory).
 //
 // Virtual pages (--shadow-res virtual): the atlas holds the cascades' squares and, below them,
 // the page pool. Each caster is drawn once per view, instanced over the allocated pages its
@@ -19,6 +29,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "lights/shadow_drawing_tiles.h"
 #include "lights/shadow_page_allocation.h"
 #include "lights/shadow_setup.h"
 #include "render/pass.h"
@@ -26,14 +37,16 @@
 #include "render/shadow_maps.h"
 #include "vk/buffer.h"
 #include "vk/handle.h"
+#include "vk/image.h"
 
 namespace punctual::render {
 
 class ShadowPass final : public Pass {
 public:
-    // `plan` must outlive the pass. With `cache` (prepared with `plan`; it outlives the pass too),
-    // the views draw into the cache's maps, and those it keeps are neither cleared nor drawn.
-    ShadowPass(const vk::Context& context, const ShadowPlan& plan, const ShadowSettings& settings,
+    // `plan` must outlive the pass; `scene` is the plan's (its casters' bounds place them in the
+    // drawing tiles). With `cache` (prepared with `plan`; it outlives the pass too), the views draw
+    // into the cache's maps, and those it keeps are neither cleared nor drawn.
+    ShadowPass(const vk::Context& context, const ShadowPlan& plan, const Scene& scene, const ShadowSettings& settings,
                const ShadowCache* cache = nullptr);
 
     const char* name() const override { return "shadows"; }
@@ -42,11 +55,12 @@ public:
     // With no shadowed light the stage only moves the placeholder maps into their layout: not a
     // pass worth timing.
     bool timed() const override { return !plan_.views.empty(); }
-    // Renders every view with casters, clears the atlas and every cube face (the cube's hardware
-    // filtering reads across face edges), and leaves both images in kReadLayout for the forward
-    // pass.
+    // Renders every view with casters, each atlas view over a cleared square and every cube face
+    // cleared (the cube's hardware filtering reads across face edges), and leaves both images in
+    // kReadLayout for the forward pass. The atlas's texels outside the drawn squares are never read
+    // (the lookups clamp to the view's square), so they are not cleared.
     void record(const FrameContext& frame) const override;
-    uint64_t memoryBytes() const override { return maps().allocatedBytes() + pageViews_.size() + pageTable_.size(); }
+    uint64_t memoryBytes() const override;
 
     // Virtual pages: the records the marking pass reads before any page is allocated (each view's
     // marks and coarsening; every lookup lit).
@@ -86,11 +100,20 @@ private:
     std::optional<bool> casterIsMasked(const FrameContext& frame, uint32_t object) const;
     void createTargets(const vk::Context& context);
     void uploadViews();  // every plan view's GpuShadowView into views_
-    // Begins the atlas's render pass and draws its views: all of them on a cleared atlas, or with
-    // the cache keeping some, the others each cleared in its square and drawn.
+    // The atlas's views: virtual pages drawn in one render pass over the cleared atlas, then each
+    // view the cache does not keep drawn into the drawing square and copied into its square. Leaves
+    // the atlas in TRANSFER_DST_OPTIMAL.
     void recordAtlas(const FrameContext& frame, const Target& atlas) const;
-    // Draws plan view `index` into the target begun.
-    void recordView(const FrameContext& frame, uint32_t index) const;
+    // Draws plan view `index` at the drawing square's origin, tile by tile, each copied into its
+    // place in the view's atlas square.
+    void recordAtlasView(const FrameContext& frame, uint32_t index) const;
+    // Draws `tile` of `view` into the drawing square and copies it into the atlas.
+    void recordDrawingTile(const FrameContext& frame, const ShadowView& view, const DrawingTile& tile) const;
+    // The atlas's layout as the stage begins (a cached atlas's is kept; see ShadowCache).
+    VkImageLayout atlasLayoutBefore() const;
+    // The drawing square (lights/shadow_drawing_tiles.h; none when the atlas has no view) and each
+    // atlas view's tiles.
+    void createDrawingSquare(const vk::Context& context, const Scene& scene);
     const ShadowPlan& plan_;
     ShadowSettings settings_;
     const ShadowCache* cache_;
@@ -102,7 +125,6 @@ private:
     ShadowPageDraws pageDraws_;
     // The render pass, layout and pipelines: the context's object cache (vk/object_cache.h) owns them.
     VkRenderPass renderPass_ = VK_NULL_HANDLE;
-    VkRenderPass keepingRenderPass_ = VK_NULL_HANDLE;  // the cache's: loads the atlas, clears nothing
     VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
     struct Pipelines {
         VkPipeline opaque = VK_NULL_HANDLE;  // depth only, no fragment shader
@@ -115,6 +137,9 @@ private:
     // Virtual pages' instanced draws (PAGED).
     Pipelines pagePipelines_;
     std::vector<Target> targets_;  // the atlas first (when it has storage), then the cube faces
+    std::optional<vk::Image> drawingSquare_;  // where atlas views are drawn (see the top of this file)
+    vk::Handle<VkFramebuffer> drawingFramebuffer_;
+    std::vector<std::vector<DrawingTile>> drawingTiles_;  // per plan view: its tiles (none without a square)
 };
 
 }  // namespace punctual::render

@@ -76,13 +76,16 @@ ShadowSettings d32(PointShadowLayout layout = PointShadowLayout::Slices) {
 
 TEST(ShadowMemory, BytesCountASquarePerSpotAndSixPerPoint) {
     // 8192^2 texels x 4 bytes = 256 MiB a view; 32 spots + 6 x 8 points = 80 views = 20 GiB, in the
-    // atlas (slices) or split between the atlas and the cube array: the same bytes.
-    EXPECT_EQ(shadowMapBytes(planWith(32, 8), d32(), 8192), 20 * kGiB);
-    EXPECT_EQ(shadowMapBytes(planWith(32, 8), d32(PointShadowLayout::Cube), 8192), 20 * kGiB);
+    // atlas (slices) or split between the atlas and the cube array: the same bytes. Beside the
+    // atlas, the drawing square: 1024^2 x 4 bytes = 4 MiB (8192 views draw in 64 tiles of it).
+    EXPECT_EQ(shadowMapBytes(planWith(32, 8), d32(), 8192), 20 * kGiB + (4ull << 20));
+    EXPECT_EQ(shadowMapBytes(planWith(32, 8), d32(PointShadowLayout::Cube), 8192), 20 * kGiB + (4ull << 20));
     // 16 bits a texel: half.
-    EXPECT_EQ(shadowMapBytes(planWith(32, 8), ShadowSettings{}, 8192), 10 * kGiB);
-    // 1024^2 x 4 = 4 MiB a view; 1 spot + 6 = 7 views.
-    EXPECT_EQ(shadowMapBytes(planWith(1, 1), d32(), 1024), 28ull << 20);
+    EXPECT_EQ(shadowMapBytes(planWith(32, 8), ShadowSettings{}, 8192), 10 * kGiB + (2ull << 20));
+    // 1024^2 x 4 = 4 MiB a view; 1 spot + 6 = 7 views, and a drawing square of one view: 8 x 4 MiB.
+    EXPECT_EQ(shadowMapBytes(planWith(1, 1), d32(), 1024), 32ull << 20);
+    // 512^2 x 4 = 1 MiB a view: 7 views and a square of 512.
+    EXPECT_EQ(shadowMapBytes(planWith(1, 1), d32(), 512), 8ull << 20);
     EXPECT_EQ(shadowMapBytes(planWith(0, 0), d32(), 8192), 0u);
 }
 
@@ -90,7 +93,7 @@ TEST(ShadowMemory, ViewsWithoutCastersTakeNoAtlasStorage) {
     ShadowPlan plan = planWith(4, 0);
     plan.views[1].casters.clear();
     plan.views[3].casters.clear();
-    EXPECT_EQ(shadowMapBytes(plan, d32(), 1024), 8ull << 20);
+    EXPECT_EQ(shadowMapBytes(plan, d32(), 1024), 12ull << 20);  // two views of 4 MiB and the drawing square
 }
 
 ShadowMemoryLimits heapOf(uint64_t bytes, const std::string& name = "the device's largest heap") {
@@ -117,14 +120,15 @@ std::string errorOf(ShadowPlan plan, uint32_t resolution, const ShadowMemoryLimi
 }
 
 TEST(ShadowMemory, ARequestOverTheHeapFailsWithOneClearLine) {
-    // 2048: 80 views x 16 MiB = 1.25 GiB fits; 4096 (5 GiB) does not.
+    // 2048: 80 views x 16 MiB = 1.25 GiB (and the 4 MiB drawing square) fits; 4096 (5 GiB) does
+    // not. 8192: 20 GiB and 4 MiB, 20.004 GiB.
     EXPECT_EQ(errorOf(planWith(32, 8), 8192, heapOf(2 * kGiB)),
               "--shadow-res 8192: the shadow maps of 32 spot and 8 point lights need 20.0 GiB, the device's "
               "largest heap has 2.0 GiB (at most --shadow-res 2048 fits)");
 }
 
 TEST(ShadowMemory, RequestsThatFitPass) {
-    EXPECT_EQ(errorOf(planWith(32, 8), 8192, heapOf(20 * kGiB)), "no error");
+    EXPECT_EQ(errorOf(planWith(32, 8), 8192, heapOf(20 * kGiB + (4ull << 20))), "no error");  // exactly
     EXPECT_EQ(errorOf(planWith(0, 0), 8192, heapOf(0)), "no error");
     EXPECT_EQ(errorOf(planWith(32, 8), 1024, heapOf(2 * kGiB)), "no error");
 }
@@ -157,9 +161,10 @@ TEST(ShadowMemory, AnAtlasWiderThanTheDeviceAllowsFails) {
 }
 
 TEST(ShadowMemory, WhenNothingFitsTheMessageSuggestsNoResolution) {
-    // 64^2 x 4 x 80 = 1.25 MiB; even 16 texels (80 KiB) exceed 1 KiB.
+    // 64^2 x 4 x 80 = 1.25 MiB and a 16 KiB drawing square (1.27 MiB); even 16 texels (81 KiB)
+    // exceed 1 KiB.
     EXPECT_EQ(errorOf(planWith(32, 8), 64, heapOf(1024, "the device's memory budget")),
-              "--shadow-res 64: the shadow maps of 32 spot and 8 point lights need 1.2 MiB, the device's memory "
+              "--shadow-res 64: the shadow maps of 32 spot and 8 point lights need 1.3 MiB, the device's memory "
               "budget has 1.0 KiB");
 }
 
