@@ -56,7 +56,7 @@ bool shadowAtlasFits(const std::vector<uint32_t>& sizes, uint32_t maxSide);
 
 // Texels of the drawing square the shadow pass draws each of these squares in before copying it
 // into the atlas (lights/shadow_drawing_tiles.h): the largest side's tile, squared (0 for none).
-// Every memory limit counts it with the atlas.
+// The device's limits count it with the atlas; --shadow-budget is the atlas's alone.
 uint64_t drawingSquareTexels(const std::vector<uint32_t>& sizes);
 
 }  // namespace punctual

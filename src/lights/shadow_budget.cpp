@@ -23,7 +23,7 @@ ShadowAllocation fitShadowBudget(const std::vector<uint32_t>& demanded, const st
     std::vector<uint32_t>& resolutions = allocation.resolutions;
     auto bytesOf = [&](const std::vector<uint32_t>& sizes) -> uint64_t {
         if (!shadowAtlasFits(sizes, limits.maxSide)) return UINT64_MAX;
-        return (packShadowAtlas(sizes, limits.maxSide).texels() + drawingSquareTexels(sizes)) * limits.texelBytes;
+        return packShadowAtlas(sizes, limits.maxSide).texels() * limits.texelBytes;
     };
     // The lights present, least important first.
     std::vector<uint32_t> ranks = lightRank;
@@ -49,8 +49,7 @@ ShadowAllocation fitShadowBudget(const std::vector<uint32_t>& demanded, const st
         if (!lowered) {
             std::vector<uint32_t> smallest = demanded;
             for (uint32_t& size : smallest) size = size > 0 ? limits.minTier : 0;
-            const uint64_t need =
-                (packShadowAtlas(smallest, UINT32_MAX).texels() + drawingSquareTexels(smallest)) * limits.texelBytes;
+            const uint64_t need = uint64_t(packShadowAtlas(smallest, UINT32_MAX).texels()) * limits.texelBytes;
             throw Error(limits.bytesName, "the shadow views need " + describeBytes(need) + " even at " +
                                               std::to_string(limits.minTier) + "^2 texels each, more than " +
                                               describeBytes(limits.bytes) + " (or larger than " +
@@ -58,7 +57,7 @@ ShadowAllocation fitShadowBudget(const std::vector<uint32_t>& demanded, const st
         }
     }
     allocation.atlas = packShadowAtlas(resolutions, limits.maxSide);
-    allocation.bytes = (allocation.atlas.texels() + drawingSquareTexels(resolutions)) * limits.texelBytes;
+    allocation.bytes = allocation.atlas.texels() * limits.texelBytes;
     for (uint32_t v = 0; v < resolutions.size(); ++v) {
         if (resolutions[v] < demanded[v]) allocation.reductions.push_back({v, demanded[v], resolutions[v]});
     }

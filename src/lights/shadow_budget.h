@@ -27,13 +27,13 @@ struct ShadowReduction {
 struct ShadowAllocation {
     std::vector<uint32_t> resolutions;  // per view: texels a side, 0 for none
     AtlasLayout atlas;
-    uint64_t bytes = 0;                 // the atlas's bytes and its drawing square's (drawingSquareTexels)
+    uint64_t bytes = 0;                 // the atlas's bytes
     std::vector<ShadowReduction> reductions;
     std::string limitName;              // what forced the reductions ("the budget of 64 MiB", ...)
 };
 
 struct ShadowBudgetLimits {
-    uint64_t bytes = 0;          // the atlas and its drawing square may take at most this much
+    uint64_t bytes = 0;          // the atlas may take at most this much
     std::string bytesName;       // e.g. "--shadow-budget 64", "the device's largest heap"
     uint32_t maxSide = 16384;    // the device's largest 2D image side (maxImageDimension2D)
     uint32_t texelBytes = 2;     // bytes per texel of the shadow format

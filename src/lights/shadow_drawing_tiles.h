@@ -6,8 +6,9 @@
 // the view (so a view's tiles depend on its side alone, never on its square), each drawing only
 // the casters whose bounds reach it.
 //
-// Why 1024: the square is memory beside the atlas, counted with it against every limit
-// (drawingSquareTexels, shadow_atlas.h). At 1024 it is 2 MiB of 16-bit depth, 3% of the default
+// Why 1024: the square is memory beside the atlas, counted with it against the device's limits
+// and in the shadow memory reported (drawingSquareTexels, shadow_atlas.h), though not against
+// --shadow-budget, which is the atlas's. At 1024 it is 2 MiB of 16-bit depth, 3% of the default
 // 64 MiB budget, and the hall's default tiers (up to 1024 at 1280x720) draw in one tile; a 4096
 // view pays 16 tiles, each with the casters that reach it.
 #include <cstdint>

@@ -155,9 +155,7 @@ void placeShadowPagePool(ShadowPlan& plan, ShadowPageAllocation& allocation, uin
 }
 
 uint64_t shadowPagePoolCapacity(const ShadowPlan& plan, uint64_t budgetBytes, uint32_t texelBytes) {
-    std::vector<uint32_t> squares;
-    for (const AtlasRect& rect : plan.atlas.rects) squares.push_back(rect.size);
-    const uint64_t cascades = (plan.atlas.texels() + drawingSquareTexels(squares)) * texelBytes;
+    const uint64_t cascades = plan.atlas.texels() * texelBytes;
     const uint64_t slots = budgetBytes > cascades ? (budgetBytes - cascades) / (uint64_t(kSlot) * kSlot * texelBytes) : 0;
     return slots > 0 ? slots - 1 : 0;  // one slot is the lit page's
 }

@@ -104,8 +104,8 @@ ShadowPageAllocation allocateShadowPages(const ShadowPageMarkLayout& layout, std
 // the pool cannot fit maxSide x maxSide.
 void placeShadowPagePool(ShadowPlan& plan, ShadowPageAllocation& allocation, uint32_t maxSide);
 
-// The pages the pool can hold beside the cascades: what remains of `budgetBytes` after plan.atlas
-// and the cascades' drawing square (shadow_atlas.h's drawingSquareTexels), in slots of 33 x 33 texels of `texelBytes`, less the lit page's.
+// The pages the pool can hold beside the cascades: what remains of `budgetBytes` after plan.atlas,
+// in slots of 33 x 33 texels of `texelBytes`, less the lit page's.
 uint64_t shadowPagePoolCapacity(const ShadowPlan& plan, uint64_t budgetBytes, uint32_t texelBytes);
 
 // When `counts` exceed `capacity`: one more coarser level for the views of the least important

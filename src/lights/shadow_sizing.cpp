@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "lights/shadow_drawing_tiles.h"
 #include "lights/shadow_resolution.h"
 
 namespace punctual {
@@ -232,7 +233,10 @@ void sizeShadowViews(ShadowPlan& plan, const Scene& scene, const FrameLights& li
     budget.texelBytes = settings.texelBytes();
     budget.minTier = settings.minTier;
     budget.maxSide = limits.atlasSide;
-    const uint64_t deviceBytes = std::min(limits.total, limits.atlasBytes);
+    // The budget is the atlas's (--shadow-budget); beside it the device holds the drawing square
+    // (shadow_drawing_tiles.h), at most kDrawingSquareSide^2 texels.
+    const uint64_t square = uint64_t(kDrawingSquareSide) * kDrawingSquareSide * settings.texelBytes();
+    const uint64_t deviceBytes = std::min(limits.total > square ? limits.total - square : 0, limits.atlasBytes);
     if (settings.budgetBytes <= deviceBytes) {
         budget.bytes = settings.budgetBytes;
         budget.bytesName = "--shadow-budget " + std::to_string(settings.budgetBytes >> 20);

@@ -44,10 +44,10 @@ struct ShadowCacheModeInfo {
 inline constexpr std::array<ShadowCacheModeInfo, 3> kShadowCacheModes = {{
     {ShadowCacheMode::Off, "off", "every frame packs its atlas afresh and draws every view"},
     {ShadowCacheMode::On, "on", "views keep their squares, and their depth while nothing in them moved"},
-    // The atlas's position enters the rasterizer's viewport transform and the lookups' texture
-    // coordinates in floating point, so a view drawn in another square may differ in a rounding
-    // (a pixel or two a frame): the cache's lossless claim is against its own squares, all drawn.
-    {ShadowCacheMode::Redraw, "redraw", "the squares of on, every view drawn: what on must equal, bit for bit"},
+    // Where a square lies does not change its depth (each view is drawn at the drawing square's
+    // origin and copied, render/shadow_pass.h) nor its lookups (in the view's own texels), so on
+    // equals off and redraw bit for bit; redraw tells the cache's keeping from its placing.
+    {ShadowCacheMode::Redraw, "redraw", "the squares of on, every view drawn (on, off and redraw give the same frames)"},
 }};
 static_assert(valuesAreIndices(kShadowCacheModes) && namesAreUnique(kShadowCacheModes));
 

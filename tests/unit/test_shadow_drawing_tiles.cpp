@@ -1,7 +1,7 @@
 // Known answers for the drawing tiles (lights/shadow_drawing_tiles.h): a view no larger than the
 // drawing square is one tile with every caster; a larger one is cut into tiles of its side, each
 // drawing the casters whose projected bounds reach it (within a texel); and the drawing square's
-// memory, which every limit counts beside the atlas (shadow_atlas.h).
+// memory, which the device's limits count beside the atlas (shadow_atlas.h).
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -268,16 +268,15 @@ TEST(ShadowAtlas, ShelvesStayWithinTheDevicesSideOrFail) {
 
 TEST(ShadowBudget, TheLeastImportantLightGivesUpResolutionFirst) {
     // Light B (rank 0) has views 2, 3 at 512; light A (rank 1) views 0, 1 at 1024. At 16 bits:
-    // shelves of 1024, 1024 and 512 in a 1024-wide atlas, 1024 x 2560 x 2 bytes = 5 MiB, and the
-    // drawing square of the largest view, 1024^2 x 2 = 2 MiB: 7 MiB. A budget of 4 MiB halves A's
-    // views: four 512s, 512 x 2048 x 2 bytes = 2 MiB, and a square of 512^2 x 2 = 0.5 MiB.
+    // shelves of 1024, 1024 and 512 in a 1024-wide atlas, 1024 x 2560 x 2 bytes = 5 MiB. A budget
+    // of 4 MiB halves A's views: four 512s, 512 x 2048 x 2 bytes = 2 MiB.
     ShadowBudgetLimits limits;
     limits.bytes = 4ull << 20;
     limits.bytesName = "--shadow-budget 4";
     limits.texelBytes = 2;
     const ShadowAllocation allocation = fitShadowBudget({1024, 1024, 512, 512}, {1, 1, 0, 0}, limits);
     EXPECT_EQ(allocation.resolutions, (std::vector<uint32_t>{512, 512, 512, 512}));
-    EXPECT_EQ(allocation.bytes, (2ull << 20) + (512ull << 10));
+    EXPECT_EQ(allocation.bytes, 2ull << 20);
     ASSERT_EQ(allocation.reductions.size(), 2u);
     EXPECT_EQ(allocation.reductions[0].view, 0u);
     EXPECT_EQ(allocation.reductions[0].demanded, 1024u);
@@ -287,30 +286,26 @@ TEST(ShadowBudget, TheLeastImportantLightGivesUpResolutionFirst) {
 }
 
 TEST(ShadowBudget, WithinTheBudgetNothingIsReduced) {
-    // 5 MiB of atlas and 2 MiB of drawing square (as above) fit 7 MiB exactly.
     ShadowBudgetLimits limits;
-    limits.bytes = 7ull << 20;
+    limits.bytes = 5ull << 20;
     const ShadowAllocation allocation = fitShadowBudget({1024, 1024, 512, 512}, {1, 1, 0, 0}, limits);
     EXPECT_EQ(allocation.resolutions, (std::vector<uint32_t>{1024, 1024, 512, 512}));
-    EXPECT_EQ(allocation.bytes, 7ull << 20);
     EXPECT_TRUE(allocation.reductions.empty());
     EXPECT_EQ(allocation.limitName, "");
 }
 
 TEST(ShadowBudget, RoundsHalveEachLightOnceBeforeAnyTwice) {
-    // Three lights of one 1024 view each, 2 MiB a view at 16 bits: 6 MiB, and 2 MiB of drawing
-    // square. A budget of 2 MiB: round 1 halves C (1024 x 2560: 5 MiB, 7 with the square), then B
-    // (a shelf of 1024 and one of two 512s: 3 MiB, 5 with it), then A (three 512s stacked,
-    // 512 x 1536 x 2 bytes = 1.5 MiB, and a square of 512^2 x 2 = 0.5 MiB: 2 MiB, fits).
+    // Three lights of one 1024 view each, 2 MiB a view at 16 bits: 6 MiB. A budget of 2 MiB:
+    // round 1 halves C (1024 x 2560: 5 MiB), then B (a shelf of 1024 and one of two 512s: 3 MiB),
+    // then A (three 512s stacked, 512 x 1536 x 2 bytes = 1.5 MiB: fits).
     ShadowBudgetLimits limits;
     limits.bytes = 2ull << 20;
     const ShadowAllocation allocation = fitShadowBudget({1024, 1024, 1024}, {0, 1, 2}, limits);
     EXPECT_EQ(allocation.resolutions, (std::vector<uint32_t>{512, 512, 512}));
-    EXPECT_EQ(allocation.bytes, 512ull * 1536 * 2 + 512ull * 512 * 2);
+    EXPECT_EQ(allocation.bytes, 512ull * 1536 * 2);
 }
 
 TEST(ShadowBudget, ABudgetEvenTheSmallestTiersExceedIsOneClearError) {
-    // Two views at 16^2 texels of 2 bytes: a 16 x 32 atlas (1 KiB) and a 16^2 drawing square.
     ShadowBudgetLimits limits;
     limits.bytes = 512;
     limits.bytesName = "--shadow-budget 1";
@@ -319,7 +314,7 @@ TEST(ShadowBudget, ABudgetEvenTheSmallestTiersExceedIsOneClearError) {
         FAIL() << "no error";
     } catch (const Error& e) {
         EXPECT_EQ(std::string(e.what()),
-                  "--shadow-budget 1: the shadow views need 1.5 KiB even at 16^2 texels each, more than 0.5 KiB "
+                  "--shadow-budget 1: the shadow views need 1.0 KiB even at 16^2 texels each, more than 0.5 KiB "
                   "(or larger than 16384^2 texels)");
     }
 }
