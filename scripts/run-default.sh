@@ -2,8 +2,8 @@
 # The main job: builds, renders the built-in default scene (the hall) at 1280x720 and prints the
 # per-pass timing table. Writes out/default.png and out/default-stats.json. Then compares every
 # light-list method on the hall (1280x720) and on the outdoor scene (640x360: its 32 lights, sun
-# cascades and simple geometry take 8 to 15 s there, and at this size its shadow views fit the default
-# budget, so it prints no warning).
+# cascades and simple geometry take 8 to 15 s there, and at this size its shadow views fit the
+# default budget, so it prints no warning).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/build.sh"
