@@ -358,12 +358,13 @@ void ShadowPass::recordAtlas(const FrameContext& frame, const Target& atlas) con
     const VkCommandBuffer cmd = frame.cmd;
     const vk::Image& image = maps().atlas();
     const VkImageLayout before = atlasLayoutBefore();
-    if (pageDraws_.draws.empty()) {
+    if (!settings_.virtualPages()) {
         vk::imageBarrier(cmd, image, before, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
     } else {
-        // Virtual pages: the pool is cleared and the pages drawn in place (each slot's own page),
-        // then the cascades' squares are copied in beside it.
+        // Virtual pages: the pool is cleared (the lit slot, and every page no caster reaches, read
+        // as the far plane) and the pages drawn in place (each slot's own page), then the
+        // cascades' squares are copied in beside it.
         vk::imageBarrier(cmd, image, before, kDrawLayout, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
                          VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
