@@ -79,7 +79,6 @@ public:
     const ShadowMaps& maps() const { return *maps_; }
     // Whether plan view `view` keeps last frame's depth (not cleared, not drawn).
     bool kept(uint32_t view) const { return view < kept_.size() && kept_[view]; }
-    bool anyKept() const { return frame_.keptViews > 0; }
     // The atlas's layout when this frame's shadow pass begins: UNDEFINED for maps made this frame,
     // else the one every frame leaves it in (ShadowPass::kReadLayout).
     VkImageLayout atlasLayoutBefore() const { return atlasLayoutBefore_; }
