@@ -240,7 +240,11 @@ public:
                                          {"laid_out", cache->laidOut ? 1 : 0},  // a number: frames.csv's counters read numbers
                                          {"atlas_texels", cache->atlasTexels},
                                          {"packed_texels", cache->packedTexels},
-                                         {"check_ms", cache->checkMs}};
+                                         {"check_ms", cache->checkMs},
+                                         {"over_static_views", cache->overStaticViews},
+                                         {"static_stored_views", cache->staticStoredViews},
+                                         {"dynamic_casters", cache->dynamicCasters},
+                                         {"static_texels", cache->staticTexels}};
         }
         if (validated) stats["validation"] = frameValidationJson(scene, renderer, lastValidated_);
         image = std::move(result.image);

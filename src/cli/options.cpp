@@ -107,10 +107,13 @@ void checkOptionCombinations(const RenderOptions& options, bool splitsAndLambda)
         throw Error("--time", std::string("poses a scene file's animations or a built-in scene's path; ") + builtin.name +
                                   " has none (" + withPaths + " have)");
     }
-    if (options.movingLights && (options.scenePath || !builtin.hasPath())) {
-        throw Error("--moving-lights", std::string("moves lights along a built-in scene's path (") + withPaths + "); " +
-                                           (options.scenePath ? "a scene file's animations decide what moves"
-                                                              : std::string(builtin.name) + " has no path"));
+    for (const auto& [option, given] : {std::pair{"--moving-lights", options.movingLights.has_value()},
+                                        std::pair{"--moving-casters", options.movingCasters.has_value()}}) {
+        if (given && (options.scenePath || !builtin.hasPath())) {
+            throw Error(option, std::string("moves lights or props along a built-in scene's path (") + withPaths + "); " +
+                                    (options.scenePath ? "a scene file's animations decide what moves"
+                                                       : std::string(builtin.name) + " has no path"));
+        }
     }
     if (options.sceneTriangles && !(options.sceneName && parseBuiltinScene(*options.sceneName).sized())) {
         std::string sized;

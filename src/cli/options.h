@@ -20,6 +20,7 @@ struct RenderOptions {
     std::optional<uint64_t> sceneTriangles;  // --scene-triangles N: the size of a sized built-in scene
     std::optional<double> time;            // --time T: seconds into the scene file's animations
     std::optional<double> movingLights;    // --moving-lights F: the share of a built-in path's lights that move
+    std::optional<double> movingCasters;   // --moving-casters F: the share of a built-in path's props that move
     std::optional<LightCounts> lights;     // --lights S,P[,SEED]
     std::optional<LightRange> lightRange;  // --light-range R|auto (generated lights only)
     LightCapacity maxLights;               // --max-lights S,P

@@ -33,6 +33,15 @@ void applyShadowResolution(RenderOptions& o, const std::string& v, Notes&) {
     o.shadows.resolution = resolution;
 }
 
+// --moving-lights, --moving-casters: a share from 0 to 1 (a double, as movingLights divides by it).
+double parseMovingShare(const char* option, const std::string& v) {
+    double share = 0.0;
+    if (!parseNumber(v, share) || !(share >= 0.0 && share <= 1.0)) {
+        throw Error(option, "must be a share from 0 to 1, got '" + v + "'");
+    }
+    return share;
+}
+
 // --time: seconds, from 0 to 10^6 (a day is 86,400; a keyframe time past 2^24 s is not even a
 // whole second in float).
 double parseTime(const std::string& v) {
@@ -95,13 +104,11 @@ const RenderOptionSpec kRenderOptions[] = {
      [](RenderOptions& o, const std::string& v, Notes&) { o.time = parseTime(v); }},
     {"--moving-lights", "F",
      "along a built-in scene's path, the share of its lamps that sway 1 m\nto either side (0 to 1: light floor(k / F) for k = 0, 1, ...; default\nthe path's own: the hall's 1/6, the street's none)",
-     [](RenderOptions& o, const std::string& v, Notes&) {
-         double share = 0.0;  // a double, as movingLights divides by it
-         if (!parseNumber(v, share) || !(share >= 0.0 && share <= 1.0)) {
-             throw Error("--moving-lights", "must be a share from 0 to 1, got '" + v + "'");
-         }
-         o.movingLights = share;
-     }},
+     [](RenderOptions& o, const std::string& v, Notes&) { o.movingLights = parseMovingShare("--moving-lights", v); }},
+    {"--moving-casters", "F",
+     "along a built-in scene's path, the share of its props (objects within\na 4 m cube: crates, blocks, bollards) "
+     "that lift 1 m and sink back\ntwice (0 to 1, chosen as --moving-lights chooses lamps; default 0)",
+     [](RenderOptions& o, const std::string& v, Notes&) { o.movingCasters = parseMovingShare("--moving-casters", v); }},
     {"--max-lights", "S,P",
      "the light capacity: each frame keeps at most S spot and P point\nlights, the most important (default 64,32, "
      "the design notes'; up to\n16384,16384). The light lists hold one bit per light kept",

@@ -16,7 +16,8 @@ Scene loadSceneForOptions(const RenderOptions& options) {
     Scene scene = options.scenePath ? loadGltf(*options.scenePath, load)
                                     : makeBuiltinScene(options.sceneName ? parseBuiltinScene(*options.sceneName)
                                                                                          : kDefaultBuiltinScene,
-                                                       options.sceneTriangles, options.time, options.movingLights);
+                                                       options.sceneTriangles, options.time,
+                                                       PathMotion{options.movingLights, options.movingCasters.value_or(0.0)});
     if (options.lights) {
         replaceLights(scene, options.lights->spot, options.lights->point, options.lights->seed,
                       options.lightRange.value_or(LightRange{}));

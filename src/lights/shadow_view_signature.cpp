@@ -58,12 +58,17 @@ std::vector<uint64_t> casterFingerprints(const Scene& scene, const ShadowPlan& p
 }
 
 uint64_t shadowViewSignature(const ShadowView& view, const std::vector<uint64_t>& fingerprints) {
+    return shadowViewSignature(view, view.casters, fingerprints);
+}
+
+uint64_t shadowViewSignature(const ShadowView& view, const std::vector<uint32_t>& casters,
+                             const std::vector<uint64_t>& fingerprints) {
     WordHash hash;
     hash.addValue(view.gpu.viewProjection);
     hash.add(view.resolution);
     hash.add(view.isCascade);
-    hash.add(view.casters.size());
-    for (const uint32_t object : view.casters) {
+    hash.add(casters.size());
+    for (const uint32_t object : casters) {
         hash.add(object);
         hash.add(fingerprints.at(object));
     }

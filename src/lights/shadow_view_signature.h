@@ -27,5 +27,10 @@ std::vector<uint64_t> casterFingerprints(const Scene& scene, const ShadowPlan& p
 
 // The view's signature: its matrix, its side and its casters' fingerprints in draw order.
 uint64_t shadowViewSignature(const ShadowView& view, const std::vector<uint64_t>& fingerprints);
+// The same over `casters` (some of the view's, in its order) in place of all of them: what the
+// view's depth of those casters alone is made of (the static casters' kept depth of mixed
+// caching, render/shadow_cache.h).
+uint64_t shadowViewSignature(const ShadowView& view, const std::vector<uint32_t>& casters,
+                             const std::vector<uint64_t>& fingerprints);
 
 }  // namespace punctual

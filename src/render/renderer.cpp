@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -577,11 +578,18 @@ ShadowDraws Renderer::shadowDraws() const {
     for (uint32_t v = 0; v < plan_.shadows.views.size(); ++v) {
         const ShadowView& view = plan_.shadows.views[v];
         if (!view.rendered() || (shadowCache_ && shadowCache_->kept(v))) continue;
-        // A view larger than the drawing square draws each caster in the tiles it reaches.
-        const uint64_t viewDraws = drawingTileDraws(view, scene_);
+        // A view larger than the drawing square draws each caster in the tiles it reaches; one
+        // drawn over its kept static depth (mixed caching), only its dynamic casters.
+        auto drawn = [&](uint32_t object) { return !shadowCache_ || shadowCache_->draws(v, object); };
+        uint64_t viewDraws = 0;
+        for (const DrawingTile& tile : drawingTiles(view, scene_)) {
+            viewDraws += uint64_t(std::count_if(tile.casters.begin(), tile.casters.end(), drawn));
+        }
+        std::vector<uint32_t> casters;
+        std::copy_if(view.casters.begin(), view.casters.end(), std::back_inserter(casters), drawn);
         draws.total += viewDraws;
         draws.maxPerView = std::max<uint64_t>(draws.maxPerView, viewDraws);
-        draws.triangles += trianglesOf(scene_, view.casters);
+        draws.triangles += trianglesOf(scene_, casters);
     }
     return draws;
 }

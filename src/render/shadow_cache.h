@@ -14,6 +14,19 @@
 // camera and the casters stand still (their matrices follow the camera). Not the cube layout's
 // faces (redrawn every frame), nor virtual pages (refused: their pool is allocated afresh from
 // each frame's marks).
+//
+// Mixed (HDRP's mixed cached shadows; Unreal keeps static casters' pages apart too): a view with
+// a moving caster inside it is drawn every frame that caster moves, but its static casters' depth
+// is kept apart, in a second atlas of the views that have dynamic casters (its own buddy
+// allocator, lights/shadow_atlas_cache.h), and copied into the drawing square before the dynamic
+// casters are drawn over it. That equals drawing every caster, bit for bit: depth-only drawing
+// keeps the nearest fragment whatever the order (the depth test is LESS and every caster writes
+// depth alone, so each texel ends at the minimum of its fragments' depths, rounded to the format
+// by a monotonic conversion). Which casters are dynamic is learned, not declared (glTF has no
+// static flag): an object whose caster fingerprint (lights/shadow_view_signature.h) changed since
+// it was last seen is dynamic from then on. Learning one costs its views' static depth once (it
+// leaves their static set); a wrong guess costs time, never a texel, as the static signature
+// covers exactly the casters kept apart.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -27,6 +40,7 @@
 #include "lights/shadow_setup.h"
 #include "render/shadow_maps.h"
 #include "scene/scene.h"
+#include "vk/image.h"
 
 namespace punctual::vk {
 class Context;
@@ -35,19 +49,22 @@ class Context;
 namespace punctual::render {
 
 // --shadow-cache (punctual play): a table, so parsing, --help and the tests derive from it.
-enum class ShadowCacheMode : uint32_t { Off, On, Redraw };
+enum class ShadowCacheMode : uint32_t { Off, On, Redraw, Mixed };
 struct ShadowCacheModeInfo {
     ShadowCacheMode value;
     const char* name;
     const char* description;
 };
-inline constexpr std::array<ShadowCacheModeInfo, 3> kShadowCacheModes = {{
+inline constexpr std::array<ShadowCacheModeInfo, 4> kShadowCacheModes = {{
     {ShadowCacheMode::Off, "off", "every frame packs its atlas afresh and draws every view"},
     {ShadowCacheMode::On, "on", "views keep their squares, and their depth while nothing in them moved"},
     // Where a square lies does not change its depth (each view is drawn at the drawing square's
     // origin and copied, render/shadow_pass.h) nor its lookups (in the view's own texels), so on
     // equals off and redraw bit for bit; redraw tells the cache's keeping from its placing.
     {ShadowCacheMode::Redraw, "redraw", "the squares of on, every view drawn (on, off and redraw give the same frames)"},
+    {ShadowCacheMode::Mixed, "mixed",
+     "as on, and a view whose moving casters moved draws only them over its\nstatic casters' kept depth "
+     "(HDRP's mixed caching; a second atlas)"},
 }};
 static_assert(valuesAreIndices(kShadowCacheModes) && namesAreUnique(kShadowCacheModes));
 
@@ -60,7 +77,21 @@ struct ShadowCacheFrame {
     uint32_t movedViews = 0;    // views moved out of a block another needed (drawn, not kept)
     uint64_t atlasTexels = 0;   // the cache's atlas
     uint64_t packedTexels = 0;  // the frame's own packing (--shadow-cache off)
+    // Mixed: drawn views that drew their dynamic casters over their kept static depth (a subset of
+    // drawnViews), those that drew and stored their static casters' depth first, the objects
+    // learned dynamic so far, and the static atlas's texels.
+    uint32_t overStaticViews = 0;
+    uint32_t staticStoredViews = 0;
+    uint32_t dynamicCasters = 0;
+    uint64_t staticTexels = 0;
     double checkMs = 0.0;       // CPU: fingerprints, signatures and placement
+};
+
+// How the shadow pass draws a view the cache does not keep.
+enum class ViewDrawing : uint8_t {
+    Whole,         // every caster over the far plane
+    StoreStatic,   // mixed: the static casters, stored in the static atlas, then the dynamic ones
+    OverStatic,    // mixed: the stored static depth, then the dynamic casters over it
 };
 
 class ShadowCache {
@@ -82,6 +113,21 @@ public:
     // The atlas's layout when this frame's shadow pass begins: UNDEFINED for maps made this frame,
     // else the one every frame leaves it in (ShadowPass::kReadLayout).
     VkImageLayout atlasLayoutBefore() const { return atlasLayoutBefore_; }
+    // Mixed: how plan view `view` is drawn when not kept, its square in the static atlas (for
+    // StoreStatic and OverStatic), and whether `object` is drawn as a dynamic caster.
+    ViewDrawing drawing(uint32_t view) const { return view < drawing_.size() ? drawing_[view] : ViewDrawing::Whole; }
+    const AtlasRect& staticRect(uint32_t view) const { return staticRects_.at(view); }
+    bool dynamic(uint32_t object) const { return object < dynamic_.size() && dynamic_[object]; }
+    // Mixed: the static atlas (none while no view has a dynamic caster), and its layout as the
+    // frame begins: UNDEFINED when made this frame, else TRANSFER_SRC_OPTIMAL, where it rests
+    // (ShadowPass reads it there and moves it to TRANSFER_DST_OPTIMAL only for each copy into it).
+    const vk::Image* staticDepth() const { return staticDepth_ ? &*staticDepth_ : nullptr; }
+    VkImageLayout staticLayoutBefore() const { return staticLayoutBefore_; }
+    // Whether plan view `view` draws `object` this frame (not kept; over its static depth, only
+    // the dynamic casters).
+    bool draws(uint32_t view, uint32_t object) const {
+        return !kept(view) && (drawing(view) != ViewDrawing::OverStatic || dynamic(object));
+    }
     const ShadowCacheFrame& lastFrame() const { return frame_; }
 
 private:
@@ -97,15 +143,28 @@ private:
             return cubeResolution == o.cubeResolution && shadowedPoints == o.shadowedPoints;
         }
     };
+    // Mixed: learns the dynamic casters from this frame's fingerprints, places the views with
+    // dynamic casters in the static atlas and decides how each view is drawn.
+    void prepareMixed(const ShadowPlan& plan, const std::vector<ShadowViewKey>& keys,
+                      const std::vector<uint64_t>& fingerprints);
+    void learnDynamicCasters(const std::vector<uint64_t>& fingerprints);
     const vk::Context& context_;
     ShadowSettings settings_;
     bool keep_;  // On; Redraw places as On but keeps nothing
+    bool mixed_;
     ShadowAtlasCache atlas_;
     std::optional<ShadowMaps> maps_;
     MapsShape shape_;
     std::vector<bool> kept_;
     VkImageLayout atlasLayoutBefore_ = VK_IMAGE_LAYOUT_UNDEFINED;
     ShadowCacheFrame frame_;
+    ShadowAtlasCache staticAtlas_;
+    std::optional<vk::Image> staticDepth_;
+    VkImageLayout staticLayoutBefore_ = VK_IMAGE_LAYOUT_UNDEFINED;
+    std::vector<uint64_t> knownFingerprints_;  // per object: its fingerprint when last drawn (0: never)
+    std::vector<bool> dynamic_;                // per object: learned dynamic
+    std::vector<ViewDrawing> drawing_;
+    std::vector<AtlasRect> staticRects_;
 };
 
 }  // namespace punctual::render

@@ -64,6 +64,10 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
     passDesc.depthInitialLayout = kDrawLayout;
     passDesc.depthFinalLayout = kDrawLayout;
     renderPass_ = context.objects().renderPass(passDesc);
+    // Mixed caching draws dynamic casters over static depth copied into the drawing square: the
+    // same pass loading it (compatible with renderPass_, so the same pipelines and framebuffer).
+    passDesc.depthLoad = VK_ATTACHMENT_LOAD_OP_LOAD;
+    loadingRenderPass_ = context.objects().renderPass(passDesc);
     createTargets(context);
     createDrawingSquare(context, scene);
 }
@@ -82,7 +86,8 @@ void ShadowPass::createDrawingSquare(const vk::Context& context, const Scene& sc
     desc.format = ShadowMaps::format(settings_.format);
     desc.width = side;
     desc.height = side;
-    desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                 VK_IMAGE_USAGE_TRANSFER_DST_BIT;  // (mixed caching copies static depth into it)
     desc.debugName = "shadow drawing square";
     drawingSquare_.emplace(context, desc);
     const VkImageView view = drawingSquare_->view();
@@ -90,8 +95,9 @@ void ShadowPass::createDrawingSquare(const vk::Context& context, const Scene& sc
 }
 
 uint64_t ShadowPass::memoryBytes() const {
-    return maps().allocatedBytes() + (drawingSquare_ ? drawingSquare_->allocatedBytes() : 0) + pageViews_.size() +
-           pageTable_.size();
+    const vk::Image* staticDepth = cache_ ? cache_->staticDepth() : nullptr;
+    return maps().allocatedBytes() + (drawingSquare_ ? drawingSquare_->allocatedBytes() : 0) +
+           (staticDepth ? staticDepth->allocatedBytes() : 0) + pageViews_.size() + pageTable_.size();
 }
 
 void ShadowPass::createTargets(const vk::Context& context) {
@@ -314,38 +320,96 @@ std::vector<ImageUse> ShadowPass::imageUses() const {
 }
 
 void ShadowPass::recordAtlasView(const FrameContext& frame, uint32_t index) const {
-    const ShadowView& view = plan_.views[index];
-    for (const DrawingTile& tile : drawingTiles_[index]) recordDrawingTile(frame, view, tile);
+    for (const DrawingTile& tile : drawingTiles_[index]) recordDrawingTile(frame, index, tile);
 }
 
-void ShadowPass::recordDrawingTile(const FrameContext& frame, const ShadowView& view, const DrawingTile& tile) const {
-    const VkCommandBuffer cmd = frame.cmd;
+void ShadowPass::drawIntoSquare(const FrameContext& frame, const ShadowView& view, const glm::uvec2& origin,
+                                const std::vector<uint32_t>& casters, VkRenderPass renderPass) const {
+    // The tile's texels over the far plane (every texel no caster draws: lit) or over what the
+    // square holds (loading), and the view drawn through a viewport moved so that the tile's texels
+    // fall on the drawing square's (the scissor beginRenderPass sets keeps the rest out).
     const uint32_t side = drawingTileSide(view.rect.size);
-    const glm::uvec2 origin = glm::uvec2(tile.column, tile.row) * side;  // the tile's texel in the view
-    // The tile cleared to the far plane (every texel no caster draws: lit), and the view drawn
-    // through a viewport moved so that the tile's texels fall on the drawing square's (the scissor
-    // beginRenderPass sets keeps the rest out).
     const VkClearValue clear = kClearToFar;
-    vk::beginRenderPass(cmd, renderPass_, drawingFramebuffer_, side, side, {&clear, 1});
+    vk::beginRenderPass(frame.cmd, renderPass, drawingFramebuffer_, side, side, {&clear, 1});
     const VkViewport viewport{-float(origin.x), -float(origin.y), float(view.rect.size), float(view.rect.size), 0.0f, 1.0f};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    drawView(frame, view, view.gpu.viewProjection, tile.casters);
-    vkCmdEndRenderPass(cmd);
-    vk::imageBarrier(cmd, *drawingSquare_, kDrawLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                     VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    vkCmdSetViewport(frame.cmd, 0, 1, &viewport);
+    drawView(frame, view, view.gpu.viewProjection, casters);
+    vkCmdEndRenderPass(frame.cmd);
+}
+
+// The drawing square's texels [0, side)^2 and the same square at `texel` of `image`, one way or
+// the other (the square in TRANSFER_SRC or TRANSFER_DST, the image in `imageLayout`).
+void ShadowPass::copySquare(VkCommandBuffer cmd, const vk::Image& image, VkImageLayout imageLayout,
+                            const glm::uvec2& texel, uint32_t side, bool intoImage) const {
     VkImageCopy copy{};
     copy.srcSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
     copy.dstSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
-    copy.dstOffset = {int32_t(view.rect.x + origin.x), int32_t(view.rect.y + origin.y), 0};
+    (intoImage ? copy.dstOffset : copy.srcOffset) = {int32_t(texel.x), int32_t(texel.y), 0};
     copy.extent = {side, side, 1};
-    vkCmdCopyImage(cmd, drawingSquare_->handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, maps().atlas().handle(),
-                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-    // The next view's clear and draw wait for this copy's reads (an execution dependency).
-    vk::imageBarrier(cmd, *drawingSquare_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, kDrawLayout,
-                     VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+    if (intoImage) {
+        vkCmdCopyImage(cmd, drawingSquare_->handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image.handle(), imageLayout, 1,
+                       &copy);
+    } else {
+        vkCmdCopyImage(cmd, image.handle(), imageLayout, drawingSquare_->handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                       &copy);
+    }
+}
+
+void ShadowPass::squareDrawnToCopied(VkCommandBuffer cmd) const {
+    vk::imageBarrier(cmd, *drawingSquare_, kDrawLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+void ShadowPass::squareCopiedToDrawn(VkCommandBuffer cmd, VkImageLayout copyLayout) const {
+    // The next draw waits for the copy: its reads (an execution dependency) or its writes.
+    const VkAccessFlags copyAccess = copyLayout == VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL ? VK_ACCESS_TRANSFER_WRITE_BIT : 0;
+    vk::imageBarrier(cmd, *drawingSquare_, copyLayout, kDrawLayout, VK_PIPELINE_STAGE_TRANSFER_BIT, copyAccess,
                      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+}
+
+void ShadowPass::recordDrawingTile(const FrameContext& frame, uint32_t index, const DrawingTile& tile) const {
+    const VkCommandBuffer cmd = frame.cmd;
+    const ShadowView& view = plan_.views[index];
+    const uint32_t side = drawingTileSide(view.rect.size);
+    const glm::uvec2 origin = glm::uvec2(tile.column, tile.row) * side;  // the tile's texel in the view
+    const ViewDrawing drawing = cache_ ? cache_->drawing(index) : ViewDrawing::Whole;
+    if (drawing == ViewDrawing::Whole) {
+        drawIntoSquare(frame, view, origin, tile.casters, renderPass_);
+    } else {
+        // Mixed caching (render/shadow_cache.h): the static casters' depth, drawn and stored, or
+        // copied back from the static atlas, then the dynamic casters over it.
+        std::vector<uint32_t> statics;
+        std::vector<uint32_t> dynamics;
+        for (const uint32_t object : tile.casters) (cache_->dynamic(object) ? dynamics : statics).push_back(object);
+        const AtlasRect& rect = cache_->staticRect(index);
+        const glm::uvec2 staticTexel = glm::uvec2(rect.x, rect.y) + origin;
+        const vk::Image& staticDepth = *cache_->staticDepth();
+        if (drawing == ViewDrawing::StoreStatic) {
+            drawIntoSquare(frame, view, origin, statics, renderPass_);
+            squareDrawnToCopied(cmd);
+            // The static atlas rests in TRANSFER_SRC (read by the copies back), written in TRANSFER_DST.
+            vk::imageBarrier(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                             VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+            copySquare(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, staticTexel, side, /*intoImage=*/true);
+            vk::imageBarrier(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_ACCESS_TRANSFER_READ_BIT);
+            squareCopiedToDrawn(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        } else {
+            vk::imageBarrier(cmd, *drawingSquare_, kDrawLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                             VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, 0,
+                             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+            copySquare(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staticTexel, side, /*intoImage=*/false);
+            squareCopiedToDrawn(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        }
+        drawIntoSquare(frame, view, origin, dynamics, loadingRenderPass_);
+    }
+    squareDrawnToCopied(cmd);
+    copySquare(cmd, maps().atlas(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, glm::uvec2(view.rect.x, view.rect.y) + origin, side,
+               /*intoImage=*/true);
+    squareCopiedToDrawn(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
 }
 
 VkImageLayout ShadowPass::atlasLayoutBefore() const {
@@ -380,6 +444,13 @@ void ShadowPass::recordAtlas(const FrameContext& frame, const Target& atlas) con
         vk::imageBarrier(cmd, *drawingSquare_, VK_IMAGE_LAYOUT_UNDEFINED, kDrawLayout, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                          VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+    }
+    // Mixed caching: the static atlas made this frame moves into the layout it rests in (last
+    // frame's copies into it each ended in a barrier to that layout).
+    const vk::Image* staticDepth = cache_ ? cache_->staticDepth() : nullptr;
+    if (staticDepth && cache_->staticLayoutBefore() == VK_IMAGE_LAYOUT_UNDEFINED) {
+        vk::imageBarrier(cmd, *staticDepth, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                         VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
     }
     for (const uint32_t index : atlas.planViews) {
         if (!cache_ || !cache_->kept(index)) recordAtlasView(frame, index);

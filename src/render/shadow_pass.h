@@ -107,8 +107,19 @@ private:
     // Draws plan view `index` at the drawing square's origin, tile by tile, each copied into its
     // place in the view's atlas square.
     void recordAtlasView(const FrameContext& frame, uint32_t index) const;
-    // Draws `tile` of `view` into the drawing square and copies it into the atlas.
-    void recordDrawingTile(const FrameContext& frame, const ShadowView& view, const DrawingTile& tile) const;
+    // Draws `tile` of plan view `index` into the drawing square (over the static depth the cache
+    // keeps, in mixed caching) and copies it into the atlas.
+    void recordDrawingTile(const FrameContext& frame, uint32_t index, const DrawingTile& tile) const;
+    // Draws `casters` of the tile of `view` at `origin` (its texel in the view) into the drawing
+    // square, through `renderPass` (renderPass_ clears, loadingRenderPass_ draws over the square).
+    void drawIntoSquare(const FrameContext& frame, const ShadowView& view, const glm::uvec2& origin,
+                        const std::vector<uint32_t>& casters, VkRenderPass renderPass) const;
+    void copySquare(VkCommandBuffer cmd, const vk::Image& image, VkImageLayout imageLayout, const glm::uvec2& texel,
+                    uint32_t side, bool intoImage) const;
+    // The drawing square's barriers: drawn into to copied from, and copied from (TRANSFER_SRC) or
+    // into (TRANSFER_DST) to drawn into.
+    void squareDrawnToCopied(VkCommandBuffer cmd) const;
+    void squareCopiedToDrawn(VkCommandBuffer cmd, VkImageLayout copyLayout) const;
     // The atlas's layout as the stage begins (a cached atlas's is kept; see ShadowCache).
     VkImageLayout atlasLayoutBefore() const;
     // The drawing square (lights/shadow_drawing_tiles.h; none when the atlas has no view) and each
@@ -124,7 +135,8 @@ private:
     vk::Buffer pageInstances_;  // ShadowPageDraws::instances (one slot when there are none)
     ShadowPageDraws pageDraws_;
     // The render pass, layout and pipelines: the context's object cache (vk/object_cache.h) owns them.
-    VkRenderPass renderPass_ = VK_NULL_HANDLE;
+    VkRenderPass renderPass_ = VK_NULL_HANDLE;         // clears its target to the far plane
+    VkRenderPass loadingRenderPass_ = VK_NULL_HANDLE;  // draws over what it holds
     VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
     struct Pipelines {
         VkPipeline opaque = VK_NULL_HANDLE;  // depth only, no fragment shader

@@ -67,6 +67,8 @@ constexpr CsvCounter kCsvCounters[] = {
     {"shadow_cache_kept_views", "/shadows/cache/kept_views"},  // --shadow-cache on: 0 without
     {"shadow_cache_drawn_views", "/shadows/cache/drawn_views"},
     {"shadow_cache_laid_out", "/shadows/cache/laid_out"},
+    {"shadow_cache_over_static_views", "/shadows/cache/over_static_views"},  // --shadow-cache mixed
+    {"shadow_cache_dynamic_casters", "/shadows/cache/dynamic_casters"},
     {"shadow_memory_bytes", "/shadows/memory_bytes"},
     {"device_bytes", "/memory/device_bytes"},
 };

@@ -28,9 +28,9 @@ struct BuiltinScene {
     const char* description;
     uint64_t defaultTriangles = 0;  // 0: a scene of fixed size, which --scene-triangles cannot size
     // A scene with a path (issue 34; scene/scene_path.h): poses it at a time, with a share of its
-    // lights moving (--moving-lights; none given: the path's own), and the path's length in
+    // lights and of its props moving (--moving-lights, --moving-casters), and the path's length in
     // seconds. nullptr: a still scene, which --time cannot pose.
-    void (*pose)(Scene& scene, double time, std::optional<double> movingShare) = nullptr;
+    void (*pose)(Scene& scene, double time, const PathMotion& motion) = nullptr;
     float pathSeconds = 0.0f;
 
     bool sized() const { return defaultTriangles != 0; }
@@ -63,16 +63,17 @@ inline const BuiltinScene& parseBuiltinScene(const std::string& name) {
 }
 
 // Builds `scene` with `triangles` (a sized scene; none: its default size), posed at `time` seconds
-// of its path where one is given, `movingShare` of its lights moving (a scene without a path: an
-// internal error, the command line refuses --time and --moving-lights for it).
+// of its path where one is given, with `motion`'s shares of its lights and props moving (a scene
+// without a path: an internal error, the command line refuses --time, --moving-lights and
+// --moving-casters for it).
 inline Scene makeBuiltinScene(const BuiltinScene& scene, std::optional<uint64_t> triangles = std::nullopt,
                               std::optional<double> time = std::nullopt,
-                              std::optional<double> movingShare = std::nullopt) {
+                              const PathMotion& motion = {}) {
     Scene made = scene.value(triangles.value_or(scene.defaultTriangles));
     made.animationSeconds = double(scene.pathSeconds);
     if (time) {
         if (!scene.hasPath()) throw std::logic_error(std::string("built-in scene ") + scene.name + " has no path");
-        scene.pose(made, *time, movingShare);
+        scene.pose(made, *time, motion);
     }
     return made;
 }

@@ -284,7 +284,7 @@ uint32_t appendBoxMesh(Scene& scene, const std::string& name, const glm::vec3& s
 // near wall is 2.5 m high), turning towards the partition and the back wall. Keyframes every 3 s.
 // Every sixth lamp (16 of 96: spots and points alike; --moving-lights F another share) sways 1 m
 // to +x and back and 1 m to -x and back (addSwayingLights).
-ScenePath hallWalk(const Scene& scene, std::optional<double> movingShare) {
+ScenePath hallWalk(const Scene& scene, const PathMotion& motion) {
     using default_scene::kWalkSeconds;
     ScenePath path;
     const std::vector<float> times = {0.0f, 3.0f, 6.0f, 9.0f, kWalkSeconds};
@@ -293,12 +293,13 @@ ScenePath hallWalk(const Scene& scene, std::optional<double> movingShare) {
     path.target = linearTrack(times, {{0.0f, 0.0f, 6.1f}, {-9.0f, 0.5f, 2.0f}, {-10.0f, 1.0f, -10.0f},
                                       {-4.0f, 1.0f, -12.0f}, {6.0f, 1.0f, -12.0f}});
     path.seconds = double(kWalkSeconds);
-    addSwayingLights(path, uint32_t(scene.lights.size()), movingShare.value_or(default_scene::kMovingLightShare));
+    addSwayingLights(path, uint32_t(scene.lights.size()), motion.lights.value_or(default_scene::kMovingLightShare));
+    addLiftedProps(path, scene, motion.casters);
     return path;
 }
 
-void poseDefaultScene(Scene& scene, double time, std::optional<double> movingShare) {
-    applyScenePath(scene, hallWalk(scene, movingShare), time);
+void poseDefaultScene(Scene& scene, double time, const PathMotion& motion) {
+    applyScenePath(scene, hallWalk(scene, motion), time);
 }
 
 Scene makeDefaultScene() {

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "scene/scene.h"
+#include "scene/scene_path.h"
 
 namespace punctual {
 
@@ -29,10 +30,10 @@ constexpr double kMovingLightShare = 1.0 / 6.0;
 Scene makeDefaultScene();
 
 // Poses the hall at `time` seconds of its walk (scene/scene_path.h): the camera walks down into
-// the hall and along its left aisle, and 16 of the 96 lamps sway 1 m either way (`movingShare` of
-// them: movingLights, default kMovingLightShare). At 0, the still hall; past kWalkSeconds, the
-// walk's end.
-void poseDefaultScene(Scene& scene, double time, std::optional<double> movingShare = std::nullopt);
+// the hall and along its left aisle, and 16 of the 96 lamps sway 1 m either way (`motion.lights`
+// of them: movingLights, default kMovingLightShare; `motion.casters` of its crates lift). At 0,
+// the still hall; past kWalkSeconds, the walk's end.
+void poseDefaultScene(Scene& scene, double time, const PathMotion& motion = {});
 
 // Appends an axis-aligned box of the given full `size`, centred on the origin of its own mesh
 // space, as a new mesh (24 vertices, one flat normal and a 0..1 UV square per face, 12

@@ -214,13 +214,14 @@ void addBollardLights(Scene& scene, PortableRandom& random) {
 // Down the street at 6 m/s (21.6 km/h) for 10 s, at eye height between the fence (0.55 m to the
 // right, to z = -30) and the crates on the left, the view fixed on a point 10 m ahead, so the
 // sun's cascades slide along the ground with the camera and the lamps and bollards pass by.
-void poseOutdoorScene(Scene& scene, double time, std::optional<double> movingShare) {
+void poseOutdoorScene(Scene& scene, double time, const PathMotion& motion) {
     using outdoor_scene::kDriveSeconds;
     ScenePath path;
     path.eye = linearTrack({0.0f, kDriveSeconds}, {{0.0f, 1.7f, 0.0f}, {0.0f, 1.7f, -60.0f}});
     path.target = linearTrack({0.0f, kDriveSeconds}, {{-0.8f, 0.0f, -10.0f}, {-0.8f, 0.0f, -70.0f}});
     path.seconds = double(kDriveSeconds);
-    addSwayingLights(path, uint32_t(scene.lights.size()), movingShare.value_or(0.0));
+    addSwayingLights(path, uint32_t(scene.lights.size()), motion.lights.value_or(0.0));
+    addLiftedProps(path, scene, motion.casters);
     applyScenePath(scene, path, time);
 }
 

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "scene/scene.h"
+#include "scene/scene_path.h"
 
 namespace punctual {
 
@@ -25,8 +26,9 @@ constexpr float kDriveSeconds = 10.0f;
 Scene makeOutdoorScene();
 
 // Poses the street at `time` seconds of its drive (scene/scene_path.h): the camera moves 60 m
-// down the street at eye height, looking ahead; the lights stand still (or `movingShare` of them
-// sway, scene/scene_path.h's addSwayingLights). At 0, the still street.
-void poseOutdoorScene(Scene& scene, double time, std::optional<double> movingShare = std::nullopt);
+// down the street at eye height, looking ahead; the lights stand still (or `motion.lights` of them
+// sway, scene/scene_path.h's addSwayingLights; `motion.casters` of the props lift). At 0, the
+// still street.
+void poseOutdoorScene(Scene& scene, double time, const PathMotion& motion = {});
 
 }  // namespace punctual

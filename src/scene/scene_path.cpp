@@ -45,7 +45,34 @@ void addSwayingLights(ScenePath& path, uint32_t lightCount, double share) {
     }
 }
 
+std::vector<uint32_t> sceneProps(const Scene& scene) {
+    std::vector<uint32_t> props;
+    for (uint32_t i = 0; i < scene.objects.size(); ++i) {
+        const Bounds& bounds = scene.objects[i].worldBounds;
+        const glm::vec3 size = bounds.max - bounds.min;
+        if (size.x <= kPropSide && size.y <= kPropSide && size.z <= kPropSide) props.push_back(i);
+    }
+    return props;
+}
+
+void addLiftedProps(ScenePath& path, const Scene& scene, double share) {
+    const float length = float(path.seconds);
+    const std::vector<float> times = {0.0f, 0.25f * length, 0.5f * length, 0.75f * length, length};
+    const std::vector<uint32_t> props = sceneProps(scene);
+    for (const uint32_t k : movingLights(uint32_t(props.size()), share)) {
+        path.objects.push_back({props[k], linearTrack(times, {{0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f},
+                                                              {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f}})});
+    }
+}
+
 void applyScenePath(Scene& scene, const ScenePath& path, double time) {
+    // The offset is added to the placement's translation alone, so an offset of 0 (time 0) leaves
+    // the model matrix, and so the still scene, bit for bit.
+    for (const ObjectPath& moving : path.objects) {
+        glm::mat4& model = scene.objects.at(moving.object).model;
+        model[3] += glm::vec4(sampled(moving.offset, time), 0.0f);
+    }
+    if (!path.objects.empty()) scene.computeBounds();
     Camera& camera = scene.camera;
     camera.view = glm::lookAtRH(sampled(path.eye, time), sampled(path.target, time), glm::vec3(0.0f, 1.0f, 0.0f));
     camera.zfar = farthestViewDepth(scene.bounds, camera.view) + 1.0f;

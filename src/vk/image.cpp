@@ -36,6 +36,12 @@ Image::Image(const Context& context, const ImageDesc& desc) : device_(context.de
         allocatedBytes_ = requirements.size;
         check(vkBindImageMemory(device_, image_, memory_, 0), "vkBindImageMemory");
 
+        // An image only copied to and from (a transfer-only usage) may have no view.
+        constexpr VkImageUsageFlags kViewedUsages = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
+                                                    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
+                                                    VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT;
+        if ((desc.usage & kViewedUsages) == 0) return;
         VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         viewInfo.image = image_;
         viewInfo.viewType = desc.viewType;

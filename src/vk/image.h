@@ -1,5 +1,6 @@
 #pragma once
-// A VkImage with its own memory and one view covering all its layers and mip levels.
+// A VkImage with its own memory and one view covering all its layers and mip levels (none for an
+// image whose usage is transfers alone: view() is then VK_NULL_HANDLE).
 #include <cstdint>
 #include <string>
 

@@ -85,12 +85,15 @@ TEST(AnimationCli, ATimeIsRefusedWhereItMeansNothing) {
 TEST(AnimationCli, AMovingShareIsRefusedWhereNoPathMovesLights) {
     testing::TempFolder folder;
     const std::string png = quoted(folder.file("x.png"));
-    testing::expectOneClearError(testing::runPunctual(folder, "render --scene rooms --moving-lights 0.5 --out " + png),
-                                 "render --scene rooms --moving-lights 0.5",
-                                 "--moving-lights: moves lights along a built-in scene's path (hall and outdoor); rooms has no path");
-    for (const char* bad : {"-0.1", "1.5", "nan", "half"}) {
-        const std::string args = cat("render --time 3 --moving-lights ", bad, " --out ", png);
-        testing::expectOneClearError(testing::runPunctual(folder, args), args, "--moving-lights: must be a share from 0 to 1");
+    for (const std::string option : {"--moving-lights", "--moving-casters"}) {
+        testing::expectOneClearError(testing::runPunctual(folder, "render --scene rooms " + option + " 0.5 --out " + png),
+                                     "render --scene rooms " + option + " 0.5",
+                                     option + ": moves lights or props along a built-in scene's path (hall and outdoor); "
+                                              "rooms has no path");
+        for (const char* bad : {"-0.1", "1.5", "nan", "half"}) {
+            const std::string args = cat("render --time 3 ", option, " ", bad, " --out ", png);
+            testing::expectOneClearError(testing::runPunctual(folder, args), args, option + ": must be a share from 0 to 1");
+        }
     }
     testing::expectNothingLeftBehind(folder, "refused moving shares");
 }

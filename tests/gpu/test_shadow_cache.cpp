@@ -3,8 +3,9 @@
 // frame's (an oracle that compares the plans themselves, not their hashes), and its frames are
 // bit for bit the uncached frames (each view drawn in its own packing's square) and those of the
 // cache's squares all drawn, whatever the filter and with views drawn in tiles; a caster that
-// moves redraws only the views it is or was in; and the command line refuses what it cannot
-// cache, in one line.
+// moves redraws only the views it is or was in; mixed caching draws lifting crates over their
+// views' kept static depth, bit for bit the uncached frames; and the command line refuses what it
+// cannot cache, in one line.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include "render/shadow_cache.h"
 #include "report/sequence_report.h"
 #include "scene/builtin_scenes.h"
+#include "scene/scene_path.h"
 
 namespace punctual {
 namespace {
@@ -78,8 +80,8 @@ size_t expectKeptAsTheOracleSays(const render::Renderer& renderer, const render:
     return kept;
 }
 
-Scene hallAt(double time, double movingShare) {
-    return makeBuiltinScene(parseBuiltinScene("hall"), std::nullopt, time, movingShare);
+Scene hallAt(double time, double movingShare, double movingCasters = 0.0) {
+    return makeBuiltinScene(parseBuiltinScene("hall"), std::nullopt, time, {movingShare, movingCasters});
 }
 
 TEST(ShadowCache, TheWalkKeepsWhatTheOracleKeepsAndDrawsTheUncachedFrames) {
@@ -155,6 +157,71 @@ TEST(ShadowCache, AMovingCasterRedrawsOnlyTheViewsItTouches) {
     testing::expectNoValidationMessages(*context);
 }
 
+// Mixed caching along the walk with half the hall's props lifting and the lamps still: each frame
+// equals the uncached frame bit for bit; the objects learned dynamic are moving props; and a view
+// drawn over its kept static depth is one whose static part (its square's side, its matrix, its
+// static casters and their placements) is last frame's, drawing its dynamic casters alone.
+TEST(ShadowCache, MixedDrawsTheMovingCastersOverTheKeptStaticDepth) {
+    auto context = testing::makeValidatedContext();
+    const render::RenderSettings settings = testing::renderSettings(192, 108);
+    render::ShadowCache mixed(*context, settings.shadows, render::ShadowCacheMode::Mixed);
+    render::ShadowCache on(*context, settings.shadows, render::ShadowCacheMode::On);
+    const Scene still = hallAt(0.0, 0.0);
+    std::vector<uint32_t> movingProps;
+    for (const uint32_t k : movingLights(uint32_t(sceneProps(still).size()), 0.5)) movingProps.push_back(sceneProps(still)[k]);
+    FrameContents before;  // the static part of each view, last frame
+    size_t overStatic = 0;
+    uint64_t mixedDraws = 0;
+    uint64_t onDraws = 0;
+    for (const double time : {2.0, 2.25, 2.5, 2.75, 3.25}) {
+        const Scene scene = hallAt(time, 0.0, 0.5);
+        render::Renderer cached(*context, scene, settings, &mixed);
+        const ImageRgba8 image = cached.render().image;
+        render::Renderer uncached(*context, scene, settings);
+        EXPECT_EQ(uncached.render().image.pixels, image.pixels) << "at " << time << " s";
+        render::Renderer keeping(*context, scene, settings, &on);
+        EXPECT_EQ(keeping.render().image.pixels, image.pixels) << "at " << time << " s";
+        mixedDraws += cached.shadowDraws().total;
+        onDraws += keeping.shadowDraws().total;
+        for (uint32_t object = 0; object < scene.objects.size(); ++object) {
+            if (mixed.dynamic(object)) {
+                EXPECT_NE(std::find(movingProps.begin(), movingProps.end(), object), movingProps.end()) << object;
+            }
+        }
+        // Each view's static part now, and the oracle for the views drawn over their static depth.
+        FrameContents now;
+        const ShadowPlan& plan = cached.shadowPlan();
+        for (uint32_t v = 0; v < plan.views.size(); ++v) {
+            const ShadowView& view = plan.views[v];
+            if (view.isCascade || !view.rendered()) continue;
+            ViewContents c{view.rect.size, view.gpu.viewProjection, {}, {}, {}};
+            bool hasDynamic = false;
+            for (const uint32_t object : view.casters) {
+                hasDynamic = hasDynamic || mixed.dynamic(object);
+                if (mixed.dynamic(object)) continue;
+                c.casters.push_back(object);
+                c.models.push_back(scene.objects[object].model);
+                c.meshes.push_back(scene.objects[object].mesh);
+            }
+            const std::pair<uint32_t, uint32_t> key{cached.lights().sceneLightIndex[view.packedLight], view.face};
+            now[key] = c;
+            if (mixed.kept(v)) continue;
+            const render::ViewDrawing drawing = mixed.drawing(v);
+            EXPECT_EQ(drawing != render::ViewDrawing::Whole, hasDynamic) << "light " << key.first;
+            if (drawing != render::ViewDrawing::OverStatic) continue;
+            ++overStatic;
+            EXPECT_TRUE(before.count(key) && before.at(key) == c) << "light " << key.first << " face " << key.second;
+            for (const uint32_t object : view.casters) EXPECT_EQ(mixed.draws(v, object), mixed.dynamic(object));
+        }
+        before = now;
+    }
+    EXPECT_GT(mixed.lastFrame().dynamicCasters, 0u);
+    EXPECT_GT(mixed.lastFrame().staticTexels, 0u);
+    EXPECT_GT(overStatic, 50u);       // not vacuous: most views with a lifting crate keep their static depth
+    EXPECT_LT(mixedDraws, onDraws);  // and draw fewer casters than whole views
+    testing::expectNoValidationMessages(*context);
+}
+
 // play with the cache on, off and redrawn gives the same frames bit for bit: with the default
 // filter (gathers of raw depths), with bilinear compares (receiver-plane compares off), and with
 // views of 2048 texels, drawn in 2 x 2 tiles of the drawing square. (At this size, views drawn in
@@ -163,11 +230,16 @@ TEST(ShadowCache, AMovingCasterRedrawsOnlyTheViewsItTouches) {
 TEST(ShadowCache, PlayCachedIsPlayUncachedBitForBit) {
     testing::TempFolder folder;
     const std::string common = " --scene hall --moving-lights 0.25 --fps 4 --seconds 1 --size 320x180 --save-frames --out-dir ";
-    const std::vector<std::string> configurations = {"", " --shadow-receiver-plane off", " --shadow-res 2048 --shadowed 2,1"};
+    // The last also lifts half the props and caches their views mixed, those larger than the
+    // drawing square included.
+    const std::vector<std::string> configurations = {"", " --shadow-receiver-plane off", " --shadow-res 2048 --shadowed 2,1",
+                                                     " --moving-casters 0.5 --shadow-res 2048 --shadowed 4,2"};
     for (size_t c = 0; c < configurations.size(); ++c) {
         const std::string& options = configurations[c];
+        const bool lifting = options.find("--moving-casters") != std::string::npos;
         std::map<std::string, std::string> dirs;
-        for (const char* mode : {"on", "off", "redraw"}) {
+        for (const char* mode : {"on", "off", "redraw", "mixed"}) {
+            if (std::string(mode) == "mixed" && !lifting) continue;  // no dynamic caster: on's frames
             dirs[mode] = folder.file(cat(mode, "-", c));
             ASSERT_EQ(testing::runPunctual(folder, cat("play --shadow-cache ", mode, options, common, quoted(dirs[mode])))
                           .exitCode,
@@ -179,11 +251,23 @@ TEST(ShadowCache, PlayCachedIsPlayUncachedBitForBit) {
             const std::vector<uint8_t> on = readPng(dirs["on"] + "/" + frame).pixels;
             EXPECT_EQ(on, readPng(dirs["off"] + "/" + frame).pixels) << frame << options;
             EXPECT_EQ(on, readPng(dirs["redraw"] + "/" + frame).pixels) << frame << options;
+            if (lifting) {
+                EXPECT_EQ(on, readPng(dirs["mixed"] + "/" + frame).pixels) << frame << options;
+            }
+        }
+        if (lifting) {  // not vacuous: views drew their lifting crates over their static depth
+            const nlohmann::json mixed = nlohmann::json::parse(testing::readText(dirs["mixed"] + "/frames.json"));
+            int overStatic = 0;
+            for (const nlohmann::json& f : mixed["frames"]) overStatic += f["stats"]["shadows"]["cache"]["over_static_views"].get<int>();
+            EXPECT_GT(overStatic, 0);
         }
         const nlohmann::json document = nlohmann::json::parse(testing::readText(dirs["on"] + "/frames.json"));
         EXPECT_EQ(document["settings"]["shadow_cache"], "on");
         EXPECT_EQ(document["frames"][0]["stats"]["shadows"]["cache"]["laid_out"], 1);
-        EXPECT_GT(document["frames"][4]["stats"]["shadows"]["cache"]["kept_views"].get<int>(), 0) << options;
+        // (With lifting crates, each of the 12 views has one in it, or a swaying lamp.)
+        if (!lifting) {
+            EXPECT_GT(document["frames"][4]["stats"]["shadows"]["cache"]["kept_views"].get<int>(), 0) << options;
+        }
         EXPECT_NE(testing::readText(dirs["on"] + "/frames.csv").find("shadow_cache_kept_views"), std::string::npos);
         if (options.find("2048") != std::string::npos) {
             // Not vacuous: the views are larger than the drawing square.
@@ -224,7 +308,7 @@ TEST(ShadowCache, WhatCannotBeCachedIsRefusedInOneLine) {
     testing::TempFolder folder;
     const std::string dir = quoted(folder.file("out"));
     testing::expectOneClearError(testing::runPunctual(folder, "play --shadow-cache sometimes --out-dir " + dir),
-                                 "play --shadow-cache sometimes", "--shadow-cache: expected off, on or redraw, got 'sometimes'");
+                                 "play --shadow-cache sometimes", "--shadow-cache: expected off, on, redraw or mixed, got 'sometimes'");
     testing::expectOneClearError(
         testing::runPunctual(folder, "play --shadow-res virtual --shadow-cache on --seconds 1 --size 64x36 --out-dir " + dir),
         "play --shadow-res virtual --shadow-cache on", "--shadow-cache: caches whole views");

@@ -84,15 +84,47 @@ TEST(ScenePath, TheMovingShareChoosesWhichLampsSway) {
         return moved;
     };
     const BuiltinScene& hall = parseBuiltinScene("hall");
-    EXPECT_EQ(swaying(makeBuiltinScene(hall, std::nullopt, 3.0, 0.25), still), movingLights(96, 0.25));
-    EXPECT_TRUE(swaying(makeBuiltinScene(hall, std::nullopt, 3.0, 0.0), still).empty());
+    EXPECT_EQ(swaying(makeBuiltinScene(hall, std::nullopt, 3.0, {0.25}), still), movingLights(96, 0.25));
+    EXPECT_TRUE(swaying(makeBuiltinScene(hall, std::nullopt, 3.0, {0.0}), still).empty());
     EXPECT_EQ(swaying(posed("hall", 3.0), still), movingLights(96, 1.0 / 6.0));
     const BuiltinScene& street = parseBuiltinScene("outdoor");
     const Scene streetStill = makeBuiltinScene(street);
     EXPECT_TRUE(swaying(posed("outdoor", 2.5), streetStill).empty());
-    const std::vector<uint32_t> half = swaying(makeBuiltinScene(street, std::nullopt, 2.5, 0.5), streetStill);
+    const std::vector<uint32_t> half = swaying(makeBuiltinScene(street, std::nullopt, 2.5, {0.5}), streetStill);
     EXPECT_EQ(half, movingLights(uint32_t(streetStill.lights.size()), 0.5));
     EXPECT_FALSE(half.empty());
+}
+
+// The hall's props are its 14 crates, blocks and posts (objects 15 to 28, after the floor, six
+// walls and eight 6 m pillars; the 6 m partition and the walls are longer than 4 m). Half of them,
+// props 0, 2, ..., 12 (objects 15, 17, ..., 27), lift 1 m at 3 s (a quarter of the walk), 0.5 m at
+// 1.5 s, and are back at 6 s; the rest and the lamps' own share do not change.
+TEST(ScenePath, AShareOfThePropsLiftsAndSinks) {
+    const Scene still = makeDefaultScene();
+    std::vector<uint32_t> expectedProps;
+    for (uint32_t i = 15; i <= 28; ++i) expectedProps.push_back(i);
+    ASSERT_EQ(sceneProps(still), expectedProps);
+    EXPECT_EQ(still.objects[14].name, "pillar");
+    EXPECT_EQ(still.objects[15].name, "crate");
+    EXPECT_EQ(still.objects[28].name, "slab");
+    const BuiltinScene& hall = parseBuiltinScene("hall");
+    for (const auto& [time, lift] : {std::pair{3.0, 1.0f}, {1.5, 0.5f}, {6.0, 0.0f}, {9.0, 1.0f}}) {
+        const Scene at = makeBuiltinScene(hall, std::nullopt, time, {0.0, 0.5});
+        size_t lifted = 0;
+        for (uint32_t i = 0; i < still.objects.size(); ++i) {
+            const bool moves = i >= 15 && i <= 27 && (i - 15) % 2 == 0;
+            glm::mat4 expected = still.objects[i].model;
+            expected[3].y += moves ? lift : 0.0f;
+            EXPECT_EQ(at.objects[i].model, expected) << i << " at " << time;
+            EXPECT_NEAR(at.objects[i].worldBounds.min.y, still.objects[i].worldBounds.min.y + (moves ? lift : 0.0f), 1e-5f);
+            lifted += moves;
+        }
+        EXPECT_EQ(lifted, 7u);
+        for (size_t l = 0; l < still.lights.size(); ++l) EXPECT_EQ(at.lights[l].position, still.lights[l].position);
+    }
+    // None by default: the walk's own lamps move, no object does.
+    const Scene walk = makeBuiltinScene(hall, std::nullopt, 3.0);
+    for (uint32_t i = 0; i < still.objects.size(); ++i) EXPECT_EQ(walk.objects[i].model, still.objects[i].model) << i;
 }
 
 // The drive covers 60 m in 10 s down -z at eye height: at 5 s, 30 m.
