@@ -7,8 +7,12 @@
 # the p50 as a share of the same lamps' off, the views kept, drawn and moved, the fresh layouts,
 # the shadow memory and the cache's CPU time; and, frame by frame, whether on's frames are
 # redraw's bit for bit, and how many pixels on's differ from off's (their squares lie elsewhere).
-# Extra arguments go to every play (e.g. --fps 5 --size 640x360).
-#   scripts/shadow-cache.sh [BUILD_DIR [OUT_DIR [PLAY OPTIONS...]]]
+# The lifting runs (issue 34's mixed caching) keep the lamps still and lift a quarter of the props
+# (--moving-casters 0.25): off, on and mixed, with their frames compared the same way.
+# Extra arguments go to every play (e.g. --fps 5 --size 640x360). RUNS="lifting-off lifting-on
+# lifting-mixed" plays only those; their rows and comparisons replace the stored summary's, the
+# others' stay (one stored run per series).
+#   [RUNS="..."] scripts/shadow-cache.sh [BUILD_DIR [OUT_DIR [PLAY OPTIONS...]]]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 binary="${1:-$root/build}/punctual"
@@ -29,9 +33,13 @@ configs=(
   "sixth-on|--shadow-cache on"
   "fixed1024-off|--moving-lights 0 --shadow-res 1024 --shadow-cache off"
   "fixed1024-on|--moving-lights 0 --shadow-res 1024 --shadow-cache on"
+  "lifting-off|--moving-lights 0 --moving-casters 0.25 --shadow-cache off"
+  "lifting-on|--moving-lights 0 --moving-casters 0.25 --shadow-cache on"
+  "lifting-mixed|--moving-lights 0 --moving-casters 0.25 --shadow-cache mixed"
 )
 for entry in "${configs[@]}"; do
   name="${entry%%|*}"
+  if [ -n "${RUNS:-}" ] && [[ " $RUNS " != *" $name "* ]]; then continue; fi
   read -r -a options <<< "${entry#*|}"
   echo "shadow-cache: $name" >&2
   "$binary" play --scene hall --size 1280x720 --fps 10 "${options[@]}" "$@" --save-frames \
@@ -55,7 +63,8 @@ def percentile(values, p):
         return values[-1]
     return values[low] + (rank - low) * (values[low + 1] - values[low])
 
-summary = {"device": None, "runs": {}}
+summary_path = os.path.join(out_dir, "summary.json")
+summary = json.load(open(summary_path)) if os.path.exists(summary_path) else {"device": None, "runs": {}}
 for run in runs:
     document = json.load(open(os.path.join(frames_dir, run, "frames.json")))
     summary["device"] = document["device"]
@@ -67,8 +76,11 @@ for run in runs:
            "shadow_memory_bytes_p50": statistics.median(f["stats"]["shadows"]["memory_bytes"] for f in document["frames"]),
            "views_rendered": sum(f["stats"]["shadows"]["views_rendered"] for f in document["frames"])}
     if cache[0]:
-        for key in ("kept_views", "drawn_views", "moved_views", "laid_out"):
-            row[key] = sum(c[key] for c in cache)
+        for key in ("kept_views", "drawn_views", "moved_views", "laid_out", "over_static_views", "static_stored_views"):
+            row[key] = sum(c.get(key, 0) for c in cache)
+        row["dynamic_casters"] = cache[-1].get("dynamic_casters", 0)
+        row["static_texels_p50"] = statistics.median(c.get("static_texels", 0) for c in cache)
+    row["shadow_draws"] = sum(f["stats"]["geometry"]["shadow_draws"]["total"] for f in document["frames"])
         row["check_ms_p50"] = statistics.median(c["check_ms"] for c in cache)
         row["atlas_texels_p50"] = statistics.median(c["atlas_texels"] for c in cache)
         row["packed_texels_p50"] = statistics.median(c["packed_texels"] for c in cache)
@@ -93,17 +105,29 @@ def compare(a_run, b_run):
         differing_pixels += int(np.count_nonzero(np.abs(mpimg.imread(a) - mpimg.imread(b)).max(axis=2)))
     return {"frames": frames, "identical_frames": same, "differing_pixels": differing_pixels}
 
-summary["still_on_vs_redraw"] = compare("still-on", "still-redraw")
-summary["still_on_vs_off"] = compare("still-on", "still-off")
-summary["quarter_on_vs_off"] = compare("quarter-on", "quarter-off")
-summary["commit"] = version
-json.dump(summary, open(os.path.join(out_dir, "summary.json"), "w"), indent=1)
-print(f"{'run':15} {'p50':>8} {'p95':>8} {'max':>8} {'of off':>7} {'kept':>6} {'drawn':>6} {'moved':>6} {'fresh':>5} {'MiB':>7} {'check':>6}")
+comparisons = {"still_on_vs_redraw": ("still-on", "still-redraw"), "still_on_vs_off": ("still-on", "still-off"),
+               "quarter_on_vs_off": ("quarter-on", "quarter-off"), "lifting_on_vs_off": ("lifting-on", "lifting-off"),
+               "lifting_mixed_vs_off": ("lifting-mixed", "lifting-off")}
+for key, (a, b) in comparisons.items():
+    if a in runs and b in runs:
+        summary[key] = compare(a, b)
+summary.setdefault("commits", {})
+for run in summary["runs"]:  # rows stored before the commits were kept per run
+    summary["commits"].setdefault(run, summary.get("commit", "unknown"))
+for run in runs:
+    summary["commits"][run] = version
+summary.pop("commit", None)
+json.dump(summary, open(summary_path, "w"), indent=1)
+print(f"{'run':15} {'p50':>8} {'p95':>8} {'max':>8} {'of off':>7} {'kept':>6} {'drawn':>6} {'over':>6} {'moved':>6} "
+      f"{'fresh':>5} {'draws':>7} {'MiB':>7} {'check':>6}")
 for run, r in summary["runs"].items():
     print(f"{run:15} {r['shadow_ms']['p50']:8.2f} {r['shadow_ms']['p95']:8.2f} {r['shadow_ms']['max']:8.2f} "
           f"{r.get('shadow_p50_of_off', 1.0):7.3f} {r.get('kept_views', 0):6} {r.get('drawn_views', r['views_rendered']):6} "
-          f"{r.get('moved_views', 0):6} {r.get('laid_out', 0):5} {r['shadow_memory_bytes_p50'] / 2**20:7.1f} {r.get('check_ms_p50', 0.0):6.2f}")
-for key in ("still_on_vs_redraw", "still_on_vs_off", "quarter_on_vs_off"):
+          f"{r.get('over_static_views', 0):6} {r.get('moved_views', 0):6} {r.get('laid_out', 0):5} "
+          f"{r.get('shadow_draws', 0):7} {r['shadow_memory_bytes_p50'] / 2**20:7.1f} {r.get('check_ms_p50', 0.0):6.2f}")
+for key in comparisons:
+    if key not in summary:
+        continue
     c = summary[key]
     print(f"{key}: {c['identical_frames']} of {c['frames']} frames identical, {c['differing_pixels']} pixels differ")
 PY

@@ -57,8 +57,12 @@ state changed (temporal instability: shimmer and popping).
 {shadow-cache modes}With on, a view keeps the last frame's depth where its square, its light and its casters (their
 transforms, geometry and alpha test) are unchanged; only the others are cleared and drawn. Each
 row then counts the views kept and drawn (shadow_cache_kept_views, shadow_cache_drawn_views) and
-whether the cache laid its atlas out afresh; shadow memory is the cache's atlas. Whole views
-only (auto or a fixed --shadow-res, not virtual); the cube layout's faces are drawn every frame.
+whether the cache laid its atlas out afresh; shadow memory is the cache's atlas. With mixed, an
+object whose transform or geometry changed is a dynamic caster from then on; a view with one
+keeps its static casters' depth apart, in a second atlas counted in the shadow memory, and while
+that holds draws only its dynamic casters over a copy of it (shadow_cache_over_static_views,
+shadow_cache_dynamic_casters). Whole views only (auto or a fixed --shadow-res, not virtual);
+the cube layout's faces are drawn every frame. Every mode gives off's frames bit for bit.
 --fps F is 0.1 to 240 frames a second (default 10); --seconds S defaults to the length of the
 file's animations or the scene's path. At most 10,000 frames. DIR is created if missing (its
 parent must exist); frames.json lists the files written, and a later run into DIR removes the

@@ -63,8 +63,7 @@ inline constexpr std::array<ShadowCacheModeInfo, 4> kShadowCacheModes = {{
     // equals off and redraw bit for bit; redraw tells the cache's keeping from its placing.
     {ShadowCacheMode::Redraw, "redraw", "the squares of on, every view drawn (on, off and redraw give the same frames)"},
     {ShadowCacheMode::Mixed, "mixed",
-     "as on, and a view whose moving casters moved draws only them over its\nstatic casters' kept depth "
-     "(HDRP's mixed caching; a second atlas)"},
+     "as on, and views keep static casters' depth apart, drawing moving ones over it"},
 }};
 static_assert(valuesAreIndices(kShadowCacheModes) && namesAreUnique(kShadowCacheModes));
 

@@ -16,6 +16,7 @@
 #include "lights/shadow_setup.h"
 #include "render/light_list_form.h"
 #include "render/light_list_method.h"
+#include "render/shadow_cache.h"
 
 namespace punctual {
 namespace {
@@ -142,6 +143,7 @@ TEST(VariantTables, HelpListsEveryEntryAndTheDefault) {
     expectHelpListsEveryEntry(kCascadeBlends, defaults.cascades.blend);
     expectHelpListsEveryEntry(kShadowResolutionModes, defaults.resolution);
     expectHelpListsEveryEntry(render::kLightListForms, cli::RenderOptions{}.lightLists);
+    expectHelpListsEveryEntry(render::kShadowCacheModes, render::ShadowCacheMode::Off);  // each on one line
     // The descriptions line up in one column after the longest name.
     EXPECT_EQ(variantHelp(kPointShadowLayouts, PointShadowLayout::Cube, 2).substr(0, 10), "  cube    ");
 }
