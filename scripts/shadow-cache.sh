@@ -80,10 +80,10 @@ for run in runs:
             row[key] = sum(c.get(key, 0) for c in cache)
         row["dynamic_casters"] = cache[-1].get("dynamic_casters", 0)
         row["static_texels_p50"] = statistics.median(c.get("static_texels", 0) for c in cache)
-    row["shadow_draws"] = sum(f["stats"]["geometry"]["shadow_draws"]["total"] for f in document["frames"])
         row["check_ms_p50"] = statistics.median(c["check_ms"] for c in cache)
         row["atlas_texels_p50"] = statistics.median(c["atlas_texels"] for c in cache)
         row["packed_texels_p50"] = statistics.median(c["packed_texels"] for c in cache)
+    row["shadow_draws"] = sum(f["stats"]["geometry"]["shadow_draws"]["total"] for f in document["frames"])
     summary["runs"][run] = row
 for run, row in summary["runs"].items():
     lamps = run.rsplit("-", 1)[0]

@@ -94,6 +94,9 @@ layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_DEBUG) writeonly buffe
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_PAGE_VIEWS) readonly buffer PageViewBlock { GpuVirtualShadowView virtualViews[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_PAGE_TABLE) readonly buffer PageTableBlock { uint pageTable[]; };
 layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_PAGE_MARKS) buffer PageMarkBlock { uint pageMarks[]; };
+layout(std430, set = 0, binding = PUNCTUAL_BINDING_SHADOW_PREVIOUS_PAGE_MARKS) readonly buffer PreviousPageMarkBlock {
+    uint previousPageMarks[];
+};
 layout(push_constant) uniform DrawConstants { uint objectIndex; } draw;
 
 // Validation variant: the bytes of this pixel's shadow factors, all "not reached" to start.

@@ -66,6 +66,9 @@
 // The shadow pass's instances: per instance, the page it draws (view, level, column | row << 16,
 // pool slot); read by shadow.vert and shadow_masked.vert (shadow_page_draw.glsl).
 #define PUNCTUAL_BINDING_SHADOW_PAGE_DRAWS 23
+// The previous frame's page marks (--shadow-hysteresis in a sequence), laid out as this frame's:
+// read by the marking pass and the lookups alike (GpuVirtualShadowView::marks.z).
+#define PUNCTUAL_BINDING_SHADOW_PREVIOUS_PAGE_MARKS 24
 
 // Shadow validation buffer (forward shader's WRITE_SHADOW_FACTORS variant), in 32-bit words:
 // per pixel PUNCTUAL_SHADOW_DEBUG_SURFACE_WORDS words (world position xyz, 1 if covered, shading
@@ -287,7 +290,10 @@ struct GpuShadowView {
 // A view's virtual map (--shadow-res virtual): where its marks are and, per level, its page table.
 struct GpuVirtualShadowView {
     uvec4 marks;  // x: the view's first word of page marks (PUNCTUAL_NO_SHADOW_PAGE: no caster, no
-                  // marks); y: levels coarser than asked (the allocation's coarsening); zw: unused
+                  // marks); y: levels coarser than asked (the allocation's coarsening); z: the first
+                  // word of the previous frame's marks of the same light and face
+                  // (PUNCTUAL_NO_SHADOW_PAGE: none, no hysteresis); w: the float bits of 2^H, H
+                  // the octaves of hysteresis (virtualShadowMayKeepFiner)
     // Per level: x: its first page-table entry (PUNCTUAL_NO_SHADOW_PAGE: no page at this level);
     // y: the first column | first row << 16 of the rectangle of pages the table covers;
     // z: its columns | rows << 16; w: unused.

@@ -25,11 +25,35 @@ float pixelWorldSizeAt(vec3 position) {
     return screenPixelWorldSize(viewDepth, frame.shadowPageNeed.y);
 }
 
-// The level of view `viewIndex` a receiver at `position`, `linearDepth` along the view's axis, reads.
+// Whether the previous frame's marks (from word `first`) hold the page of `level` under view UV `uv`.
+bool previouslyMarked(uint first, vec2 uv, uint level) {
+    uvec2 page = virtualShadowPage(uv, level, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_PAGE);
+    uint index = virtualShadowPageIndex(page, level, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_PAGE);
+    return (previousPageMarks[first + (index >> 5u)] & (1u << (index & 31u))) != 0u;
+}
+
+// The level of view `viewIndex` a receiver at `position`, `linearDepth` along the view's axis, reads:
+// the nearest, or one finer where hysteresis may hold it (virtualShadowMayKeepFiner) and the
+// previous frame marked that finer level's page under the receiver (its unbiased position in the
+// view: the bias depends on the level). Marks are per page, not per pixel, so a receiver holds the
+// finer level where any receiver of that page read it (requiring the nearest's page unmarked too,
+// a stricter "this receiver read it", held nothing on the walk: bench/RESULTS.md). The marking
+// pass and the lookups both come here, so they agree.
 uint virtualReadLevel(uint viewIndex, GpuShadowView view, float linearDepth, vec3 position) {
     float needed = resolutionForOneTexelPerPixel(linearDepth, view.params.y, pixelWorldSizeAt(position)) *
                    frame.shadowPageNeed.x;
-    return virtualShadowReadLevel(needed, virtualViews[viewIndex].marks.y);
+    uvec4 marks = virtualViews[viewIndex].marks;
+    uint level = virtualShadowLevel(needed, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_LEVELS);
+    uint nearest = virtualShadowCoarsened(level, marks.y);
+    if (marks.z != PUNCTUAL_NO_SHADOW_PAGE && virtualShadowMayKeepFiner(needed, level, uintBitsToFloat(marks.w))) {
+        vec4 clip = view.viewProjection * vec4(position, 1.0);
+        uint finer = virtualShadowCoarsened(level - 1u, marks.y);
+        vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+        if (clip.w > 0.0 && finer != nearest && previouslyMarked(marks.z, uv, finer)) {
+            return finer;
+        }
+    }
+    return nearest;
 }
 
 // Marks the pages of `level` that a filter around view UV `uv` reads.

@@ -58,12 +58,28 @@ PUNCTUAL_FN uint virtualShadowLevel(float needed, uint virtualSize, uint levels)
     return level;
 }
 
-// The level a receiver reads: the nearest level to the resolution it needs (virtualShadowLevel, at
-// PUNCTUAL_VIRTUAL_SHADOW_SIZE), made `coarser` levels coarser (a view the pool was short for,
-// coarsened by the allocation), at most the coarsest.
-PUNCTUAL_FN uint virtualShadowReadLevel(float needed, uint coarser) {
-    uint level = virtualShadowLevel(needed, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_LEVELS);
+// `level` made `coarser` levels coarser (a view the pool was short for, coarsened by the
+// allocation), at most the coarsest.
+PUNCTUAL_FN uint virtualShadowCoarsened(uint level, uint coarser) {
     return min(level + coarser, PUNCTUAL_VIRTUAL_SHADOW_LEVELS - 1u);
+}
+
+// The level a receiver reads: the nearest level to the resolution it needs (virtualShadowLevel, at
+// PUNCTUAL_VIRTUAL_SHADOW_SIZE), coarsened.
+PUNCTUAL_FN uint virtualShadowReadLevel(float needed, uint coarser) {
+    return virtualShadowCoarsened(virtualShadowLevel(needed, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_LEVELS),
+                                  coarser);
+}
+
+// Hysteresis for a receiver's level in a sequence (--shadow-hysteresis H; auto's kept rule,
+// shadowTierWithHysteresis): the level one finer than the nearest, `level`, may be kept while the
+// need stays within H octaves below the midpoint where that finer level stops being the nearest,
+// needed > (virtualSize >> level) sqrt 2 / 2^H (`keep` = 2^H); the caller keeps it where the
+// previous frame read it (its page there was marked). Never a level coarser than the nearest:
+// holding coarser tiers cost auto accuracy and flipped more (bench/RESULTS.md). With H = 0 it never
+// holds (the nearest level's need is at most its midpoint).
+PUNCTUAL_FN bool virtualShadowMayKeepFiner(float needed, uint level, float keep) {
+    return level > 0u && needed * keep > float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> level) * PUNCTUAL_SQRT2;
 }
 
 // Pages a side of level `level`.

@@ -16,6 +16,7 @@
 #include "core/log.h"
 #include "core/output_files.h"
 #include "core/output_folder.h"
+#include "lights/shadow_page_allocation.h"
 #include "reference/embree_scene.h"
 #include "reference/shadow_stability.h"
 #include "reference/shadow_validation.h"
@@ -228,6 +229,7 @@ public:
         render::RenderSettings settings = settings_;
         settings.collectShadowFactors = validated;
         settings.shadows.previousTiers = previousTiers_;
+        settings.shadows.previousPageMarks = std::move(previousPageMarks_);
         render::Renderer renderer(context_, scene, settings, shadowCache_ ? &*shadowCache_ : nullptr);
         render::FrameResult result = renderer.render(options_.frames);
         nlohmann::json stats = frameStatsJson(result, renderer, scene, context_.deviceName(), options_.frames);
@@ -236,6 +238,10 @@ public:
         // long sequence's frames.json megabytes; the counts above it stay.
         stats["shadows"].erase("views");
         stats["shadows"]["tier_switches"] = countTierSwitches(renderer, previousTiers_);
+        if (settings.shadows.virtualPages() && settings.shadows.tierHysteresis > 0.0f && settings.shadows.enabled) {
+            // The levels this frame read, which hysteresis holds in the next (VirtualPageReads).
+            previousPageMarks_ = pageMarksByView(renderer.shadowPlan(), renderer.lights(), renderer.readShadowPageMarks());
+        }
         if (const render::ShadowCacheFrame* cache = renderer.shadowCacheFrame()) {
             stats["shadows"]["cache"] = {{"kept_views", cache->keptViews},
                                          {"drawn_views", cache->drawnViews},
@@ -263,6 +269,7 @@ private:
     uint32_t validateEvery_;
     std::optional<reference::StabilityFrame> lastValidated_;
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> previousTiers_;
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> previousPageMarks_;  // virtual, hysteresis
     std::optional<render::ShadowCache> shadowCache_;  // --shadow-cache on: kept from frame to frame
 };
 

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <numeric>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "shadow_pages.h"
 
@@ -27,7 +29,7 @@ std::array<uint32_t, kLevels + 1> levelStarts() {
 
 gpu::GpuVirtualShadowView noPages(uint32_t firstWord, uint32_t coarser) {
     gpu::GpuVirtualShadowView view{};
-    view.marks = glm::uvec4(firstWord, coarser, 0u, 0u);
+    view.marks = glm::uvec4(firstWord, coarser, PUNCTUAL_NO_SHADOW_PAGE, 0u);  // (no previous marks: no hysteresis)
     for (glm::uvec4& level : view.levels) level = glm::uvec4(PUNCTUAL_NO_SHADOW_PAGE, 0u, 0u, 0u);
     return view;
 }
@@ -44,6 +46,40 @@ ShadowPageMarkLayout ShadowPageMarkLayout::of(const ShadowPlan& plan) {
         if (hasMap) layout.words += kWordsPerView;
     }
     return layout;
+}
+
+void usePreviousPageMarks(ShadowPlan& plan, const FrameLights& lights, const ShadowSettings& settings) {
+    VirtualPageReads& reads = plan.virtualReads;
+    if (!reads.enabled || !(settings.tierHysteresis > 0.0f) || settings.previousPageMarks.empty()) return;
+    const ShadowPageMarkLayout layout = ShadowPageMarkLayout::of(plan);
+    reads.keep = std::exp2(settings.tierHysteresis);
+    reads.previousMarks.assign(std::max(layout.words, 1u), 0u);
+    reads.previousFirstWord.assign(plan.views.size(), PUNCTUAL_NO_SHADOW_PAGE);
+    for (size_t v = 0; v < plan.views.size(); ++v) {
+        const uint32_t first = layout.firstWord[v];
+        if (first == PUNCTUAL_NO_SHADOW_PAGE) continue;
+        const ShadowView& view = plan.views[v];
+        const auto previous = settings.previousPageMarks.find({lights.sceneLightIndex.at(view.packedLight), view.face});
+        if (previous == settings.previousPageMarks.end()) continue;
+        PUNCTUAL_CHECK(previous->second.size() == ShadowPageMarkLayout::kWordsPerView, "a view's previous page marks");
+        std::copy(previous->second.begin(), previous->second.end(), reads.previousMarks.begin() + first);
+        reads.previousFirstWord[v] = first;
+    }
+}
+
+std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> pageMarksByView(const ShadowPlan& plan,
+                                                                              const FrameLights& lights,
+                                                                              std::span<const uint32_t> marks) {
+    const ShadowPageMarkLayout layout = ShadowPageMarkLayout::of(plan);
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> byView;
+    for (size_t v = 0; v < plan.views.size(); ++v) {
+        const uint32_t first = layout.firstWord[v];
+        if (first == PUNCTUAL_NO_SHADOW_PAGE || first + ShadowPageMarkLayout::kWordsPerView > marks.size()) continue;
+        const ShadowView& view = plan.views[v];
+        byView[{lights.sceneLightIndex.at(view.packedLight), view.face}] =
+            std::vector<uint32_t>(marks.begin() + first, marks.begin() + first + ShadowPageMarkLayout::kWordsPerView);
+    }
+    return byView;
 }
 
 uint64_t ShadowPageCounts::total() const { return std::accumulate(perLevel.begin(), perLevel.end(), uint64_t(0)); }

@@ -21,11 +21,13 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "gpu_types.h"
+#include "lights/light_setup.h"
 #include "lights/shadow_setup.h"
 #include "scene/scene.h"
 
@@ -87,6 +89,17 @@ struct ShadowPageAllocation {
     }
     uint64_t tableBytes() const { return (table.size() + views.size() * sizeof(gpu::GpuVirtualShadowView) / 4) * 4; }
 };
+
+// Hysteresis in a sequence: fills plan.virtualReads' previous marks from settings.previousPageMarks
+// (the views of this frame's plan whose light and face the previous frame marked) and its keep
+// (2^settings.tierHysteresis). Nothing without virtual pages, hysteresis or previous marks.
+void usePreviousPageMarks(ShadowPlan& plan, const FrameLights& lights, const ShadowSettings& settings);
+
+// `marks` (a frame's, in `plan`'s layout) by (scene light index, face), for the next frame's
+// ShadowSettings::previousPageMarks.
+std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> pageMarksByView(const ShadowPlan& plan,
+                                                                              const FrameLights& lights,
+                                                                              std::span<const uint32_t> marks);
 
 // The records of a frame with no pages yet (every lookup lit), which the marking pass reads:
 // each view's marks and its coarsening (`coarser`, per plan view; empty: none).

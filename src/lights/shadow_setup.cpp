@@ -146,7 +146,25 @@ float shadowResolutionRead(const ShadowPlan& plan, uint32_t viewIndex, float lin
     if (!reads.enabled || view.isCascade || view.resolution == 0) return float(view.resolution);
     const float pixel = gpu::screenPixelWorldSize(glm::dot(position - reads.eye, reads.forward), reads.pixelSpan);
     const float needed = gpu::resolutionForOneTexelPerPixel(linearDepth, view.tanSpan, pixel) * reads.texelsPerPixel;
-    return float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> gpu::virtualShadowReadLevel(needed, view.coarserLevels));
+    // As the forward shader's virtualReadLevel (shadow_pages.glsl): the nearest level, or one finer
+    // where hysteresis may hold it and the previous frame marked that level's page here.
+    const uint32_t level = gpu::virtualShadowLevel(needed, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_LEVELS);
+    const uint32_t nearest = gpu::virtualShadowCoarsened(level, view.coarserLevels);
+    const uint32_t previous = reads.previousFirstWord.empty() ? PUNCTUAL_NO_SHADOW_PAGE : reads.previousFirstWord[viewIndex];
+    if (previous != PUNCTUAL_NO_SHADOW_PAGE && gpu::virtualShadowMayKeepFiner(needed, level, reads.keep)) {
+        const glm::vec4 clip = view.gpu.viewProjection * glm::vec4(position, 1.0f);
+        const uint32_t finer = gpu::virtualShadowCoarsened(level - 1, view.coarserLevels);
+        const glm::vec2 uv = glm::vec2(clip) / clip.w * 0.5f + 0.5f;
+        auto marked = [&](uint32_t at) {
+            const glm::uvec2 page = gpu::virtualShadowPage(uv, at, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_PAGE);
+            const uint32_t index = gpu::virtualShadowPageIndex(page, at, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_PAGE);
+            return ((reads.previousMarks.at(previous + index / 32) >> (index % 32)) & 1u) != 0;
+        };
+        if (clip.w > 0.0f && finer != nearest && marked(finer)) {
+            return float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> finer);
+        }
+    }
+    return float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> nearest);
 }
 
 float ShadowSettings::penumbraTexels(uint32_t viewResolution) const {

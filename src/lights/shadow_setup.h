@@ -54,6 +54,10 @@ struct ShadowSettings {
     // by (scene light index, face). Empty for a still frame.
     float tierHysteresis = 0.0f;
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> previousTiers;
+    // virtual in a sequence: the previous frame's page marks by (scene light index, face), each
+    // ShadowPageMarkLayout::kWordsPerView words, which the same --shadow-hysteresis holds levels
+    // by (VirtualPageReads). Empty for a still frame.
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> previousPageMarks;
     uint64_t budgetBytes = 64ull << 20;  // auto: the atlas's largest size (--shadow-budget MiB)
     uint32_t maxShadowedSpots = PUNCTUAL_MAX_SHADOWED_SPOT_LIGHTS;  // --shadowed S,P
     uint32_t maxShadowedPoints = PUNCTUAL_MAX_SHADOWED_POINT_LIGHTS;
@@ -148,6 +152,13 @@ struct VirtualPageReads {
     glm::vec3 forward{0.0f, 0.0f, -1.0f};  // the camera's axis
     float pixelSpan = 0.0f;                 // a screen pixel's world size at unit depth along it
     float texelsPerPixel = 1.0f;
+    // Hysteresis in a sequence (--shadow-hysteresis H; shadow_pages.h, virtualShadowMayKeepFiner):
+    // 2^H, and the previous frame's marks in this frame's layout (ShadowPageMarkLayout), with per
+    // plan view the first word of its light's and face's previous marks (PUNCTUAL_NO_SHADOW_PAGE
+    // where there are none: the nearest level). Empty without hysteresis.
+    float keep = 1.0f;
+    std::vector<uint32_t> previousMarks;
+    std::vector<uint32_t> previousFirstWord;
 };
 
 struct ShadowPlan {

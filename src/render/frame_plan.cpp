@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/log.h"
+#include "lights/shadow_page_allocation.h"
 #include "lights/cascade_setup.h"
 #include "lights/shadow_sizing.h"
 #include "lights/view_objects.h"
@@ -42,6 +43,7 @@ ShadowPlan planFrameShadows(const vk::Context& context, const Scene& scene, Fram
                          -glm::normalize(glm::vec3(cameraToWorld[2])),
                          2.0f * std::tan(scene.camera.yfov * 0.5f) / float(settings.height),
                          settings.shadows.texelsPerPixel};
+    usePreviousPageMarks(plan, lights, settings.shadows);
     if (!plan.reductions.empty() && settings.warnReducedShadows) {
         log::warn("shadows: " + std::to_string(plan.reductions.size()) + " view(s) got less resolution than " +
                   "their receivers need, to fit " + plan.reducedBy + " (the stats' shadows.reduced lists them)");

@@ -58,6 +58,7 @@ struct Renderer::Resources {
     vk::Buffer lightStats;
     vk::Buffer shadowDebug;
     vk::Buffer shadowPageMarks;  // virtual pages: the marking pass's bits (lights/shadow_page_allocation.h)
+    vk::Buffer previousPageMarks;  // virtual pages with hysteresis: the previous frame's (VirtualPageReads)
     vk::Image radiance;
     // The passes in frame order; the typed pointers below point into this list.
     PassList passes;
@@ -155,6 +156,7 @@ struct Renderer::Resources {
           shadowPageMarks(debugOutput(context, usesShadowPages(settings),
                                       VkDeviceSize(std::max(ShadowPageMarkLayout::of(plan.shadows).words, 1u)) * 4,
                                       "shadow page marks")),
+          previousPageMarks(storageWords(context, plan.shadows.virtualReads.previousMarks, "previous shadow page marks")),
           readback(context, VkDeviceSize(settings.width) * settings.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                    vk::MemoryUse::Readback, "readback"),
           timer(context, 16) {
@@ -253,6 +255,8 @@ struct Renderer::Resources {
                         shadowDebug);
         table.addBuffer(PUNCTUAL_BINDING_SHADOW_PAGE_MARKS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
                         shadowPageMarks);
+        table.addBuffer(PUNCTUAL_BINDING_SHADOW_PREVIOUS_PAGE_MARKS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                        VK_SHADER_STAGE_FRAGMENT_BIT, previousPageMarks);
         for (const auto& pass : passes.passes()) pass->addBindings(table);
         bindings = std::make_unique<FrameBindings>(context, scene, table);
         boundImages = table.boundImages();

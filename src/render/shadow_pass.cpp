@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <optional>
 #include <utility>
 
@@ -144,7 +145,13 @@ void ShadowPass::uploadViews() {
     if (!views.empty()) views_.write(views.data(), views.size() * sizeof(gpu::GpuShadowView));
 }
 
-void ShadowPass::setUnallocatedPages(const std::vector<gpu::GpuVirtualShadowView>& views) {
+void ShadowPass::setUnallocatedPages(std::vector<gpu::GpuVirtualShadowView> views) {
+    // Hysteresis in a sequence: where each view's previous marks are, and how far it holds a level.
+    const VirtualPageReads& reads = plan_.virtualReads;
+    for (size_t v = 0; v < views.size() && v < reads.previousFirstWord.size(); ++v) {
+        views[v].marks.z = reads.previousFirstWord[v];
+        views[v].marks.w = std::bit_cast<uint32_t>(reads.keep);
+    }
     if (!views.empty()) pageViews_.write(views.data(), views.size() * sizeof(gpu::GpuVirtualShadowView));
 }
 

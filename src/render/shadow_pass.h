@@ -64,7 +64,8 @@ public:
 
     // Virtual pages: the records the marking pass reads before any page is allocated (each view's
     // marks and coarsening; every lookup lit).
-    void setUnallocatedPages(const std::vector<gpu::GpuVirtualShadowView>& views);
+    // Each view's previous marks (hysteresis, plan.virtualReads) are added here.
+    void setUnallocatedPages(std::vector<gpu::GpuVirtualShadowView> views);
     // Virtual pages: `plan` (the one the pass was made with) now holds the pool in its atlas
     // (placeShadowPagePool); makes the maps anew, uploads the page table and draws each page with
     // its casters (shadowPageCasters). The caller binds the frame's set again and re-records.

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstdio>
 #include <set>
 
@@ -82,6 +83,55 @@ TEST(VirtualShadows, GpuMarksAgreeWithTheirCpuMirrorOnTheFloor) {
 
 TEST(VirtualShadows, GpuMarksAgreeWithTheirCpuMirrorOnTheDefaultScene) {
     expectMarksAgree(makeDefaultScene(), 320, 180, "default scene");
+}
+
+// Hysteresis along the hall's walk (--shadow-hysteresis 1), walked back: a frame given the previous frame's
+// marks holds the finer levels that frame read, so more of its pages are the previous frame's than
+// without, at the cost of more pages; and the marking pass still agrees with its CPU mirror, which
+// reads the same previous marks (so the lookups, which choose levels as the marking does, read
+// only allocated pages).
+TEST(VirtualShadows, HysteresisHoldsTheLevelsTheLastFrameReadAsItsCpuMirrorDoes) {
+    auto context = testing::makeValidatedContext();
+    const BuiltinScene& hall = parseBuiltinScene("hall");
+    const render::RenderSettings plain = testing::shadowRenderSettings(320, 180, virtualShadows());
+    // The walk backwards, the camera moving away: receivers need coarser levels than they read.
+    const Scene before = makeBuiltinScene(hall, std::nullopt, 1.5);
+    const Scene now = makeBuiltinScene(hall, std::nullopt, 1.0);
+    render::Renderer first(*context, before, plain);
+    first.render(1, 0);
+    const auto previous = pageMarksByView(first.shadowPlan(), first.lights(), first.readShadowPageMarks());
+    ASSERT_FALSE(previous.empty());
+    // How many of a frame's marked pages the previous frame marked too (same light, face and page).
+    auto sharedWithPrevious = [&](render::Renderer& renderer) {
+        uint64_t shared = 0;
+        for (const auto& [key, words] : pageMarksByView(renderer.shadowPlan(), renderer.lights(), renderer.readShadowPageMarks())) {
+            const auto was = previous.find(key);
+            if (was == previous.end()) continue;
+            for (size_t w = 0; w < words.size(); ++w) shared += uint64_t(std::popcount(words[w] & was->second[w]));
+        }
+        return shared;
+    };
+    render::Renderer nearest(*context, now, plain);
+    nearest.render(1, 0);
+    render::RenderSettings holding = plain;
+    holding.shadows.tierHysteresis = 1.0f;
+    holding.shadows.previousPageMarks = previous;
+    render::Renderer held(*context, now, holding);
+    held.render(1, 0);
+    ASSERT_FALSE(held.shadowPlan().virtualReads.previousFirstWord.empty());
+    const uint64_t sharedHeld = sharedWithPrevious(held);
+    const uint64_t sharedNearest = sharedWithPrevious(nearest);
+    std::printf("[ virtual  ] pages shared with the previous frame: %llu held, %llu nearest; pages %zu held, %zu nearest\n",
+                static_cast<unsigned long long>(sharedHeld), static_cast<unsigned long long>(sharedNearest),
+                held.shadowPages().pages.size(), nearest.shadowPages().pages.size());
+    EXPECT_GT(sharedHeld, sharedNearest);
+    EXPECT_GT(held.shadowPages().pages.size(), nearest.shadowPages().pages.size());
+    const std::vector<uint32_t> gpu = held.readShadowPageMarks();
+    const std::vector<uint32_t> cpu = markVirtualPagesOnCpu(now, held.lights(), held.shadowPlan(), 320, 180, holding.shadows);
+    const MarkAgreement agreement = compareMarks(gpu, cpu);
+    EXPECT_GE(agreement.jaccard(), 0.97);
+    EXPECT_EQ(held.shadowPages().pages.size(), setBits(gpu));
+    testing::expectNoValidationMessages(*context);
 }
 
 // The compared pixels of `light` whose filter reads two pages or more, and those next to a pixel

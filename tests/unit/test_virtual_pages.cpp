@@ -38,6 +38,22 @@ TEST(VirtualPages, ALevelIsTheNearestInLogScaleToTheNeed) {
     EXPECT_EQ(gpu::virtualShadowLevel(16384.0f, 16384, 8), 0u);
 }
 
+// Hysteresis (--shadow-hysteresis H): the finer level may be kept while the need stays above its
+// midpoint with the nearest / 2^H. Level 4 of 16384 is 1024 texels; its midpoint with level 3 is
+// 1024 sqrt 2 = 1448.15. H = 1/2: kept above 1448.15 / sqrt 2 = 1024.0; H = 1: above 724.08, the
+// nearest band's whole (its lower midpoint): a level's band is one octave wide; H = 0: never.
+TEST(VirtualPages, HysteresisMayKeepTheFinerLevelWithinHOctaves) {
+    const float half = std::exp2(0.5f);
+    EXPECT_FALSE(gpu::virtualShadowMayKeepFiner(1000.0f, 4, half));  // 1414.2 < 1448.15
+    EXPECT_TRUE(gpu::virtualShadowMayKeepFiner(1030.0f, 4, half));   // 1456.6 > 1448.15
+    EXPECT_TRUE(gpu::virtualShadowMayKeepFiner(725.0f, 4, 2.0f));    // 1450 > 1448.15
+    EXPECT_FALSE(gpu::virtualShadowMayKeepFiner(1448.0f, 4, 1.0f));  // the nearest's need is below the midpoint
+    EXPECT_FALSE(gpu::virtualShadowMayKeepFiner(1e6f, 0, 4.0f));     // nothing finer than level 0
+    // Coarsening moves the level, never past the coarsest.
+    EXPECT_EQ(gpu::virtualShadowCoarsened(4, 2), 6u);
+    EXPECT_EQ(gpu::virtualShadowCoarsened(8, 3), PUNCTUAL_VIRTUAL_SHADOW_LEVELS - 1u);
+}
+
 TEST(VirtualPages, APageIsTheCellUnderTheUvAtItsLevel) {
     EXPECT_EQ(gpu::virtualShadowPage(glm::vec2(0.5f, 0.25f), 0, 16384, 128), glm::uvec2(64, 32));
     EXPECT_EQ(gpu::virtualShadowPage(glm::vec2(0.5f, 0.25f), 6, 16384, 128), glm::uvec2(1, 0));  // 2 across
