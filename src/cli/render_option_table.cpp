@@ -173,7 +173,7 @@ const RenderOptionSpec kRenderOptions[] = {
     {"--shadow-hysteresis", "H",
      "auto, in a sequence (play): a view goes up to a finer tier at once\nbut keeps its finer tier from the previous "
      "frame until its demand\nfalls below it / 2^(1/2 + H); virtual: a receiver keeps the level\none finer than the "
-     "nearest where the previous frame read it, as\nlong; H octaves, 0 to 2 (default 0: the nearest every frame)",
+     "nearest where the previous frame marked its\npage, as long; H octaves, 0 to 2 (default 0: the nearest every frame)",
      [](RenderOptions& o, const std::string& v, Notes&) {
          const float octaves = parseFloat("--shadow-hysteresis", v);
          if (!(octaves >= 0.0f && octaves <= 2.0f)) {

@@ -154,14 +154,14 @@ float shadowResolutionRead(const ShadowPlan& plan, uint32_t viewIndex, float lin
     if (previous != PUNCTUAL_NO_SHADOW_PAGE && gpu::virtualShadowMayKeepFiner(needed, level, reads.keep)) {
         const glm::vec4 clip = view.gpu.viewProjection * glm::vec4(position, 1.0f);
         const uint32_t finer = gpu::virtualShadowCoarsened(level - 1, view.coarserLevels);
-        const glm::vec2 uv = glm::vec2(clip) / clip.w * 0.5f + 0.5f;
-        auto marked = [&](uint32_t at) {
-            const glm::uvec2 page = gpu::virtualShadowPage(uv, at, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_PAGE);
-            const uint32_t index = gpu::virtualShadowPageIndex(page, at, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_PAGE);
-            return ((reads.previousMarks.at(previous + index / 32) >> (index % 32)) & 1u) != 0;
-        };
-        if (clip.w > 0.0f && finer != nearest && marked(finer)) {
-            return float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> finer);
+        if (clip.w > 0.0f && finer != nearest) {
+            const glm::uvec2 page = gpu::virtualShadowPage(glm::vec2(clip) / clip.w * 0.5f + 0.5f, finer,
+                                                           PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_PAGE);
+            const uint32_t index =
+                gpu::virtualShadowPageIndex(page, finer, PUNCTUAL_VIRTUAL_SHADOW_SIZE, PUNCTUAL_VIRTUAL_SHADOW_PAGE);
+            if ((reads.previousMarks.at(previous + index / 32) >> (index % 32)) & 1u) {
+                return float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> finer);
+            }
         }
     }
     return float(PUNCTUAL_VIRTUAL_SHADOW_SIZE >> nearest);
