@@ -16,6 +16,13 @@ namespace {
 // The sun's cascades, keyed apart from every scene light's views.
 constexpr uint32_t kCascadeKey = std::numeric_limits<uint32_t>::max();
 
+// A buddy-allocated atlas for the views of `settings`: the device's largest side, and the largest
+// side a view can take (auto's largest tier, or the fixed resolution).
+ShadowAtlasCache atlasCacheFor(const vk::Context& context, const ShadowSettings& settings) {
+    return ShadowAtlasCache(ShadowMaps::memoryLimits(context, settings).atlasSide,
+                            settings.autoResolution() ? settings.maxTier : settings.resolution);
+}
+
 static_assert(ShadowPass::kReadLayout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, "atlasLayoutBefore names it");
 
 }  // namespace
@@ -25,10 +32,8 @@ ShadowCache::ShadowCache(const vk::Context& context, const ShadowSettings& setti
       settings_(settings),
       keep_(mode == ShadowCacheMode::On || mode == ShadowCacheMode::Mixed),
       mixed_(mode == ShadowCacheMode::Mixed),
-      atlas_(ShadowMaps::memoryLimits(context, settings).atlasSide,
-             settings.autoResolution() ? settings.maxTier : settings.resolution),
-      staticAtlas_(ShadowMaps::memoryLimits(context, settings).atlasSide,
-                   settings.autoResolution() ? settings.maxTier : settings.resolution) {
+      atlas_(atlasCacheFor(context, settings)),
+      staticAtlas_(atlasCacheFor(context, settings)) {
     PUNCTUAL_CHECK(mode != ShadowCacheMode::Off, "a shadow cache that is off is no cache");
     if (settings.virtualPages()) {
         throw Error("--shadow-cache", "caches whole views (--shadow-res auto or N); virtual pages are allocated afresh "

@@ -376,6 +376,39 @@ void ShadowPass::squareCopiedToDrawn(VkCommandBuffer cmd, VkImageLayout copyLayo
                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
 }
 
+void ShadowPass::drawOverStaticDepth(const FrameContext& frame, uint32_t index, const DrawingTile& tile,
+                                     bool storeStatic) const {
+    const VkCommandBuffer cmd = frame.cmd;
+    const ShadowView& view = plan_.views[index];
+    const uint32_t side = drawingTileSide(view.rect.size);
+    const glm::uvec2 origin = glm::uvec2(tile.column, tile.row) * side;
+    std::vector<uint32_t> statics;
+    std::vector<uint32_t> dynamics;
+    for (const uint32_t object : tile.casters) (cache_->dynamic(object) ? dynamics : statics).push_back(object);
+    const AtlasRect& rect = cache_->staticRect(index);
+    const glm::uvec2 staticTexel = glm::uvec2(rect.x, rect.y) + origin;
+    const vk::Image& staticDepth = *cache_->staticDepth();
+    if (storeStatic) {
+        drawIntoSquare(frame, view, origin, statics, renderPass_);
+        squareDrawnToCopied(cmd);
+        // The static atlas rests in TRANSFER_SRC (read by the copies back), written in TRANSFER_DST.
+        vk::imageBarrier(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+        copySquare(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, staticTexel, side, /*intoImage=*/true);
+        vk::imageBarrier(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_ACCESS_TRANSFER_READ_BIT);
+        squareCopiedToDrawn(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    } else {
+        vk::imageBarrier(cmd, *drawingSquare_, kDrawLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, 0,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+        copySquare(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staticTexel, side, /*intoImage=*/false);
+        squareCopiedToDrawn(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    }
+    drawIntoSquare(frame, view, origin, dynamics, loadingRenderPass_);
+}
+
 void ShadowPass::recordDrawingTile(const FrameContext& frame, uint32_t index, const DrawingTile& tile) const {
     const VkCommandBuffer cmd = frame.cmd;
     const ShadowView& view = plan_.views[index];
@@ -385,33 +418,7 @@ void ShadowPass::recordDrawingTile(const FrameContext& frame, uint32_t index, co
     if (drawing == ViewDrawing::Whole) {
         drawIntoSquare(frame, view, origin, tile.casters, renderPass_);
     } else {
-        // Mixed caching (render/shadow_cache.h): the static casters' depth, drawn and stored, or
-        // copied back from the static atlas, then the dynamic casters over it.
-        std::vector<uint32_t> statics;
-        std::vector<uint32_t> dynamics;
-        for (const uint32_t object : tile.casters) (cache_->dynamic(object) ? dynamics : statics).push_back(object);
-        const AtlasRect& rect = cache_->staticRect(index);
-        const glm::uvec2 staticTexel = glm::uvec2(rect.x, rect.y) + origin;
-        const vk::Image& staticDepth = *cache_->staticDepth();
-        if (drawing == ViewDrawing::StoreStatic) {
-            drawIntoSquare(frame, view, origin, statics, renderPass_);
-            squareDrawnToCopied(cmd);
-            // The static atlas rests in TRANSFER_SRC (read by the copies back), written in TRANSFER_DST.
-            vk::imageBarrier(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                             VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-            copySquare(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, staticTexel, side, /*intoImage=*/true);
-            vk::imageBarrier(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_ACCESS_TRANSFER_READ_BIT);
-            squareCopiedToDrawn(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        } else {
-            vk::imageBarrier(cmd, *drawingSquare_, kDrawLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                             VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, 0,
-                             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-            copySquare(cmd, staticDepth, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staticTexel, side, /*intoImage=*/false);
-            squareCopiedToDrawn(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        }
-        drawIntoSquare(frame, view, origin, dynamics, loadingRenderPass_);
+        drawOverStaticDepth(frame, index, tile, drawing == ViewDrawing::StoreStatic);
     }
     squareDrawnToCopied(cmd);
     copySquare(cmd, maps().atlas(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, glm::uvec2(view.rect.x, view.rect.y) + origin, side,

@@ -115,6 +115,9 @@ private:
     // square, through `renderPass` (renderPass_ clears, loadingRenderPass_ draws over the square).
     void drawIntoSquare(const FrameContext& frame, const ShadowView& view, const glm::uvec2& origin,
                         const std::vector<uint32_t>& casters, VkRenderPass renderPass) const;
+    // Mixed caching (render/shadow_cache.h): `tile`'s static casters drawn and stored in the static
+    // atlas (`storeStatic`) or their stored depth copied back, then its dynamic casters drawn over.
+    void drawOverStaticDepth(const FrameContext& frame, uint32_t index, const DrawingTile& tile, bool storeStatic) const;
     void copySquare(VkCommandBuffer cmd, const vk::Image& image, VkImageLayout imageLayout, const glm::uvec2& texel,
                     uint32_t side, bool intoImage) const;
     // The drawing square's barriers: drawn into to copied from, and copied from (TRANSFER_SRC) or
