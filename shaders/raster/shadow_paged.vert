@@ -1,8 +1,8 @@
 #version 450
-// shadow.vert for virtual shadow pages: each instance draws the caster into one page's slot of the
-// pool (shadow_page_draw.glsl). A file of its own, not a specialization of shadow.vert: its clip
-// distances make every caster pipeline that declares them slower to build and to run on lavapipe
-// (measured: 0.16 s more per renderer), and only --shadow-res virtual needs them.
+// shadow.vert for virtual shadow pages: each instance draws the caster into one page's layer of
+// the drawing array (shadow_page_draw.glsl). A file of its own, not a specialization of
+// shadow.vert: it writes gl_Layer, which needs a device feature (shaderOutputLayer) that only
+// --shadow-res virtual should ask for.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_types.h"
 #include "shadow_pages.h"

@@ -62,8 +62,10 @@ whether the cache laid its atlas out afresh; shadow memory is the cache's atlas.
 object whose transform or geometry changed is a dynamic caster from then on; a view with one
 keeps its static casters' depth apart, in a second atlas counted in the shadow memory, and while
 that holds draws only its dynamic casters over a copy of it (shadow_cache_over_static_views,
-shadow_cache_dynamic_casters). Whole views only (auto or a fixed --shadow-res, not virtual);
-the cube layout's faces are drawn every frame. Every mode gives off's frames bit for bit.
+shadow_cache_dynamic_casters; whole views only, not virtual). With --shadow-res virtual, on keeps
+each marked page in its slot of a pool that outlives the frames, and its depth while its light
+and the casters that meet it are unchanged (shadow_cache_kept_pages, shadow_cache_drawn_pages).
+The cube layout's faces are drawn every frame. Every mode gives off's frames bit for bit.
 --fps F is 0.1 to 240 frames a second (default 10); --seconds S defaults to the length of the
 file's animations or the scene's path. At most 10,000 frames. DIR is created if missing (its
 parent must exist); frames.json lists the files written, and a later run into DIR removes the
@@ -254,7 +256,11 @@ public:
                                          {"over_static_views", cache->overStaticViews},
                                          {"static_stored_views", cache->staticStoredViews},
                                          {"dynamic_casters", cache->dynamicCasters},
-                                         {"static_texels", cache->staticTexels}};
+                                         {"static_texels", cache->staticTexels},
+                                         {"kept_pages", cache->keptPages},
+                                         {"drawn_pages", cache->drawnPages},
+                                         {"keepable_pages", cache->keepablePages},
+                                         {"page_slots", cache->pageSlots}};
         }
         if (validated) stats["validation"] = frameValidationJson(scene, renderer, lastValidated_);
         image = std::move(result.image);

@@ -149,13 +149,31 @@ ShadowPageAllocation allocateShadowPages(const ShadowPageMarkLayout& layout, std
             allocation.views[v].levels[level] = glm::uvec4(uint32_t(base), low.x | low.y << 16, size.x | size.y << 16, 0u);
             allocation.table.resize(base + size_t(size.x) * size.y, PUNCTUAL_NO_SHADOW_PAGE);
             for (const glm::uvec2& page : marked[level]) {  // row by row: slots in (row, column) order
-                allocation.table[base + size_t(page.y - low.y) * size.x + (page.x - low.x)] = uint32_t(allocation.pages.size());
+                const uint32_t slot = uint32_t(allocation.pages.size());
+                allocation.table[base + size_t(page.y - low.y) * size.x + (page.x - low.x)] = slot;
                 allocation.pages.push_back({uint32_t(v), level, page.x, page.y});
+                allocation.slotOfPage.push_back(slot);
                 ++allocation.pagesPerLevel[level];
             }
         }
     }
+    allocation.pageSlots = uint32_t(allocation.pages.size());
     return allocation;
+}
+
+void assignPageSlots(ShadowPageAllocation& allocation, std::vector<uint32_t> slotOfPage, uint32_t pageSlots) {
+    PUNCTUAL_CHECK(slotOfPage.size() == allocation.pages.size() && allocation.pageSlots == allocation.pages.size(),
+                   "page slots assigned to an allocation as allocateShadowPages made it");
+    std::vector<bool> taken(pageSlots, false);
+    for (const uint32_t slot : slotOfPage) {
+        PUNCTUAL_CHECK(slot < pageSlots && !taken[slot], "a page slot given twice or outside the pool");
+        taken[slot] = true;
+    }
+    for (uint32_t& entry : allocation.table) {
+        if (entry != PUNCTUAL_NO_SHADOW_PAGE) entry = slotOfPage[entry];  // entries were page indices
+    }
+    allocation.slotOfPage = std::move(slotOfPage);
+    allocation.pageSlots = pageSlots;
 }
 
 void placeShadowPagePool(ShadowPlan& plan, ShadowPageAllocation& allocation, uint32_t maxSide) {
@@ -245,19 +263,18 @@ glm::vec4 casterNdcRect(const Bounds& bounds, const glm::mat4& viewProjection) {
 
 }  // namespace
 
-ShadowPageDraws shadowPageDraws(const Scene& scene, const ShadowPlan& plan, const ShadowPageAllocation& allocation) {
-    // The pages of each view, in slot order.
-    std::vector<std::vector<uint32_t>> slotsOfView(plan.views.size());
-    for (uint32_t slot = 0; slot < allocation.pages.size(); ++slot) slotsOfView[allocation.pages[slot].view].push_back(slot);
-    ShadowPageDraws result;
+std::vector<std::vector<uint32_t>> shadowPageCasters(const Scene& scene, const ShadowPlan& plan,
+                                                     const ShadowPageAllocation& allocation) {
+    std::vector<std::vector<uint32_t>> pagesOfView(plan.views.size());
+    for (uint32_t page = 0; page < allocation.pages.size(); ++page) pagesOfView[allocation.pages[page].view].push_back(page);
+    std::vector<std::vector<uint32_t>> casters(allocation.pages.size());
     for (uint32_t v = 0; v < plan.views.size(); ++v) {
-        if (slotsOfView[v].empty()) continue;
+        if (pagesOfView[v].empty()) continue;
         const ShadowView& view = plan.views[v];
         for (const uint32_t object : view.casters) {
             const glm::vec4 rect = casterNdcRect(scene.objects[object].worldBounds, view.gpu.viewProjection);
-            ShadowPageDraws::Draw draw{v, object, uint32_t(result.instances.size()), 0};
-            for (const uint32_t slot : slotsOfView[v]) {
-                const ShadowPage& page = allocation.pages[slot];
+            for (const uint32_t index : pagesOfView[v]) {
+                const ShadowPage& page = allocation.pages[index];
                 const glm::vec3 square = gpu::virtualShadowPageNdc(page.level, glm::uvec2(page.column, page.row));
                 // Widened by a texel (the slot's half side is `square.z`, the slot 33 texels): a
                 // triangle that only grazes the slot still covers the texel centres it must.
@@ -266,12 +283,73 @@ ShadowPageDraws shadowPageDraws(const Scene& scene, const ShadowPlan& plan, cons
                     rect.w < square.y - reach) {
                     continue;
                 }
-                result.instances.emplace_back(v, page.level, page.column | page.row << 16, slot);
-                ++draw.instanceCount;
+                casters[index].push_back(object);
             }
-            if (draw.instanceCount > 0) result.draws.push_back(draw);
         }
     }
+    return casters;
+}
+
+uint32_t ShadowPageDraws::largestBatch() const {
+    size_t largest = 0;
+    for (const Batch& batch : batches) largest = std::max(largest, batch.slots.size());
+    return uint32_t(largest);
+}
+
+namespace {
+
+// One batch's draws: for each run of pages of one view (pages `order[first, end)`), each caster of
+// the view over the pages of the run it meets (layer = the page's place in the batch).
+void addBatchDraws(const ShadowPlan& plan, const ShadowPageAllocation& allocation,
+                   const std::vector<std::vector<uint32_t>>& pageCasters, const std::vector<uint32_t>& order,
+                   size_t first, size_t end, ShadowPageDraws& result) {
+    for (size_t run = first; run < end;) {
+        const uint32_t v = allocation.pages[order[run]].view;
+        size_t runEnd = run;
+        while (runEnd < end && allocation.pages[order[runEnd]].view == v) ++runEnd;
+        std::map<uint32_t, std::vector<size_t>> pagesOfCaster;  // object: its pages (places in order)
+        for (size_t k = run; k < runEnd; ++k) {
+            for (const uint32_t object : pageCasters[order[k]]) pagesOfCaster[object].push_back(k);
+        }
+        for (const uint32_t object : plan.views[v].casters) {
+            const auto found = pagesOfCaster.find(object);
+            if (found == pagesOfCaster.end()) continue;
+            result.draws.push_back({v, object, uint32_t(result.instances.size()), uint32_t(found->second.size())});
+            for (const size_t k : found->second) {
+                const ShadowPage& page = allocation.pages[order[k]];
+                result.instances.emplace_back(v, page.level, page.column | page.row << 16, uint32_t(k - first));
+            }
+        }
+        run = runEnd;
+    }
+}
+
+}  // namespace
+
+ShadowPageDraws shadowPageDraws(const ShadowPlan& plan, const ShadowPageAllocation& allocation,
+                                const std::vector<std::vector<uint32_t>>& pageCasters, const std::vector<bool>& drawn,
+                                uint32_t layersPerBatch) {
+    PUNCTUAL_CHECK(layersPerBatch > 0 && pageCasters.size() == allocation.pages.size() &&
+                       (drawn.empty() || drawn.size() == allocation.pages.size()),
+                   "page draws of an allocation's pages");
+    std::vector<uint32_t> order;  // the pages drawn, in page order (a view's pages together)
+    for (uint32_t page = 0; page < allocation.pages.size(); ++page) {
+        if (drawn.empty() || drawn[page]) order.push_back(page);
+    }
+    ShadowPageDraws result;
+    result.pagesDrawn = order.size();
+    for (const uint32_t page : order) result.pagesWithCasters += !pageCasters[page].empty();
+    size_t first = 0;
+    do {
+        const size_t end = std::min(order.size(), first + layersPerBatch);
+        ShadowPageDraws::Batch batch;
+        batch.firstDraw = result.draws.size();
+        addBatchDraws(plan, allocation, pageCasters, order, first, end, result);
+        batch.drawCount = result.draws.size() - batch.firstDraw;
+        for (size_t k = first; k < end; ++k) batch.slots.push_back(allocation.slotOfPage[order[k]]);
+        result.batches.push_back(std::move(batch));
+        first = end;
+    } while (first < order.size());
     return result;
 }
 

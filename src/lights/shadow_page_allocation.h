@@ -9,10 +9,11 @@
 //
 // Pool: the allocated pages are 33 x 33 squares of the atlas (PUNCTUAL_VIRTUAL_SHADOW_SLOT: a page
 // and its neighbours' first column and row), around the sun's cascades (virtualShadowSlotOrigin),
-// then the lit page; slot i is page i in (view, level, row, column) order, so the same marks give the
-// same atlas, texel for texel. The page table covers, per view and level with a marked page, the
-// rectangle of its marked pages (not the whole level: a view's level 0 alone has 512 x 512 pages),
-// each entry a slot or PUNCTUAL_NO_SHADOW_PAGE.
+// then the lit page; slot i is page i in (view, level, row, column) order, unless the shadow cache
+// keeps pages where they were (assignPageSlots). Each page is drawn at the same origin whatever its
+// slot (render/shadow_page_layers.h), so where it lies changes no texel. The page table covers, per
+// view and level with a marked page, the rectangle of its marked pages (not the whole level: a
+// view's level 0 alone has 512 x 512 pages), each entry a slot or PUNCTUAL_NO_SHADOW_PAGE.
 //
 // Budget: when the marked pages do not fit what --shadow-budget leaves beside the cascades, the
 // views of the least important lights read one level coarser (GpuVirtualShadowView::marks.y), all
@@ -70,8 +71,10 @@ ShadowPageCounts countMarkedPages(const ShadowPageMarkLayout& layout, std::span<
 
 struct ShadowPageAllocation {
     std::vector<gpu::GpuVirtualShadowView> views;  // per plan view (cascades and views without a map: no pages)
-    std::vector<uint32_t> table;                   // the page table's entries
-    std::vector<ShadowPage> pages;                 // slot i holds pages[i]
+    std::vector<uint32_t> table;                   // the page table's entries: slots
+    std::vector<ShadowPage> pages;                 // the marked pages, in (view, level, row, column) order
+    std::vector<uint32_t> slotOfPage;              // per page: its slot (page i's is i, unless assignPageSlots)
+    uint32_t pageSlots = 0;                        // the pool's slots for pages: pages.size(), or the cache's
     std::array<uint64_t, PUNCTUAL_VIRTUAL_SHADOW_LEVELS> pagesPerLevel{};
     // Where the slots are (shaders/shared/shadow_pages.h, virtualShadowSlotOrigin): beside the
     // cascades' squares (`squares` texels at the atlas's top left), `besideAcross` slots a row,
@@ -82,8 +85,8 @@ struct ShadowPageAllocation {
 
     // The pool's slots: the pages', then the lit page's (cleared, never drawn), which the lookups
     // read where a page has none (shadow_pages.glsl, PageBlock).
-    uint64_t slots() const { return pages.size() + 1; }
-    uint32_t litSlot() const { return uint32_t(pages.size()); }
+    uint64_t slots() const { return uint64_t(pageSlots) + 1; }
+    uint32_t litSlot() const { return pageSlots; }
     uint64_t physicalBytes(uint32_t texelBytes) const {
         return slots() * PUNCTUAL_VIRTUAL_SHADOW_SLOT * PUNCTUAL_VIRTUAL_SHADOW_SLOT * texelBytes;
     }
@@ -110,6 +113,11 @@ std::vector<gpu::GpuVirtualShadowView> unallocatedPageViews(const ShadowPageMark
 ShadowPageAllocation allocateShadowPages(const ShadowPageMarkLayout& layout, std::span<const uint32_t> marks,
                                          std::span<const uint32_t> coarser);
 
+// Puts page i in slot `slotOfPage[i]` of a pool of `pageSlots` slots (each slot at most one page's;
+// the shadow cache's, render/shadow_cache.h): the table's entries follow. `allocation` must be as
+// allocateShadowPages made it.
+void assignPageSlots(ShadowPageAllocation& allocation, std::vector<uint32_t> slotOfPage, uint32_t pageSlots);
+
 // Places the pool around what the atlas already holds (the cascades' squares; plan.atlas): rows
 // of the atlas's width below them (64 slots when it has none), the width doubled while the pool
 // would pass `maxSide`, which opens a band beside them that the pool fills first. Grows plan.atlas
@@ -129,22 +137,41 @@ std::vector<uint32_t> coarsenViewsForBudget(const ShadowPlan& plan, std::span<co
                                             const ShadowPageCounts& counts, std::vector<uint32_t> coarser,
                                             uint64_t capacity, const std::string& budgetName);
 
-// The shadow pass's instanced draws: one draw per (view, caster) whose bounds meet any of the
-// view's allocated pages, each instance one such page (shaders/shared/shadow_page_draw.glsl).
+// Per page of `allocation` (its index in pages): the casters of its view whose bounds meet it, in
+// the view's order. A caster meets a page when its world bounds, projected through the view (bounds
+// reaching behind the light meet every page), overlap the page's square (virtualShadowPageNdc)
+// widened by a texel.
+std::vector<std::vector<uint32_t>> shadowPageCasters(const Scene& scene, const ShadowPlan& plan,
+                                                     const ShadowPageAllocation& allocation);
+
+// The shadow pass's instanced draws (shaders/shared/shadow_page_draw.glsl), in batches: each batch's
+// pages are drawn into the layers of an array, one page a layer, then copied into their slots
+// (render/shadow_page_layers.h). In a batch, one draw per (view, caster) meeting any of the view's
+// pages there, each instance one such page.
 struct ShadowPageDraws {
-    std::vector<glm::uvec4> instances;  // per instance: view, level, column | row << 16, pool slot
+    std::vector<glm::uvec4> instances;  // per instance: view, level, column | row << 16, layer in its batch
     struct Draw {
         uint32_t view = 0;
         uint32_t object = 0;
         uint32_t firstInstance = 0;
         uint32_t instanceCount = 0;
     };
-    std::vector<Draw> draws;  // by view, then by caster in the view's order
+    std::vector<Draw> draws;  // by batch, then by view, then by caster in the view's order
+    struct Batch {
+        std::vector<uint32_t> slots;  // layer i is copied into slot slots[i]
+        size_t firstDraw = 0;
+        size_t drawCount = 0;
+    };
+    std::vector<Batch> batches;  // at least one (the first also writes the lit slot)
+    uint64_t pagesDrawn = 0;     // pages drawn (with or without a caster)
+    uint64_t pagesWithCasters = 0;
+    uint32_t largestBatch() const;
 };
 
-// The draws of `allocation`'s pages: a caster meets a page when its world bounds, projected through
-// the view (bounds reaching behind the light meet every page), overlap the page's square
-// (virtualShadowPageNdc) widened by a texel.
-ShadowPageDraws shadowPageDraws(const Scene& scene, const ShadowPlan& plan, const ShadowPageAllocation& allocation);
+// The draws of the pages `drawn` marks (per page of `allocation`; empty: every page), with their
+// casters (shadowPageCasters), in page order, at most `layersPerBatch` pages a batch.
+ShadowPageDraws shadowPageDraws(const ShadowPlan& plan, const ShadowPageAllocation& allocation,
+                                const std::vector<std::vector<uint32_t>>& pageCasters, const std::vector<bool>& drawn,
+                                uint32_t layersPerBatch);
 
 }  // namespace punctual

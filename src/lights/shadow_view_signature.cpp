@@ -75,4 +75,13 @@ uint64_t shadowViewSignature(const ShadowView& view, const std::vector<uint32_t>
     return hash.value();
 }
 
+uint64_t shadowPageSignature(const ShadowView& view, uint32_t level, uint32_t column, uint32_t row,
+                             const std::vector<uint32_t>& casters, const std::vector<uint64_t>& fingerprints) {
+    WordHash hash;
+    hash.add(shadowViewSignature(view, casters, fingerprints));
+    hash.add(level);
+    hash.add(uint64_t(column) | uint64_t(row) << 32);
+    return hash.value();
+}
+
 }  // namespace punctual

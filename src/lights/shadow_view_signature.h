@@ -33,4 +33,9 @@ uint64_t shadowViewSignature(const ShadowView& view, const std::vector<uint64_t>
 uint64_t shadowViewSignature(const ShadowView& view, const std::vector<uint32_t>& casters,
                              const std::vector<uint64_t>& fingerprints);
 
+// A virtual page's signature (--shadow-res virtual): its view's matrix, its level and place, and the
+// casters that meet it (shadowPageCasters, in the view's order): what the page's depth is made of.
+uint64_t shadowPageSignature(const ShadowView& view, uint32_t level, uint32_t column, uint32_t row,
+                             const std::vector<uint32_t>& casters, const std::vector<uint64_t>& fingerprints);
+
 }  // namespace punctual

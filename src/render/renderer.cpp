@@ -374,8 +374,15 @@ void Renderer::allocateShadowPages() {
         shadows.views[v].coarserLevels = coarser[v];
     }
     pageAllocation_ = punctual::allocateShadowPages(layout, marks, coarser);
-    placeShadowPagePool(shadows, pageAllocation_, ShadowMaps::memoryLimits(context_, settings_.shadows).atlasSide);
-    ShadowPageDraws draws = punctual::shadowPageDraws(scene_, shadows, pageAllocation_);
+    const std::vector<std::vector<uint32_t>> casters = shadowPageCasters(scene_, shadows, pageAllocation_);
+    std::vector<bool> drawn;  // every page, unless the cache keeps some
+    if (shadowCache_) {
+        drawn = shadowCache_->placePages(shadows, pageAllocation_, casters, scene_, plan_.lights);
+    } else {
+        placeShadowPagePool(shadows, pageAllocation_, ShadowMaps::memoryLimits(context_, settings_.shadows).atlasSide);
+    }
+    ShadowPageDraws draws = punctual::shadowPageDraws(shadows, pageAllocation_, casters, drawn,
+                                                      ShadowPageLayers::layersPerBatch(context_));
     stats.allocateMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     stats.marksBytes = uint64_t(layout.words) * 4;
     if (stats.coarsenedPages > 0 && settings_.warnReducedShadows) {

@@ -6,6 +6,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "lights/shadow_page_allocation.h"
 #include "lights/shadow_view_signature.h"
 #include "render/shadow_pass.h"
 #include "vk/context.h"
@@ -35,13 +36,17 @@ ShadowCache::ShadowCache(const vk::Context& context, const ShadowSettings& setti
       atlas_(atlasCacheFor(context, settings)),
       staticAtlas_(atlasCacheFor(context, settings)) {
     PUNCTUAL_CHECK(mode != ShadowCacheMode::Off, "a shadow cache that is off is no cache");
-    if (settings.virtualPages()) {
-        throw Error("--shadow-cache", "caches whole views (--shadow-res auto or N); virtual pages are allocated afresh "
-                                      "from each frame's marks and are not cached");
+    if (settings.virtualPages() && mixed_) {
+        throw Error("--shadow-cache", "mixed keeps whole views' static depth apart (--shadow-res auto or N); with "
+                                      "virtual pages use on, which keeps each page that nothing in it moved");
     }
 }
 
 void ShadowCache::prepare(ShadowPlan& plan, const Scene& scene, const FrameLights& lights) {
+    if (settings_.virtualPages()) {
+        preparePagedFrame(plan);
+        return;
+    }
     const auto start = std::chrono::steady_clock::now();
     const std::vector<uint64_t> fingerprints = casterFingerprints(scene, plan);
     std::vector<ShadowViewKey> keys;
@@ -62,17 +67,8 @@ void ShadowCache::prepare(ShadowPlan& plan, const Scene& scene, const FrameLight
         view.rect = placed.layout.rects[v];
         view.gpu.atlasRect = atlasRectInUv(view.rect, plan.atlas);
     }
-    // (The cube array's layers count the shadowed points only where it exists; otherwise it is a
-    // placeholder whatever the points.)
-    const MapsShape shape{plan.atlas.width, plan.atlas.height, plan.cubeResolution,
-                          plan.cubeResolution > 0 ? plan.shadowedPoints : 0};
-    const bool madeAnew = !maps_ || !shape.sameAtlas(shape_);
-    if (madeAnew) {
-        maps_.emplace(context_, plan, settings_);
-    } else if (!shape.sameCubes(shape_)) {
-        maps_->remakePointCubes(context_, plan, settings_);  // drawn every frame: nothing kept there
-    }
-    shape_ = shape;
+    makeMapsFor(plan);
+    const bool madeAnew = mapsMadeAnew_;
     atlasLayoutBefore_ = madeAnew ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     kept_.assign(plan.views.size(), false);
     std::vector<bool> keepable(plan.views.size(), false);
@@ -154,6 +150,76 @@ void ShadowCache::prepareMixed(const ShadowPlan& plan, const std::vector<ShadowV
         if (!staticKept) kept_[v] = false;
         drawing_[v] = staticKept ? ViewDrawing::OverStatic : ViewDrawing::StoreStatic;
     }
+}
+
+void ShadowCache::makeMapsFor(const ShadowPlan& plan) {
+    // (The cube array's layers count the shadowed points only where it exists; otherwise it is a
+    // placeholder whatever the points. Its faces are drawn every frame: nothing kept there.)
+    const MapsShape shape{plan.atlas.width, plan.atlas.height, plan.cubeResolution,
+                          plan.cubeResolution > 0 ? plan.shadowedPoints : 0};
+    mapsMadeAnew_ = !maps_ || !shape.sameAtlas(shape_);
+    if (mapsMadeAnew_) {
+        maps_.emplace(context_, plan, settings_);
+    } else if (!shape.sameCubes(shape_)) {
+        maps_->remakePointCubes(context_, plan, settings_);
+    }
+    shape_ = shape;
+}
+
+void ShadowCache::preparePagedFrame(ShadowPlan& plan) {
+    // The marking frame comes first: the atlas it draws the cascades into is last frame's where the
+    // pool stays as it was (the same cascades' squares beside it), so that it keeps the pages.
+    frame_ = {};
+    frame_.packedTexels = plan.atlas.texels();
+    pageSquares_ = glm::uvec2(plan.atlas.width, plan.atlas.height);
+    if (pagePool_.laidOutBeside(pageSquares_)) {
+        ShadowPageAllocation pool;
+        pool.pageSlots = pagePool_.capacity();
+        placeShadowPagePool(plan, pool, ShadowMaps::memoryLimits(context_, settings_).atlasSide);
+    }
+    makeMapsFor(plan);
+    atlasLayoutBefore_ = mapsMadeAnew_ ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    kept_.assign(plan.views.size(), false);  // the cascades: drawn every frame
+    drawing_.assign(plan.views.size(), ViewDrawing::Whole);
+}
+
+std::vector<bool> ShadowCache::placePages(ShadowPlan& plan, ShadowPageAllocation& allocation,
+                                          const std::vector<std::vector<uint32_t>>& pageCasters, const Scene& scene,
+                                          const FrameLights& lights) {
+    const auto start = std::chrono::steady_clock::now();
+    const bool madeForMarking = mapsMadeAnew_;
+    const std::vector<uint64_t> fingerprints = casterFingerprints(scene, plan);
+    std::vector<CachedPageRequest> requests;
+    for (size_t i = 0; i < allocation.pages.size(); ++i) {
+        const ShadowPage& page = allocation.pages[i];
+        const ShadowView& view = plan.views[page.view];
+        requests.push_back({{lights.sceneLightIndex.at(view.packedLight), view.face, page.level, page.column, page.row},
+                            shadowPageSignature(view, page.level, page.column, page.row, pageCasters[i], fingerprints)});
+    }
+    // The pool beside the cascades' squares alone (the marking frame's atlas may have held it).
+    plan.atlas.width = pageSquares_.x;
+    plan.atlas.height = pageSquares_.y;
+    const uint64_t budgetSlots = shadowPagePoolCapacity(plan, plan.budgetBytes, settings_.texelBytes());
+    const ShadowPagePoolFrame placed = pagePool_.place(requests, pageSquares_, budgetSlots);
+    assignPageSlots(allocation, placed.slots, placed.capacity);
+    placeShadowPagePool(plan, allocation, ShadowMaps::memoryLimits(context_, settings_).atlasSide);
+    makeMapsFor(plan);
+    // A new atlas (this frame's, or the marking frame's) holds no page yet.
+    const bool fresh = mapsMadeAnew_ || madeForMarking;
+    if (mapsMadeAnew_) atlasLayoutBefore_ = VK_IMAGE_LAYOUT_UNDEFINED;
+    else atlasLayoutBefore_ = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;  // the marking frame left it there
+    std::vector<bool> drawn(requests.size(), true);
+    for (size_t i = 0; i < requests.size(); ++i) {
+        const bool keepable = placed.kept[i] && !fresh;
+        drawn[i] = !(keep_ && keepable);
+        frame_.keepablePages += keepable;
+        (drawn[i] ? frame_.drawnPages : frame_.keptPages)++;
+    }
+    frame_.laidOut = placed.laidOut || fresh;
+    frame_.pageSlots = placed.capacity;
+    frame_.atlasTexels = plan.atlas.texels();
+    frame_.checkMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return drawn;
 }
 
 }  // namespace punctual::render

@@ -12,8 +12,13 @@
 //
 // What is cached: the spot views and point slices in the atlas, and the sun's cascades while the
 // camera and the casters stand still (their matrices follow the camera). Not the cube layout's
-// faces (redrawn every frame), nor virtual pages (refused: their pool is allocated afresh from
-// each frame's marks).
+// faces (redrawn every frame).
+//
+// Virtual pages (--shadow-res virtual): each marked page keeps its slot of a pool that outlives the
+// frames (lights/shadow_page_pool_cache.h), and its depth while its signature holds
+// (shadowPageSignature: its view's matrix, its level and place, and the casters that meet it). A
+// light that moved redraws its pages; a caster that moved, the pages it met or meets. With pages
+// the cascades are drawn every frame.
 //
 // Mixed (HDRP's mixed cached shadows; Unreal keeps static casters' pages apart too): a view with
 // a moving caster inside it is drawn every frame that caster moves, but its static casters' depth
@@ -37,6 +42,8 @@
 #include "core/variant_table.h"
 #include "lights/light_setup.h"
 #include "lights/shadow_atlas_cache.h"
+#include "lights/shadow_page_allocation.h"
+#include "lights/shadow_page_pool_cache.h"
 #include "lights/shadow_setup.h"
 #include "render/shadow_maps.h"
 #include "scene/scene.h"
@@ -83,6 +90,12 @@ struct ShadowCacheFrame {
     uint32_t staticStoredViews = 0;
     uint32_t dynamicCasters = 0;
     uint64_t staticTexels = 0;
+    // Virtual pages: the frame's pages kept and drawn, those that could have been kept (redraw:
+    // drawn anyway), and the pool's slots for pages.
+    uint32_t keptPages = 0;
+    uint32_t drawnPages = 0;
+    uint32_t keepablePages = 0;
+    uint32_t pageSlots = 0;
     double checkMs = 0.0;       // CPU: fingerprints, signatures and placement
 };
 
@@ -95,8 +108,8 @@ enum class ViewDrawing : uint8_t {
 
 class ShadowCache {
 public:
-    // For a sequence rendered with `settings` (the same every frame), in mode On or Redraw. Throws
-    // Error for virtual pages.
+    // For a sequence rendered with `settings` (the same every frame), in mode On, Redraw or Mixed.
+    // Throws Error for Mixed with virtual pages.
     ShadowCache(const vk::Context& context, const ShadowSettings& settings, ShadowCacheMode mode = ShadowCacheMode::On);
     ShadowCache(const ShadowCache&) = delete;
     ShadowCache& operator=(const ShadowCache&) = delete;
@@ -105,6 +118,14 @@ public:
     // UV) and decides which keep their depth; makes the maps anew when their shape changed. One
     // renderer at a time: the last one given the cache must be gone (its frames done) first.
     void prepare(ShadowPlan& plan, const Scene& scene, const FrameLights& lights);
+
+    // Virtual pages, once the marking frame has marked them: puts `allocation`'s pages in the pool
+    // (their slots, the pool's place in plan.atlas: assignPageSlots, placeShadowPagePool), makes the
+    // maps anew where the pool's shape changed, and returns per page whether it is drawn (false: it
+    // keeps last frame's depth). `pageCasters` as shadowPageCasters gives them.
+    std::vector<bool> placePages(ShadowPlan& plan, ShadowPageAllocation& allocation,
+                                 const std::vector<std::vector<uint32_t>>& pageCasters, const Scene& scene,
+                                 const FrameLights& lights);
 
     const ShadowMaps& maps() const { return *maps_; }
     // Whether plan view `view` keeps last frame's depth (not cleared, not drawn).
@@ -147,6 +168,10 @@ private:
     void prepareMixed(const ShadowPlan& plan, const std::vector<ShadowViewKey>& keys,
                       const std::vector<uint64_t>& fingerprints);
     void learnDynamicCasters(const std::vector<uint64_t>& fingerprints);
+    // Makes the maps for `plan` where their shape changed (mapsMadeAnew_ says whether).
+    void makeMapsFor(const ShadowPlan& plan);
+    // Virtual pages, before the marking frame: the atlas grown to last frame's pool where it stands.
+    void preparePagedFrame(ShadowPlan& plan);
     const vk::Context& context_;
     ShadowSettings settings_;
     bool keep_;  // On; Redraw places as On but keeps nothing
@@ -164,6 +189,9 @@ private:
     std::vector<bool> dynamic_;                // per object: learned dynamic
     std::vector<ViewDrawing> drawing_;
     std::vector<AtlasRect> staticRects_;
+    bool mapsMadeAnew_ = false;
+    ShadowPagePoolCache pagePool_;
+    glm::uvec2 pageSquares_{0u};  // this frame's cascades' squares, beside which the pool lies
 };
 
 }  // namespace punctual::render

@@ -48,9 +48,9 @@ ShadowPass::ShadowPass(const vk::Context& context, const ShadowPlan& plan, const
                  "shadow page table"),
       pageInstances_(context, sizeof(glm::uvec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload,
                      "shadow page instances") {
-    if (settings.virtualPages() && settings.enabled && context.enabledFeatures().shaderClipDistance != VK_TRUE) {
+    if (settings.virtualPages() && settings.enabled && !context.shaderOutputLayer()) {
         throw Error("--shadow-res virtual", "the device (" + context.deviceName() +
-                                                ") lacks shaderClipDistance, which drawing casters into pages needs");
+                                                ") lacks shaderOutputLayer, which drawing each page into a layer needs");
     }
     if (!cache_) ownMaps_.emplace(context, plan, settings);
     uploadViews();
@@ -98,6 +98,7 @@ void ShadowPass::createDrawingSquare(const vk::Context& context, const Scene& sc
 uint64_t ShadowPass::memoryBytes() const {
     const vk::Image* staticDepth = cache_ ? cache_->staticDepth() : nullptr;
     return maps().allocatedBytes() + (drawingSquare_ ? drawingSquare_->allocatedBytes() : 0) +
+           (pageLayers_ ? pageLayers_->memoryBytes() : 0) +
            (staticDepth ? staticDepth->allocatedBytes() : 0) + pageViews_.size() + pageTable_.size();
 }
 
@@ -156,8 +157,7 @@ void ShadowPass::setUnallocatedPages(std::vector<gpu::GpuVirtualShadowView> view
 }
 
 void ShadowPass::usePages(const vk::Context& context, const ShadowPageAllocation& allocation, ShadowPageDraws draws) {
-    PUNCTUAL_CHECK(!cache_, "virtual pages are not cached");
-    ownMaps_.emplace(context, plan_, settings_);
+    if (!cache_) ownMaps_.emplace(context, plan_, settings_);  // (a cache has made its maps for the pool)
     createTargets(context);
     uploadViews();  // the cascades' squares moved with the grown atlas
     setUnallocatedPages(allocation.views);
@@ -173,6 +173,9 @@ void ShadowPass::usePages(const vk::Context& context, const ShadowPageAllocation
         pageInstances_ = upload(draws.instances.data(), draws.instances.size() * sizeof(glm::uvec4), "shadow page instances");
     }
     pageDraws_ = std::move(draws);
+    pagePool_ = allocation;
+    pagePool_.table.clear();  // (the pool's place and slots are what recording needs)
+    pageLayers_.emplace(context, ShadowMaps::format(settings_.format), renderPass_, pageDraws_);
 }
 
 void ShadowPass::addBindings(BindingTable& table) const {
@@ -285,30 +288,17 @@ void ShadowPass::drawView(const FrameContext& frame, const ShadowView& view, con
     }
 }
 
-uint64_t ShadowPass::pagesDrawn() const {
-    std::vector<bool> drawn;
-    for (const glm::uvec4& instance : pageDraws_.instances) {
-        if (instance.w >= drawn.size()) drawn.resize(instance.w + 1, false);
-        drawn[instance.w] = true;
-    }
-    return uint64_t(std::count(drawn.begin(), drawn.end(), true));
-}
-
-// Every caster of every view with pages, instanced over the pages it meets (shadow_page_draw.glsl),
-// through one viewport and scissor over the whole atlas: the clip distances keep each instance
-// inside its slot.
-void ShadowPass::drawPages(const FrameContext& frame) const {
-    if (pageDraws_.draws.empty()) return;
+// A batch's casters, each instanced over the pages it meets (shadow_page_draw.glsl), each instance
+// into its page's layer; the viewport and scissor (beginRenderPass's) are the whole layer.
+void ShadowPass::drawPages(const FrameContext& frame, const ShadowPageDraws::Batch& batch) const {
+    if (batch.drawCount == 0) return;
     const VkCommandBuffer cmd = frame.cmd;
-    const VkViewport viewport{0.0f, 0.0f, float(plan_.atlas.width), float(plan_.atlas.height), 0.0f, 1.0f};
-    const VkRect2D scissor{{0, 0}, {plan_.atlas.width, plan_.atlas.height}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
     frame.bindings.bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_);
     frame.scene.bindGeometry(cmd);
+    const std::span<const ShadowPageDraws::Draw> draws(pageDraws_.draws.data() + batch.firstDraw, batch.drawCount);
     for (const bool maskedPass : {false, true}) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, maskedPass ? pagePipelines_.masked : pagePipelines_.opaque);
-        for (const ShadowPageDraws::Draw& draw : pageDraws_.draws) {
+        for (const ShadowPageDraws::Draw& draw : draws) {
             const std::optional<bool> masked = casterIsMasked(frame, draw.object);
             if (!masked || *masked != maskedPass) continue;
             frame.scene.drawObjectInstances(cmd, pipelineLayout_, draw.object, kObjectIndexOffset, VK_SHADER_STAGE_VERTEX_BIT,
@@ -436,23 +426,14 @@ void ShadowPass::recordAtlas(const FrameContext& frame, const Target& atlas) con
     const VkCommandBuffer cmd = frame.cmd;
     const vk::Image& image = maps().atlas();
     const VkImageLayout before = atlasLayoutBefore();
-    if (!settings_.virtualPages()) {
-        vk::imageBarrier(cmd, image, before, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
-                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-    } else {
-        // Virtual pages: the pool is cleared (the lit slot, and every page no caster reaches, read
-        // as the far plane) and the pages drawn in place (each slot's own page), then the
-        // cascades' squares are copied in beside it.
-        vk::imageBarrier(cmd, image, before, kDrawLayout, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
-                         VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-                         VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-        const VkClearValue clear = kClearToFar;
-        vk::beginRenderPass(cmd, renderPass_, atlas.framebuffer, atlas.width, atlas.height, {&clear, 1});
-        drawPages(frame);
-        vkCmdEndRenderPass(cmd);
-        vk::imageBarrier(cmd, image, kDrawLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                         VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    vk::imageBarrier(cmd, image, before, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    if (pageLayers_) {
+        // Virtual pages (once allocated; the marking frame before reads none): each page drawn
+        // into its layer and copied into its slot, with the lit slot (every page the cache keeps
+        // is left as it is), then the cascades' squares copied in beside the pool.
+        pageLayers_->record(cmd, pageDraws_, pagePool_, image,
+                            [&](const ShadowPageDraws::Batch& batch) { drawPages(frame, batch); });
     }
     if (!atlas.planViews.empty()) {
         vk::imageBarrier(cmd, *drawingSquare_, VK_IMAGE_LAYOUT_UNDEFINED, kDrawLayout, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,

@@ -17,8 +17,8 @@
 //
 // Virtual pages (--shadow-res virtual): the atlas holds the cascades' squares and, below them,
 // the page pool. Each caster is drawn once per view, instanced over the allocated pages its
-// bounds meet (shadowPageDraws); each instance maps the page's square of the view onto its slot
-// and cuts the triangles at the slot's edges with clip distances (shadow_page_draw.glsl). Not one
+// bounds meet (shadowPageDraws); each instance maps the page's square of the view onto a layer of
+// its own, which is copied into its slot (render/shadow_page_layers.h, shadow_page_draw.glsl). Not one
 // draw per page with its own viewport: that is a draw per (page, caster), 23,000 on the hall,
 // and lavapipe spends about 50 us on a draw whatever it holds (1.2 s). Not atomics into an R32
 // pool either: the pages stay D16 depth targets that the same filters read (R32 would double the
@@ -35,6 +35,7 @@
 #include "render/pass.h"
 #include "render/shadow_cache.h"
 #include "render/shadow_maps.h"
+#include "render/shadow_page_layers.h"
 #include "vk/buffer.h"
 #include "vk/handle.h"
 #include "vk/image.h"
@@ -74,7 +75,7 @@ public:
     uint64_t pageDraws() const { return pageDraws_.draws.size(); }
     uint64_t pageInstances() const { return pageDraws_.instances.size(); }
     // Pages with at least one caster drawn into them (the others stay cleared: lit).
-    uint64_t pagesDrawn() const;
+    uint64_t pagesDrawn() const { return pageDraws_.pagesWithCasters; }
     MemoryKind memoryKind() const override { return MemoryKind::Shadows; }
     std::vector<ImageUse> imageUses() const override;
 
@@ -95,7 +96,7 @@ private:
     // Draws `casters` (objects) through `viewProjection` with `view`'s pipelines.
     void drawView(const FrameContext& frame, const ShadowView& view, const glm::mat4& viewProjection,
                   const std::vector<uint32_t>& casters) const;
-    void drawPages(const FrameContext& frame) const;
+    void drawPages(const FrameContext& frame, const ShadowPageDraws::Batch& batch) const;
     // Whether `object` casts through the masked pipeline (alpha-tested), the opaque one, or none
     // (a transparent caster with --transparent-shadows off).
     std::optional<bool> casterIsMasked(const FrameContext& frame, uint32_t object) const;
@@ -138,6 +139,8 @@ private:
     vk::Buffer pageTable_;  // the page table's entries (one word when there are none)
     vk::Buffer pageInstances_;  // ShadowPageDraws::instances (one slot when there are none)
     ShadowPageDraws pageDraws_;
+    ShadowPageAllocation pagePool_;  // where the slots are (its table left out)
+    std::optional<ShadowPageLayers> pageLayers_;  // once pages are allocated
     // The render pass, layout and pipelines: the context's object cache (vk/object_cache.h) owns them.
     VkRenderPass renderPass_ = VK_NULL_HANDLE;         // clears its target to the far plane
     VkRenderPass loadingRenderPass_ = VK_NULL_HANDLE;  // draws over what it holds

@@ -239,6 +239,16 @@ Context::Context(const ContextOptions& options)
         // Virtual shadow pages cut each caster at its page's edges with clip distances
         // (shadow_page_draw.glsl); every desktop and mobile driver of note, and lavapipe, has them.
         enabledFeatures_.shaderClipDistance = supported.shaderClipDistance;
+        // Virtual shadow pages draw each page into its own layer of an array (gl_Layer from the
+        // vertex shader: Vulkan 1.2's shaderOutputLayer), so that every page is rasterized at the
+        // same origin wherever its slot lies (render/shadow_page_layers.h).
+        VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+        VkPhysicalDeviceFeatures2 supported2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+        supported2.pNext = &supported12;
+        vkGetPhysicalDeviceFeatures2(physicalDevice_, &supported2);
+        VkPhysicalDeviceVulkan12Features enabled12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+        enabled12.shaderOutputLayer = supported12.shaderOutputLayer;
+        shaderOutputLayer_ = supported12.shaderOutputLayer == VK_TRUE;
 
         const float priority = 1.0f;
         VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -249,6 +259,7 @@ Context::Context(const ContextOptions& options)
         deviceInfo.queueCreateInfoCount = 1;
         deviceInfo.pQueueCreateInfos = &queueInfo;
         deviceInfo.pEnabledFeatures = &enabledFeatures_;
+        deviceInfo.pNext = &enabled12;
         check(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_), "vkCreateDevice");
         vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 

@@ -50,6 +50,8 @@ public:
     VkCommandPool commandPool() const { return commandPool_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     const VkPhysicalDeviceFeatures& enabledFeatures() const { return enabledFeatures_; }
+    // Vulkan 1.2's shaderOutputLayer (gl_Layer written by a vertex shader), enabled where present.
+    bool shaderOutputLayer() const { return shaderOutputLayer_; }
     // The device's subgroup size, and whether compute shaders have the subgroup arithmetic
     // operations (subgroupMin, subgroupOr, ...: Vulkan 1.1 core, optional but near universal).
     uint32_t subgroupSize() const { return subgroupSize_; }
@@ -100,6 +102,7 @@ private:
     std::unique_ptr<ObjectCache> objects_;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceFeatures enabledFeatures_{};
+    bool shaderOutputLayer_ = false;
     uint32_t subgroupSize_ = 1;
     bool computeSubgroupArithmetic_ = false;
     uint64_t timestampMask_ = ~0ull;

@@ -86,7 +86,7 @@ TEST(ShadowPageAllocation, TheTableCoversEachLevelsRectangleOfMarkedPages) {
 TEST(ShadowPageAllocation, ThePoolFillsWhatTheCascadesLeave) {
     ShadowPlan plan = planOfViews(1);
     ShadowPageAllocation allocation;
-    allocation.pages.resize(99);  // 100 slots with the lit page
+    allocation.pageSlots = 99;  // 100 slots with the lit page
     placeShadowPagePool(plan, allocation, 16384);
     EXPECT_EQ(allocation.belowAcross, 64u);
     EXPECT_EQ(allocation.besideAcross, 0u);
@@ -113,7 +113,7 @@ TEST(ShadowPageAllocation, ThePoolFillsWhatTheCascadesLeave) {
     ShadowPlan doubled = planOfViews(1);
     doubled.atlas.width = 2048;
     doubled.atlas.height = 1024;
-    allocation.pages.resize(5999);
+    allocation.pageSlots = 5999;
     placeShadowPagePool(doubled, allocation, 4096);
     EXPECT_EQ(doubled.atlas.width, 4096u);
     EXPECT_EQ(allocation.besideAcross, 62u);
@@ -123,7 +123,7 @@ TEST(ShadowPageAllocation, ThePoolFillsWhatTheCascadesLeave) {
     EXPECT_EQ(gpu::virtualShadowSlotOrigin(1922 + 125, allocation.squares, 62, 124), glm::uvec2(33u, 1024u + 33u));
 
     ShadowPlan tight = planOfViews(1);
-    allocation.pages.resize(20000);
+    allocation.pageSlots = 20000;
     EXPECT_THROW(placeShadowPagePool(tight, allocation, 512), Error);
 }
 
@@ -168,10 +168,57 @@ TEST(ShadowPageAllocation, EachCasterDrawsOnlyThePagesItsBoundsMeet) {
     mark(marks, layout, 0, 8, 0, 0);
     mark(marks, layout, 0, 8, 1, 1);
     const ShadowPageAllocation allocation = allocateShadowPages(layout, marks, {});
-    const ShadowPageDraws draws = shadowPageDraws(scene, plan, allocation);
+    const std::vector<std::vector<uint32_t>> casters = shadowPageCasters(scene, plan, allocation);
+    EXPECT_EQ(casters, (std::vector<std::vector<uint32_t>>{{}, {0u}}));
+    const ShadowPageDraws draws = shadowPageDraws(plan, allocation, casters, {}, 2048);
     ASSERT_EQ(draws.draws.size(), 1u);
     EXPECT_EQ(draws.draws[0].instanceCount, 1u);
+    // Page 1 is drawn into layer 1 of the one batch, whose layers go to slots 0 and 1.
     EXPECT_EQ(draws.instances.at(0), glm::uvec4(0u, 8u, 1u | 1u << 16, 1u));
+    ASSERT_EQ(draws.batches.size(), 1u);
+    EXPECT_EQ(draws.batches[0].slots, (std::vector<uint32_t>{0u, 1u}));
+    EXPECT_EQ(draws.pagesDrawn, 2u);
+    EXPECT_EQ(draws.pagesWithCasters, 1u);
+}
+
+TEST(ShadowPageAllocation, PagesGoToTheirSlotsInBatchesOfLayers) {
+    // Four pages of level 8, every one met by the caster (bounds over the whole view).
+    Scene scene;
+    study::addBox(scene, glm::vec3(0.0f, 0.0f, 0.5f), glm::vec3(2.0f, 2.0f, 0.01f));
+    scene.computeBounds();
+    const ShadowPlan plan = planOfViews(1);
+    const ShadowPageMarkLayout layout = ShadowPageMarkLayout::of(plan);
+    std::vector<uint32_t> marks(layout.words, 0u);
+    for (uint32_t row = 0; row < 2; ++row) {
+        for (uint32_t column = 0; column < 2; ++column) mark(marks, layout, 0, 8, column, row);
+    }
+    ShadowPageAllocation allocation = allocateShadowPages(layout, marks, {});
+    ASSERT_EQ(allocation.pages.size(), 4u);
+    // A cache's slots: pages 0..3 in slots 7, 2, 5, 0 of a pool of 8; the table follows.
+    assignPageSlots(allocation, {7u, 2u, 5u, 0u}, 8u);
+    EXPECT_EQ(allocation.table, (std::vector<uint32_t>{7u, 2u, 5u, 0u}));
+    EXPECT_EQ(allocation.litSlot(), 8u);
+    EXPECT_EQ(allocation.physicalBytes(2), 9u * 33u * 33u * 2u);
+    // Pages 0, 2 and 3 drawn (1 kept), two layers a batch: {0, 2} then {3}, a draw a batch.
+    const std::vector<std::vector<uint32_t>> casters = shadowPageCasters(scene, plan, allocation);
+    const ShadowPageDraws draws = shadowPageDraws(plan, allocation, casters, {true, false, true, true}, 2);
+    ASSERT_EQ(draws.batches.size(), 2u);
+    EXPECT_EQ(draws.batches[0].slots, (std::vector<uint32_t>{7u, 5u}));
+    EXPECT_EQ(draws.batches[1].slots, (std::vector<uint32_t>{0u}));
+    ASSERT_EQ(draws.draws.size(), 2u);
+    EXPECT_EQ(draws.batches[1].firstDraw, 1u);
+    EXPECT_EQ(draws.instances.at(1), glm::uvec4(0u, 8u, 0u | 1u << 16, 1u));  // page 2, layer 1
+    EXPECT_EQ(draws.instances.at(2), glm::uvec4(0u, 8u, 1u | 1u << 16, 0u));  // page 3, layer 0
+    EXPECT_EQ(draws.largestBatch(), 2u);
+    EXPECT_EQ(draws.pagesDrawn, 3u);
+    // Nothing drawn: one empty batch all the same (it writes the lit slot).
+    const ShadowPageDraws none = shadowPageDraws(plan, allocation, casters, std::vector<bool>(4, false), 2);
+    ASSERT_EQ(none.batches.size(), 1u);
+    EXPECT_TRUE(none.batches[0].slots.empty());
+    EXPECT_TRUE(none.draws.empty());
+    // A slot given twice is refused.
+    ShadowPageAllocation again = allocateShadowPages(layout, marks, {});
+    EXPECT_ANY_THROW(assignPageSlots(again, {1u, 1u, 2u, 3u}, 4u));
 }
 
 }  // namespace
