@@ -180,6 +180,7 @@ void ShadowCache::preparePagedFrame(ShadowPlan& plan) {
     makeMapsFor(plan);
     atlasLayoutBefore_ = mapsMadeAnew_ ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     kept_.assign(plan.views.size(), false);  // the cascades: drawn every frame
+    keptPages_.clear();
     drawing_.assign(plan.views.size(), ViewDrawing::Whole);
 }
 
@@ -215,6 +216,8 @@ std::vector<bool> ShadowCache::placePages(ShadowPlan& plan, ShadowPageAllocation
         frame_.keepablePages += keepable;
         (drawn[i] ? frame_.drawnPages : frame_.keptPages)++;
     }
+    keptPages_.assign(drawn.size(), false);
+    for (size_t i = 0; i < drawn.size(); ++i) keptPages_[i] = !drawn[i];
     frame_.laidOut = placed.laidOut || fresh;
     frame_.pageSlots = placed.capacity;
     frame_.atlasTexels = plan.atlas.texels();

@@ -127,6 +127,9 @@ public:
                                  const std::vector<std::vector<uint32_t>>& pageCasters, const Scene& scene,
                                  const FrameLights& lights);
 
+    // Virtual pages: whether page `page` (of the allocation placePages last placed) kept its depth.
+    bool keptPage(size_t page) const { return page < keptPages_.size() && keptPages_[page]; }
+
     const ShadowMaps& maps() const { return *maps_; }
     // Whether plan view `view` keeps last frame's depth (not cleared, not drawn).
     bool kept(uint32_t view) const { return view < kept_.size() && kept_[view]; }
@@ -191,6 +194,7 @@ private:
     std::vector<AtlasRect> staticRects_;
     bool mapsMadeAnew_ = false;
     ShadowPagePoolCache pagePool_;
+    std::vector<bool> keptPages_;  // per page of the last placePages
     glm::uvec2 pageSquares_{0u};  // this frame's cascades' squares, beside which the pool lies
 };
 
