@@ -8,7 +8,9 @@
 # the shadow memory and the cache's CPU time; and, frame by frame, whether on's frames are
 # redraw's bit for bit, and how many pixels on's differ from off's (their squares lie elsewhere).
 # The lifting runs (issue 34's mixed caching) keep the lamps still and lift a quarter of the props
-# (--moving-casters 0.25): off, on and mixed, with their frames compared the same way.
+# (--moving-casters 0.25): off, on and mixed, with their frames compared the same way. The
+# virtual runs cache virtual pages (--shadow-res virtual): off and on, lamps still (virtual-*)
+# and a quarter swaying (virtualquarter-*), with the pages kept and drawn.
 # Extra arguments go to every play (e.g. --fps 5 --size 640x360). RUNS="lifting-off lifting-on
 # lifting-mixed" plays only those; their rows and comparisons replace the stored summary's, the
 # others' stay (one stored run per series).
@@ -36,6 +38,10 @@ configs=(
   "lifting-off|--moving-lights 0 --moving-casters 0.25 --shadow-cache off"
   "lifting-on|--moving-lights 0 --moving-casters 0.25 --shadow-cache on"
   "lifting-mixed|--moving-lights 0 --moving-casters 0.25 --shadow-cache mixed"
+  "virtual-off|--moving-lights 0 --shadow-res virtual --shadow-cache off"
+  "virtual-on|--moving-lights 0 --shadow-res virtual --shadow-cache on"
+  "virtualquarter-off|--moving-lights 0.25 --shadow-res virtual --shadow-cache off"
+  "virtualquarter-on|--moving-lights 0.25 --shadow-res virtual --shadow-cache on"
 )
 for entry in "${configs[@]}"; do
   name="${entry%%|*}"
@@ -76,13 +82,16 @@ for run in runs:
            "shadow_memory_bytes_p50": statistics.median(f["stats"]["shadows"]["memory_bytes"] for f in document["frames"]),
            "views_rendered": sum(f["stats"]["shadows"]["views_rendered"] for f in document["frames"])}
     if cache[0]:
-        for key in ("kept_views", "drawn_views", "moved_views", "laid_out", "over_static_views", "static_stored_views"):
+        for key in ("kept_views", "drawn_views", "moved_views", "laid_out", "over_static_views", "static_stored_views",
+                    "kept_pages", "drawn_pages"):
             row[key] = sum(c.get(key, 0) for c in cache)
         row["dynamic_casters"] = cache[-1].get("dynamic_casters", 0)
         row["static_texels_p50"] = statistics.median(c.get("static_texels", 0) for c in cache)
         row["check_ms_p50"] = statistics.median(c["check_ms"] for c in cache)
         row["atlas_texels_p50"] = statistics.median(c["atlas_texels"] for c in cache)
         row["packed_texels_p50"] = statistics.median(c["packed_texels"] for c in cache)
+    row["pages_allocated"] = sum(f["stats"]["shadows"].get("pages", {}).get("allocated", 0)
+                                 for f in document["frames"])
     row["shadow_draws"] = sum(f["stats"]["geometry"]["shadow_draws"]["total"] for f in document["frames"])
     summary["runs"][run] = row
 for run, row in summary["runs"].items():
@@ -107,7 +116,8 @@ def compare(a_run, b_run):
 
 comparisons = {"still_on_vs_redraw": ("still-on", "still-redraw"), "still_on_vs_off": ("still-on", "still-off"),
                "quarter_on_vs_off": ("quarter-on", "quarter-off"), "lifting_on_vs_off": ("lifting-on", "lifting-off"),
-               "lifting_mixed_vs_off": ("lifting-mixed", "lifting-off")}
+               "lifting_mixed_vs_off": ("lifting-mixed", "lifting-off"), "virtual_on_vs_off": ("virtual-on", "virtual-off"),
+               "virtualquarter_on_vs_off": ("virtualquarter-on", "virtualquarter-off")}
 for key, (a, b) in comparisons.items():
     if a in runs and b in runs:
         summary[key] = compare(a, b)
@@ -118,12 +128,13 @@ for run in runs:
     summary["commits"][run] = version
 summary.pop("commit", None)
 json.dump(summary, open(summary_path, "w"), indent=1)
-print(f"{'run':15} {'p50':>8} {'p95':>8} {'max':>8} {'of off':>7} {'kept':>6} {'drawn':>6} {'over':>6} {'moved':>6} "
-      f"{'fresh':>5} {'draws':>7} {'MiB':>7} {'check':>6}")
+print(f"{'run':18} {'p50':>8} {'p95':>8} {'max':>8} {'of off':>7} {'kept':>6} {'drawn':>6} {'over':>6} {'moved':>6} "
+      f"{'fresh':>5} {'pages':>8} {'p.kept':>8} {'p.drawn':>8} {'draws':>7} {'MiB':>7} {'check':>6}")
 for run, r in summary["runs"].items():
-    print(f"{run:15} {r['shadow_ms']['p50']:8.2f} {r['shadow_ms']['p95']:8.2f} {r['shadow_ms']['max']:8.2f} "
+    print(f"{run:18} {r['shadow_ms']['p50']:8.2f} {r['shadow_ms']['p95']:8.2f} {r['shadow_ms']['max']:8.2f} "
           f"{r.get('shadow_p50_of_off', 1.0):7.3f} {r.get('kept_views', 0):6} {r.get('drawn_views', r['views_rendered']):6} "
           f"{r.get('over_static_views', 0):6} {r.get('moved_views', 0):6} {r.get('laid_out', 0):5} "
+          f"{r.get('pages_allocated', 0):8} {r.get('kept_pages', 0):8} {r.get('drawn_pages', 0):8} "
           f"{r.get('shadow_draws', 0):7} {r['shadow_memory_bytes_p50'] / 2**20:7.1f} {r.get('check_ms_p50', 0.0):6.2f}")
 for key in comparisons:
     if key not in summary:

@@ -244,6 +244,11 @@ public:
             // The levels this frame read, which hysteresis holds in the next (VirtualPageReads).
             previousPageMarks_ = pageMarksByView(renderer.shadowPlan(), renderer.lights(), renderer.readShadowPageMarks());
         }
+        if (settings.shadows.virtualPages() && settings.shadows.enabled) {
+            // (render --stats gives the whole record, virtual_pages; a sequence keeps the counts)
+            stats["shadows"]["pages"] = {{"allocated", renderer.shadowPages().pages.size()},
+                                         {"drawn_with_casters", renderer.shadowPageDraws().pagesDrawn}};
+        }
         if (const render::ShadowCacheFrame* cache = renderer.shadowCacheFrame()) {
             stats["shadows"]["cache"] = {{"kept_views", cache->keptViews},
                                          {"drawn_views", cache->drawnViews},

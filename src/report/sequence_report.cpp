@@ -69,6 +69,7 @@ constexpr CsvCounter kCsvCounters[] = {
     {"shadow_cache_laid_out", "/shadows/cache/laid_out"},
     {"shadow_cache_over_static_views", "/shadows/cache/over_static_views"},  // --shadow-cache mixed
     {"shadow_cache_dynamic_casters", "/shadows/cache/dynamic_casters"},
+    {"shadow_pages_allocated", "/shadows/pages/allocated"},  // --shadow-res virtual
     {"shadow_cache_kept_pages", "/shadows/cache/kept_pages"},  // --shadow-cache on with virtual pages
     {"shadow_cache_drawn_pages", "/shadows/cache/drawn_pages"},
     {"shadow_memory_bytes", "/shadows/memory_bytes"},

@@ -236,9 +236,6 @@ Context::Context(const ContextOptions& options)
         enabledFeatures_.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
         enabledFeatures_.depthClamp = supported.depthClamp;
         enabledFeatures_.depthBiasClamp = supported.depthBiasClamp;
-        // Virtual shadow pages cut each caster at its page's edges with clip distances
-        // (shadow_page_draw.glsl); every desktop and mobile driver of note, and lavapipe, has them.
-        enabledFeatures_.shaderClipDistance = supported.shaderClipDistance;
         // Virtual shadow pages draw each page into its own layer of an array (gl_Layer from the
         // vertex shader: Vulkan 1.2's shaderOutputLayer), so that every page is rasterized at the
         // same origin wherever its slot lies (render/shadow_page_layers.h).
