@@ -586,21 +586,34 @@ const ShadowCacheFrame* Renderer::shadowCacheFrame() const { return shadowCache_
 
 ShadowDraws Renderer::shadowDraws() const {
     ShadowDraws draws;
-    for (uint32_t v = 0; v < plan_.shadows.views.size(); ++v) {
-        const ShadowView& view = plan_.shadows.views[v];
+    if (!resources_->shadows) return draws;  // shadows off
+    const ShadowPass& pass = *resources_->shadows;
+    const ShadowPlan& plan = plan_.shadows;
+    std::vector<uint64_t> perView(plan.views.size(), 0);
+    std::vector<uint32_t> casters;
+    // Virtual pages: the pass's instanced draws, a (view, caster) a batch (the cache's kept pages
+    // left out).
+    for (const ShadowPageDraws::Draw& draw : pass.pageDrawList()) {
+        ++perView[draw.view];
+        casters.push_back(draw.object);
+    }
+    draws.triangles += trianglesOf(scene_, casters);
+    for (uint32_t v = 0; v < plan.views.size(); ++v) {
+        const ShadowView& view = plan.views[v];
         if (!view.rendered() || (shadowCache_ && shadowCache_->kept(v))) continue;
         // A view larger than the drawing square draws each caster in the tiles it reaches; one
         // drawn over its kept static depth (mixed caching), only its dynamic casters.
         auto drawn = [&](uint32_t object) { return !shadowCache_ || shadowCache_->draws(v, object); };
-        uint64_t viewDraws = 0;
-        for (const DrawingTile& tile : drawingTiles(view, scene_)) {
-            viewDraws += uint64_t(std::count_if(tile.casters.begin(), tile.casters.end(), drawn));
+        for (const DrawingTile& tile : pass.tilesOf(v)) {
+            perView[v] += uint64_t(std::count_if(tile.casters.begin(), tile.casters.end(), drawn));
         }
-        std::vector<uint32_t> casters;
+        casters.clear();
         std::copy_if(view.casters.begin(), view.casters.end(), std::back_inserter(casters), drawn);
+        if (!pass.tilesOf(v).empty()) draws.triangles += trianglesOf(scene_, casters);
+    }
+    for (const uint64_t viewDraws : perView) {
         draws.total += viewDraws;
-        draws.maxPerView = std::max<uint64_t>(draws.maxPerView, viewDraws);
-        draws.triangles += trianglesOf(scene_, casters);
+        draws.maxPerView = std::max(draws.maxPerView, viewDraws);
     }
     return draws;
 }

@@ -26,7 +26,7 @@ VkImageCopy layerToSlot(uint32_t layer, const glm::uvec2& origin) {
 
 uint32_t ShadowPageLayers::layersPerBatch(const vk::Context& context) {
     const VkPhysicalDeviceLimits& limits = context.properties().limits;
-    return std::max(std::min(limits.maxFramebufferLayers, limits.maxImageArrayLayers), 2u) - 1u;
+    return std::min(kMostLayers, std::max(std::min(limits.maxFramebufferLayers, limits.maxImageArrayLayers), 2u)) - 1u;
 }
 
 ShadowPageLayers::ShadowPageLayers(const vk::Context& context, VkFormat format, VkRenderPass renderPass,

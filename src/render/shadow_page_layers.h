@@ -14,11 +14,15 @@
 // (render/shadow_pass.h) made for thousands of small squares drawn by instancing: a layer a page,
 // chosen in the vertex shader (gl_Layer), so the draws stay one per (view, caster) a batch.
 //
-// Batches: a framebuffer has at most maxFramebufferLayers layers (an array maxImageArrayLayers),
-// 2048 on lavapipe and desktop GPUs, at least 256 anywhere; more pages are drawn batch after batch
-// into the same array. The array's last layer is never drawn: cleared with the first batch, it is
-// copied into the lit slot (the page every lookup without a page reads: the far plane).
-// Memory: 33 x 33 x 2 bytes (d16) a layer, 4.3 MiB for 2048 layers.
+// Batches: pages are drawn batch after batch into the same array, at most kMostLayers - 1 a batch
+// (and never more than the device's maxFramebufferLayers and maxImageArrayLayers allow: 2048 on
+// lavapipe and desktop GPUs, at least 256 anywhere). The array's last layer is never drawn:
+// cleared with the first batch, it is copied into the lit slot (the page every lookup without a
+// page reads: the far plane). Memory: 33 x 33 x 2 bytes (d16) a layer, more where the driver pads
+// layers (lavapipe: about 4.2 KiB a layer). Measured on the hall at 1280x720 (9,256 pages, one
+// frame): batches of 2047 pages take 8.9 MiB and 1,074 draws, of 511 2.2 MiB and 1,126 draws, of
+// 127 0.6 MiB and 1,308 draws; the shadow stage's time did not tell them apart within its noise
+// (bench/RESULTS.md, "Frames in motion, fifth part"). 512 layers it is.
 #include <cstdint>
 #include <functional>
 
@@ -37,6 +41,8 @@ namespace punctual::render {
 
 class ShadowPageLayers {
 public:
+    static constexpr uint32_t kMostLayers = 512;
+
     // The most pages a batch draws on `context`'s device: its framebuffer and array limits, less
     // the layer kept clear for the lit slot.
     static uint32_t layersPerBatch(const vk::Context& context);

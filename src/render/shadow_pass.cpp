@@ -78,7 +78,11 @@ void ShadowPass::createDrawingSquare(const vk::Context& context, const Scene& sc
     drawingTiles_.assign(plan_.views.size(), {});
     for (uint32_t v = 0; v < plan_.views.size(); ++v) {
         const ShadowView& view = plan_.views[v];
-        if (!view.rendered() || view.rect.size == 0) continue;  // no square: a cube face, or virtual pages
+        if (!view.rendered()) continue;
+        if (view.rect.size == 0) {  // no square: a cube face (drawn whole into its layer), or virtual pages
+            if (view.isPoint && plan_.cubeResolution > 0) drawingTiles_[v] = {DrawingTile{0, 0, view.casters}};
+            continue;
+        }
         side = std::max(side, drawingTileSide(view.rect.size));
         drawingTiles_[v] = drawingTiles(view, scene);
     }

@@ -76,6 +76,11 @@ public:
     uint64_t pageInstances() const { return pageDraws_.instances.size(); }
     // Pages with at least one caster drawn into them (the others stay cleared: lit).
     uint64_t pagesDrawn() const { return pageDraws_.pagesWithCasters; }
+    const std::vector<ShadowPageDraws::Draw>& pageDrawList() const { return pageDraws_.draws; }
+    // The tiles plan view `index` is drawn in (lights/shadow_drawing_tiles.h): an atlas view's in the
+    // drawing square, a cube face's one tile of all its casters; none for virtual pages' views and
+    // views not rendered.
+    const std::vector<DrawingTile>& tilesOf(uint32_t index) const { return drawingTiles_.at(index); }
     MemoryKind memoryKind() const override { return MemoryKind::Shadows; }
     std::vector<ImageUse> imageUses() const override;
 
