@@ -207,8 +207,8 @@ std::vector<bool> ShadowCache::placePages(ShadowPlan& plan, ShadowPageAllocation
     makeMapsFor(plan);
     // A new atlas (this frame's, or the marking frame's) holds no page yet.
     const bool fresh = mapsMadeAnew_ || madeForMarking;
-    if (mapsMadeAnew_) atlasLayoutBefore_ = VK_IMAGE_LAYOUT_UNDEFINED;
-    else atlasLayoutBefore_ = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;  // the marking frame left it there
+    // (Kept, the atlas is where the marking frame left it.)
+    atlasLayoutBefore_ = mapsMadeAnew_ ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     std::vector<bool> drawn(requests.size(), true);
     for (size_t i = 0; i < requests.size(); ++i) {
         const bool keepable = placed.kept[i] && !fresh;

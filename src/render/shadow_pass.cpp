@@ -128,7 +128,10 @@ void ShadowPass::createTargets(const vk::Context& context) {
         return targets_.back();
     };
     if (plan.atlas.width > 0) {
-        Target& atlas = addTarget(maps().atlas(), 0, plan.atlas.width, plan.atlas.height);
+        // The atlas is only copied into (views from the drawing square, pages from their layers):
+        // no view or framebuffer of it, whose size the device's framebuffer limits would also bound.
+        targets_.push_back(Target{{}, {}, plan.atlas.width, plan.atlas.height, {}});
+        Target& atlas = targets_.back();
         for (uint32_t i = 0; i < plan.views.size(); ++i) {
             const ShadowView& view = plan.views[i];
             if (view.rendered() && view.rect.size > 0) atlas.planViews.push_back(i);
